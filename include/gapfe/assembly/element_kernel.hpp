@@ -1,0 +1,143 @@
+#pragma once
+// The one element kernel every variant uses: stiffness, consistent loads, static condensation of
+// interior nodes, and recovery of strains and stresses. Fixed-size Eigen types only, no allocation.
+//
+// DATA LAYOUT: element DOFs are node-major, (u_r, u_z[, u_theta]) per node; shape nodes are the
+// element's nodes followed by its interior (condensed) nodes, so the first kDofs entries of a
+// shape-level vector are the element's own DOFs. Strain vectors have Kin::kStrain entries, the
+// rows Kin::kVoigt of the global Voigt-6 vector.
+#include <Eigen/Cholesky>
+
+#include "gapfe/core/concepts.hpp"
+
+namespace gapfe {
+
+/// Body force per unit volume from rigid-body motion of the frame (THEORY.md 4.1, seed Data 12):
+/// b = rho (omega^2 r, -a_z, -omega_dot r) in (r, z, theta), d'Alembert inertia.
+struct BodyForce {
+  double radial_per_r = 0.0;  ///< rho omega^2 [force / length^4]
+  double axial        = 0.0;  ///< -rho a_z [force / length^3]
+  double hoop_per_r   = 0.0;  ///< -rho omega_dot [force / length^4]
+  bool any() const { return radial_per_r != 0 || axial != 0 || hoop_per_r != 0; }
+};
+
+template <class Kin, class Elem>
+  requires KinematicsFor<Kin, Elem>
+struct ElementKernel {
+  static constexpr int kDofsPerNode = Kin::kDofsPerNode;
+  static constexpr int kStrain      = Kin::kStrain;
+  static constexpr int kDofs        = kDofsPerNode * Elem::kNodes;
+  static constexpr int kShapeDofs   = kDofsPerNode * Elem::kShapeNodes;
+  static constexpr int kInner       = kShapeDofs - kDofs;
+
+  using Coords       = Mat<Elem::kNodes, 2>;
+  using Matrix       = Mat<kDofs, kDofs>;
+  using Vector       = Vec<kDofs>;
+  using ShapeMatrix  = Mat<kShapeDofs, kShapeDofs>;
+  using ShapeVector  = Vec<kShapeDofs>;
+  using StrainMatrix = Mat<kStrain, kStrain>;
+  using StrainVector = Vec<kStrain>;
+
+  /// The kinematics' block of a Voigt-6 matrix / vector.
+  static StrainMatrix restrict(const Mat66& d) {
+    StrainMatrix m;
+    for (int i = 0; i < kStrain; ++i)
+      for (int j = 0; j < kStrain; ++j) m(i, j) = d(Kin::kVoigt[i], Kin::kVoigt[j]);
+    return m;
+  }
+  static StrainVector restrict(const Vec6& v) {
+    StrainVector s;
+    for (int i = 0; i < kStrain; ++i) s(i) = v(Kin::kVoigt[i]);
+    return s;
+  }
+  static Vec6 extend(const StrainVector& s) {
+    Vec6 v = Vec6::Zero();
+    for (int i = 0; i < kStrain; ++i) v(Kin::kVoigt[i]) = s(i);
+    return v;
+  }
+
+  /// K_s = sum_q B^T D B 2 pi r |J| w over the stiffness points (before condensation).
+  static ShapeMatrix shape_stiffness(const Coords& x, const StrainMatrix& D) {
+    ShapeMatrix k = ShapeMatrix::Zero();
+    double det    = 0;
+    for (int q = 0; q < Elem::kStiffnessPoints; ++q) {
+      const auto g                               = Elem::stiffness_point(x, q, det);
+      const Mat<kStrain, kShapeDofs> b           = Kin::B(g);
+      const Mat<kStrain, kShapeDofs> d_b         = D * b;
+      k.noalias() += g.weight * (b.transpose() * d_b);
+    }
+    return k;
+  }
+
+  /// f_s = int N^T b dV (load points) + int B^T D eps_th dV (stiffness points, the same rule as K so
+  /// that a free uniform expansion is reproduced with zero stress; THEORY.md 3.4 and V8).
+  static ShapeVector shape_load(const Coords& x, const StrainMatrix& D, const StrainVector& eps_th,
+                                const BodyForce& body) {
+    ShapeVector f = ShapeVector::Zero();
+    double det    = 0;
+    if (body.any()) {
+      for (int q = 0; q < Elem::kLoadPoints; ++q) {
+        const auto g = Elem::load_point(x, q, det);
+        for (int a = 0; a < Elem::kShapeNodes; ++a) {
+          const double nw = g.N(a) * g.weight;
+          f(kDofsPerNode * a) += nw * body.radial_per_r * g.r;
+          f(kDofsPerNode * a + 1) += nw * body.axial;
+          if constexpr (kDofsPerNode == 3) f(kDofsPerNode * a + 2) += nw * body.hoop_per_r * g.r;
+        }
+      }
+    }
+    if (!eps_th.isZero(0.0)) {
+      const StrainVector s_th = D * eps_th;
+      for (int q = 0; q < Elem::kStiffnessPoints; ++q) {
+        const auto g = Elem::stiffness_point(x, q, det);
+        f.noalias() += g.weight * (Kin::B(g).transpose() * s_th);
+      }
+    }
+    return f;
+  }
+
+  /// Static condensation of interior DOFs (THEORY.md 2 item 3):
+  /// K* = Kcc - Kci Kii^-1 Kic,  F* = Fc - Kci Kii^-1 Fi. A no-op copy without interior nodes.
+  static void condense(const ShapeMatrix& ks, const ShapeVector& fs, Matrix& k, Vector& f) {
+    if constexpr (kInner == 0) {
+      k = ks;
+      f = fs;
+    } else {
+      const Eigen::LDLT<Mat<kInner, kInner>> kii(ks.template bottomRightCorner<kInner, kInner>());
+      const Mat<kInner, kDofs> kii_kic = kii.solve(ks.template bottomLeftCorner<kInner, kDofs>());
+      const Vec<kInner> kii_fi         = kii.solve(fs.template tail<kInner>());
+      k = ks.template topLeftCorner<kDofs, kDofs>() - ks.template topRightCorner<kDofs, kInner>() * kii_kic;
+      f = fs.template head<kDofs>() - ks.template topRightCorner<kDofs, kInner>() * kii_fi;
+    }
+  }
+  /// Condensed stiffness only (no loads).
+  static Matrix stiffness(const Coords& x, const StrainMatrix& D) {
+    if constexpr (kInner == 0) {
+      return shape_stiffness(x, D);
+    } else {
+      Matrix k;
+      Vector f;
+      condense(shape_stiffness(x, D), ShapeVector::Zero(), k, f);
+      return k;
+    }
+  }
+
+  /// Interior DOFs from the element's own: u_i = Kii^-1 (F_i - K_ic u_c).
+  static ShapeVector expand(const ShapeMatrix& ks, const ShapeVector& fs, const Vector& u) {
+    ShapeVector us;
+    us.template head<kDofs>() = u;
+    if constexpr (kInner > 0) {
+      const Eigen::LDLT<Mat<kInner, kInner>> kii(ks.template bottomRightCorner<kInner, kInner>());
+      us.template tail<kInner>() =
+          kii.solve(fs.template tail<kInner>() - ks.template bottomLeftCorner<kInner, kDofs>() * u);
+    }
+    return us;
+  }
+
+  /// Voigt-6 strain at a point from shape-level displacements (zero in slots the kinematics lacks).
+  static Vec6 strain(const PointGeometry<Elem::kShapeNodes>& g, const ShapeVector& us) {
+    return extend(Kin::B(g) * us);
+  }
+};
+
+}  // namespace gapfe

@@ -1,0 +1,78 @@
+#pragma once
+// The contracts every policy must meet. A wrong plug-in fails where the Model alias names it.
+#include <concepts>
+#include <string>
+
+#include "gapfe/core/types.hpp"
+#include "gapfe/element/point_geometry.hpp"
+#include "gapfe/material/orientation.hpp"
+
+namespace gapfe {
+
+/// Time and step of an increment, for rate-dependent laws (dt > 0 there).
+struct StepContext {
+  double time = 0.0;  ///< [model time unit]
+  double dt   = 0.0;  ///< [model time unit]
+};
+
+/// A material point's answer: stress and tangent in global Voigt axes, the trial history.
+template <class State>
+struct PointResponse {
+  Vec6 stress;
+  Mat66 tangent;
+  State state;
+  bool yielded = false;
+};
+
+/// A reference cell: stateless, integration points produce PointGeometry over its shape nodes.
+/// kShapeNodes > kNodes means interior nodes that the kernel condenses out (LegacyQuad's centre).
+template <class E>
+concept ElementType = requires(const Mat<E::kNodes, 2>& x, int q, double& det) {
+  requires E::kNodes >= 3 && E::kShapeNodes >= E::kNodes;
+  requires E::kStiffnessPoints >= 1 && E::kLoadPoints >= 1;
+  requires E::kEdgeNodes == 2 || E::kEdgeNodes == 3;
+  { E::kEdges[0][0] } -> std::convertible_to<int>;
+  { E::shape_coords(x) } -> std::convertible_to<Mat<E::kShapeNodes, 2>>;
+  { E::stiffness_point(x, q, det) } -> std::same_as<PointGeometry<E::kShapeNodes>>;
+  { E::load_point(x, q, det) } -> std::same_as<PointGeometry<E::kShapeNodes>>;
+};
+
+/// Axisym2 (2 DOF) or Axisym3 (3 DOF) on element E: a strain-displacement matrix per point and the
+/// rows its strains occupy in the global Voigt-6 vector.
+template <class K, class E>
+concept KinematicsFor = ElementType<E> && requires(const PointGeometry<E::kShapeNodes>& g) {
+  requires K::kDofsPerNode == 2 || K::kDofsPerNode == 3;
+  { K::kVoigt[0] } -> std::convertible_to<int>;
+  requires static_cast<int>(K::kVoigt.size()) == K::kStrain;
+  { K::template B<E::kShapeNodes>(g) } -> std::same_as<Mat<K::kStrain, K::kDofsPerNode * E::kShapeNodes>>;
+};
+
+/// A constitutive law. `localize` resolves the material frame and temperature once per element
+/// (table lookups and 6x6 rotations stay out of the point loop); `update` is pure: old state in,
+/// response out, committed history never touched (so a step can be split and redone).
+template <class M>
+concept MaterialLaw = std::semiregular<typename M::State> &&
+    requires(const M& m, const MaterialFrame& f, double T, const typename M::Local& p, const Vec6& strain,
+             const typename M::State& s, const StepContext& ctx, const std::string& where) {
+  { M::kLinear } -> std::convertible_to<bool>;
+  { m.localize(f, T, T) } -> std::same_as<typename M::Local>;
+  { p.stiffness } -> std::convertible_to<Mat66>;       // initial (elastic) stiffness, global axes
+  { p.thermal_strain } -> std::convertible_to<Vec6>;   // global axes
+  { p.density } -> std::convertible_to<double>;
+  { p.to_material } -> std::convertible_to<Mat66>;     // T_sigma, for output in material axes
+  { M::update(p, strain, s, ctx) } -> std::same_as<PointResponse<typename M::State>>;
+  m.validate(where);
+};
+
+/// A sparse symmetric positive definite solver on the lower triangle: symbolic analysis once per
+/// pattern, numeric factorization per matrix, then solves. factorize() returns false, never NaN.
+template <class S>
+concept LinearSolver = std::default_initializable<S> && requires(S s, const SpMat& K, const VecX& b) {
+  { S::kName } -> std::convertible_to<const char*>;
+  s.analyze(K);
+  { s.factorize(K) } -> std::same_as<bool>;
+  { s.solve(b) } -> std::convertible_to<VecX>;
+  { s.failure() } -> std::convertible_to<std::string>;  // why factorize() returned false
+};
+
+}  // namespace gapfe

@@ -1,0 +1,7 @@
+#pragma once
+// gapfe: header-only C++20 finite elements for axisymmetric structures. Umbrella header: everything
+// except solver/cholmod.hpp (CHOLMOD is GPL and opt-in).
+#include "gapfe/driver/linear_static.hpp"
+#include "gapfe/mesh/structured.hpp"
+#include "gapfe/model.hpp"
+#include "gapfe/version.hpp"

@@ -1,0 +1,58 @@
+#pragma once
+// Material axes and the 6x6 Voigt transformations (THEORY.md 3.2-3.3; seed Data 6 and Fig. 4).
+//
+// Material axes are indexed (N, S, T) = (0, 1, 2), the card order of E_N, E_S, E_T. BETA turns N in
+// the meridian plane, measured from +z toward +r; ALPHA (helical) turns N out of the meridian plane
+// toward +theta about T. Components in (r, z, theta):
+//   N = (cos a sin b, cos a cos b, sin a),  S = (-sin a sin b, -sin a cos b, cos a),  T = (-cos b, sin b, 0)
+// With ALPHA = 0 the N-T plane is the r-z plane and S is the hoop direction. An orthotropic C is
+// unchanged when an axis is reversed, so handedness does not matter.
+#include "gapfe/core/types.hpp"
+
+namespace gapfe {
+
+/// Orientation of an element's material axes [rad]. `beta`: in the meridian plane from +z toward +r;
+/// `alpha`: helical angle out of it (seed card 6 BETA, ALPHA; the deck reader converts degrees).
+struct MaterialFrame {
+  double beta  = 0.0;  ///< [rad]
+  double alpha = 0.0;  ///< [rad]
+  bool operator==(const MaterialFrame&) const = default;
+};
+
+/// Rows: the material axes N, S, T in global (r, z, theta) components.
+inline Mat33 material_axes(const MaterialFrame& f) {
+  const double sb = std::sin(f.beta), cb = std::cos(f.beta);
+  const double sa = std::sin(f.alpha), ca = std::cos(f.alpha);
+  Mat33 q;
+  // clang-format off
+  q <<  ca * sb,  ca * cb, sa,
+       -sa * sb, -sa * cb, ca,
+       -cb,       sb,      0.0;
+  // clang-format on
+  return q;
+}
+
+/// Stress transformation, sigma_material = T_sigma sigma_global, built from the Voigt pair table:
+/// T_sigma(I, K) = Q_ik Q_jl + (1 - delta_kl) Q_il Q_jk, I <-> (i, j), K <-> (k, l).
+inline Mat66 stress_rotation(const Mat33& q) {
+  Mat66 t;
+  for (int I = 0; I < 6; ++I) {
+    const auto [i, j] = voigt::kPairs[I];
+    for (int K = 0; K < 6; ++K) {
+      const auto [k, l] = voigt::kPairs[K];
+      t(I, K)           = q(i, k) * q(j, l) + (k == l ? 0.0 : q(i, l) * q(j, k));
+    }
+  }
+  return t;
+}
+
+/// Strain transformation (engineering shears), eps_material = T_eps eps_global:
+/// T_eps(I, K) = (w_I / w_K) T_sigma(I, K), w = 1 for normal and 2 for shear slots; T_eps = T_sigma^-T.
+inline Mat66 strain_rotation(const Mat66& t_sigma) {
+  Mat66 t = t_sigma;
+  for (int I = 0; I < 6; ++I)
+    for (int K = 0; K < 6; ++K) t(I, K) *= (I < 3 ? 1.0 : 2.0) / (K < 3 ? 1.0 : 2.0);
+  return t;
+}
+
+}  // namespace gapfe

@@ -1,0 +1,41 @@
+#pragma once
+// Mesh: nodal (r, z) and cells. A structured I-J grid gives quadrilaterals plus, along boundary
+// diagonals, 3-corner cells; so a mesh holds cells of the model's element (NodesPerCell nodes) and
+// 3-node triangles, each with a material index and a material frame. Connectivity is 0-based,
+// counterclockwise in the (r, z) plane (element to the left of each edge).
+#include <array>
+#include <vector>
+
+#include "gapfe/core/types.hpp"
+#include "gapfe/material/orientation.hpp"
+
+namespace gapfe {
+
+/// Per-cell attributes: which material (index into the model's material list) and its axes.
+struct CellTag {
+  int material = 0;
+  MaterialFrame frame{};
+};
+
+template <int NodesPerCell>
+struct Mesh {
+  static constexpr int kNodesPerCell = NodesPerCell;
+  std::vector<Vec2> nodes;                              ///< (r, z) [length]
+  std::vector<std::array<int, NodesPerCell>> cells;     ///< the model's element
+  std::vector<CellTag> cell_tags;                       ///< parallel to cells (empty: all default)
+  std::vector<std::array<int, 3>> triangles;            ///< 3-corner cells (CST)
+  std::vector<CellTag> triangle_tags;                   ///< parallel to triangles (empty: all default)
+
+  int node_count() const { return static_cast<int>(nodes.size()); }
+  CellTag cell_tag(std::size_t e) const { return cell_tags.empty() ? CellTag{} : cell_tags[e]; }
+  CellTag triangle_tag(std::size_t e) const { return triangle_tags.empty() ? CellTag{} : triangle_tags[e]; }
+
+  /// Largest extent of the mesh in r or z, for relative tolerances [length].
+  double size() const {
+    Vec2 lo = nodes.front(), hi = nodes.front();
+    for (const auto& x : nodes) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+    return (hi - lo).maxCoeff();
+  }
+};
+
+}  // namespace gapfe

@@ -1,0 +1,53 @@
+#pragma once
+// CholmodLlt: CHOLMOD supernodal Cholesky (SuiteSparse) through Eigen/CholmodSupport, with AMD
+// ordering forced and the symbolic analysis done once per pattern. CHOLMOD is GPL, so this header is
+// opt-in: it is not in gapfe.hpp, and needs the gapfe::cholmod CMake target (GAPFE_HAS_CHOLMOD).
+// Link BLAS from OpenBLAS: the supernodal factorization is BLAS-3 bound, several times slower on the
+// reference BLAS.
+#include <Eigen/CholmodSupport>
+#include <string>
+
+#include "gapfe/core/concepts.hpp"
+
+namespace gapfe {
+
+class CholmodLlt {
+ public:
+  static constexpr const char* kName = "CHOLMOD supernodal LLT (AMD)";
+  /// Reciprocal condition estimates below this mean a singular system.
+  double singular_rcond = 1e-14;
+
+  CholmodLlt() {
+    cholmod_common& c = llt_.cholmod();
+    c.nmethods           = 1;
+    c.method[0].ordering = CHOLMOD_AMD;
+    c.postorder          = 1;
+    c.supernodal         = CHOLMOD_SUPERNODAL;
+  }
+  void analyze(const SpMat& k) { llt_.analyzePattern(k); }
+  bool factorize(const SpMat& k) {
+    failure_.clear();
+    llt_.factorize(k);
+    if (llt_.info() != Eigen::Success) return fail("stiffness is singular or not positive definite (CHOLMOD)");
+    const double rcond = cholmod_rcond(llt_.factor(), &llt_.cholmod());
+    if (!(rcond > singular_rcond)) return fail("stiffness is singular (CHOLMOD rcond " + std::to_string(rcond) + ")");
+    return true;
+  }
+  VecX solve(const VecX& b) const { return llt_.solve(b); }
+  const std::string& failure() const { return failure_; }
+  int failed_equation() const { return -1; }
+
+ private:
+  struct Llt : Eigen::CholmodSupernodalLLT<SpMat, Eigen::Lower> {
+    cholmod_factor* factor() { return m_cholmodFactor; }
+  };
+  bool fail(const std::string& what) {
+    failure_ = what;
+    return false;
+  }
+  Llt llt_;
+  std::string failure_;
+};
+static_assert(LinearSolver<CholmodLlt>);
+
+}  // namespace gapfe

@@ -1,0 +1,54 @@
+#pragma once
+// EigenLdlt: the embedded default, Eigen's SimplicialLDLT with AMD ordering on the lower triangle.
+// analyze() once per pattern, factorize() per matrix. A singular or indefinite stiffness (a missing
+// constraint, an inverted element) is detected from the pivots, not left to produce huge or NaN
+// displacements: factorize() returns false and failure() names the equation of the worst pivot.
+#include <Eigen/OrderingMethods>
+#include <Eigen/SparseCholesky>
+#include <string>
+
+#include "gapfe/core/concepts.hpp"
+
+namespace gapfe {
+
+class EigenLdlt {
+ public:
+  static constexpr const char* kName = "Eigen SimplicialLDLT (AMD)";
+  /// Pivots below this fraction of the largest pivot mean a singular system (rigid-body mode).
+  double singular_pivot_ratio = 1e-13;
+
+  void analyze(const SpMat& k) { ldlt_.analyzePattern(k); }
+  bool factorize(const SpMat& k) {
+    ldlt_.factorize(k);
+    failure_.clear();
+    if (ldlt_.info() != Eigen::Success) return fail("Eigen SimplicialLDLT reported a numerical failure", -1);
+    const VecX& d    = ldlt_.vectorD();
+    Eigen::Index worst = 0;
+    const double dmax  = d.cwiseAbs().maxCoeff();
+    const double dmin  = d.minCoeff(&worst);
+    if (!std::isfinite(dmax) || !std::isfinite(dmin)) return fail("non-finite pivot", -1);
+    if (dmin <= singular_pivot_ratio * dmax) {
+      const int eq = ldlt_.permutationPinv().indices()(worst);
+      return fail(dmin <= 0 && dmin < -singular_pivot_ratio * dmax ? "stiffness is not positive definite"
+                                                                   : "stiffness is singular",
+                  eq);
+    }
+    return true;
+  }
+  VecX solve(const VecX& b) const { return ldlt_.solve(b); }
+  const std::string& failure() const { return failure_; }
+  int failed_equation() const { return failed_equation_; }
+
+ private:
+  bool fail(const std::string& what, int eq) {
+    failure_         = what;
+    failed_equation_ = eq;
+    return false;
+  }
+  Eigen::SimplicialLDLT<SpMat, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
+  std::string failure_;
+  int failed_equation_ = -1;
+};
+static_assert(LinearSolver<EigenLdlt>);
+
+}  // namespace gapfe

@@ -1,0 +1,51 @@
+#pragma once
+// Helpers shared by the test translation units: small meshes and closed forms.
+#include <doctest/doctest.h>
+
+#include "gapfe/gapfe.hpp"
+
+namespace gapfe::test {
+
+/// Relative difference |a - b| / |b|.
+inline double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
+
+/// Lame thick cylinder (THEORY.md V1): inner pressure p, plane strain.
+struct Lame {
+  double a, b, p, E, nu;
+  double A() const { return p * a * a / (b * b - a * a); }
+  double B() const { return p * a * a * b * b / (b * b - a * a); }
+  double radial_stress(double r) const { return A() - B() / (r * r); }
+  double hoop_stress(double r) const { return A() + B() / (r * r); }
+  double axial_stress() const { return 2 * nu * A(); }
+  double displacement(double r) const {
+    return r / E * (hoop_stress(r) - nu * (radial_stress(r) + axial_stress()));
+  }
+};
+
+}  // namespace gapfe::test
+
+namespace gapfe::test {
+
+/// Cells of a rectangle_mesh on the bore (i = 0) and on the top (j = nz - 1), and their edges as the
+/// seed's pressure cards give them (element on the left from M to N).
+template <int NPC>
+std::vector<EdgeLoad> bore_pressure(const Mesh<NPC>& m, int nr, int nz, double p) {
+  std::vector<EdgeLoad> loads;
+  for (int j = 0; j < nz; ++j) loads.push_back({m.cells[j * nr][3], m.cells[j * nr][0], p, 0, 0});
+  return loads;
+}
+template <int NPC>
+std::vector<EdgeLoad> top_pressure(const Mesh<NPC>& m, int nr, int nz, double p) {
+  std::vector<EdgeLoad> loads;
+  for (int i = 0; i < nr; ++i) loads.push_back({m.cells[(nz - 1) * nr + i][2], m.cells[(nz - 1) * nr + i][3], p, 0, 0});
+  return loads;
+}
+/// A condition with `code` and value(r, z) on every node with z == z0.
+template <int NPC, class F>
+void fix_plane(std::vector<NodalCondition>& out, const Mesh<NPC>& m, double z0, int code, F value) {
+  for (int n = 0; n < m.node_count(); ++n)
+    if (std::abs(m.nodes[n](1) - z0) < 1e-12) out.push_back({n, code, value(m.nodes[n])});
+}
+inline Vec3 zero3(const Vec2&) { return Vec3::Zero(); }
+
+}  // namespace gapfe::test

@@ -1,0 +1,272 @@
+// Closed-form verification (THEORY.md section 10): Lame, spinning tube, torsion, angular acceleration,
+// SAGA vs SAAS, helical orthotropic tube, free thermal expansion. Tolerances are the issue's.
+#include <Eigen/LU>
+
+#include "support.hpp"
+
+using namespace gapfe;
+using namespace gapfe::test;
+
+namespace {
+
+constexpr double kE = 200e9, kNu = 0.3, kRho = 7850;
+
+/// Plane-strain Lame tube a = 0.1, b = 0.2 m, p = 100 MPa on nr x nz cells of height (b - a) / nr.
+template <class M>
+LinearStatic<M> lame_tube(int nr, int nz, double height = 0) {
+  constexpr int NPC = M::Element::kNodes;
+  const double a = 0.1, b = 0.2, h = height > 0 ? height / nz : (b - a) / nr;
+  Problem<M> p;
+  p.mesh       = rectangle_mesh<NPC>(a, b, 0, nz * h, nr, nz);
+  p.materials  = {M::Material::constant(kE, kNu)};
+  p.edge_loads = bore_pressure(p.mesh, nr, nz, 100e6);
+  fix_plane(p.conditions, p.mesh, 0.0, 2, zero3);
+  fix_plane(p.conditions, p.mesh, nz * h, 2, zero3);
+  return LinearStatic<M>(std::move(p));
+}
+
+/// L2 norm of the radial displacement error over the domain (full ring), 4x4 Gauss per cell.
+template <class Elem>
+double l2_error_ur(const LinearStatic<Model<Axisym2, Elem, Isotropic>>& fe, const Lame& exact) {
+  const auto& m = fe.problem().mesh;
+  const auto& u = fe.solution().displacement;
+  constexpr auto rule = gauss::square<4>();
+  double err = 0;
+  for (const auto& cell : m.cells) {
+    Mat<Elem::kNodes, 2> x;
+    Vec<Elem::kNodes> ue;
+    for (int a = 0; a < Elem::kNodes; ++a) x.row(a) = m.nodes[cell[a]].transpose(), ue(a) = u(cell[a], 0);
+    for (int q = 0; q < static_cast<int>(rule.weight.size()); ++q) {
+      double det   = 0;
+      const auto g = Elem::at(x, rule.point[q][0], rule.point[q][1], rule.weight[q], det);
+      const double d = g.N.dot(ue) - exact.displacement(g.r);
+      err += d * d * g.weight;
+    }
+  }
+  return std::sqrt(err);
+}
+
+template <class Elem>
+double lame_convergence_order(int nr0) {
+  const Lame exact{0.1, 0.2, 100e6, kE, kNu};
+  std::array<double, 3> e{};
+  for (int k = 0; k < 3; ++k) {
+    auto fe = lame_tube<Model<Axisym2, Elem, Isotropic>>(nr0 << k, 1, 0.02);  // fixed domain: plane strain, 1-D
+    fe.solve();
+    e[k] = l2_error_ur<Elem>(fe, exact);
+  }
+  const double order1 = std::log2(e[0] / e[1]), order2 = std::log2(e[1] / e[2]);
+  MESSAGE("L2 errors " << e[0] << " " << e[1] << " " << e[2] << ", orders " << order1 << " " << order2);
+  return order2;
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("[verification] Lame tube, plane strain: bore u_r within 0.5%, hoop stress at the innermost "
+                   "centroid within 1%",
+                   M, Model<Axisym2, Quad4, Isotropic>, Model<Axisym2, LegacyQuad, Isotropic>,
+                   Model<Axisym2, Quad8, Isotropic>, Model<Axisym3, Quad4, Isotropic>) {
+  const Lame exact{0.1, 0.2, 100e6, kE, kNu};
+  const int nr = 8, nz = 2;  // a modest mesh: 8 cells through the wall
+  auto fe      = lame_tube<M>(nr, nz);
+  const Solution& s = fe.solve();
+  const int bore    = nearest_node(fe.problem().mesh, 0.1, 0.0);
+  CHECK(rel(s.displacement(bore, 0), exact.displacement(0.1)) < 0.005);
+  const PointValues inner = fe.centroid_values()[0];
+  CHECK(inner.r < 0.1 + 0.1 / nr);
+  CHECK(rel(inner.stress(voigt::hoop), exact.hoop_stress(inner.r)) < 0.01);
+  CHECK(rel(inner.stress(voigt::zz), exact.axial_stress()) < 0.01);
+  CHECK(s.residual < 1e-10);
+  // Plane-strain end reactions carry the axial force sigma_z pi (b^2 - a^2) (per end, total ring).
+  double axial = 0;
+  for (int n = 0; n < fe.problem().mesh.node_count(); ++n)
+    if (fe.problem().mesh.nodes[n](1) == 0) axial += s.reaction(n, 1);
+  CHECK(rel(-axial, exact.axial_stress() * std::numbers::pi * (0.2 * 0.2 - 0.1 * 0.1)) < 0.01);
+}
+
+TEST_CASE("[verification] Lame tube: observed L2 convergence order ~2 for Quad4, ~3 for Quad8") {
+  const double q4 = lame_convergence_order<Quad4>(4);
+  CHECK(q4 > 1.85);
+  CHECK(q4 < 2.15);
+  const double q8 = lame_convergence_order<Quad8>(2);
+  CHECK(q8 > 2.8);
+  CHECK(q8 < 3.3);
+}
+
+TEST_CASE_TEMPLATE("[verification] spinning hollow tube, plane strain: u_r within 0.5%", M,
+                   Model<Axisym2, Quad4, Isotropic>, Model<Axisym2, LegacyQuad, Isotropic>,
+                   Model<Axisym2, Quad8, Isotropic>, Model<Axisym3, Tri3, Isotropic>) {
+  constexpr int NPC = M::Element::kNodes == 3 ? 4 : M::Element::kNodes;
+  const double a = 0.05, b = 0.1, w = 1000, nr = 8, nz = 2, h = (b - a) / nr;
+  // Closed form from the plane-strain ODE (lambda + 2G)(u'' + u'/r - u/r^2) = -rho w^2 r:
+  // u = C1 r + C2 / r - k r^3, k = rho w^2 / 8 (lambda + 2G); sigma_r(a) = sigma_r(b) = 0.
+  const double lambda = kE * kNu / ((1 + kNu) * (1 - 2 * kNu)), G = kE / (2 * (1 + kNu));
+  const double k      = kRho * w * w / (8 * (lambda + 2 * G));
+  Mat<2, 2> A;
+  Vec2 rhs;
+  for (int i = 0; i < 2; ++i) {
+    const double r = i == 0 ? a : b;
+    A(i, 0) = 2 * (lambda + G), A(i, 1) = -2 * G / (r * r), rhs(i) = (4 * lambda + 6 * G) * k * r * r;
+  }
+  const Vec2 C   = A.partialPivLu().solve(rhs);
+  const auto u_r = [&](double r) { return C(0) * r + C(1) / r - k * r * r * r; };
+
+  Problem<M> p;
+  const auto quads = rectangle_mesh<NPC>(a, b, 0, nz * h, nr, nz);
+  if constexpr (M::Element::kNodes == 3) {  // split every quad into two triangles
+    p.mesh.nodes = quads.nodes;
+    for (const auto& c : quads.cells) p.mesh.cells.push_back({c[0], c[1], c[2]}), p.mesh.cells.push_back({c[0], c[2], c[3]});
+  } else {
+    p.mesh = quads;
+  }
+  p.materials                 = {M::Material::constant(kE, kNu, 0, kRho)};
+  p.inertia.angular_velocity = w;
+  fix_plane(p.conditions, p.mesh, 0.0, 2, zero3);
+  fix_plane(p.conditions, p.mesh, nz * h, 2, zero3);
+  LinearStatic<M> fe(std::move(p));
+  const Solution& s = fe.solve();
+  for (double r : {a, b}) {
+    const int n = nearest_node(fe.problem().mesh, r, 0.0);
+    CHECK(rel(s.displacement(n, 0), u_r(r)) < 0.005);
+  }
+}
+
+TEST_CASE_TEMPLATE("[verification] hollow shaft twisted at one end (SAGA): u_t = phi r z / L within 0.1%, "
+                   "tau_zt = G phi r / L within 1%",
+                   M, Model<Axisym3, Quad4, Isotropic>, Model<Axisym3, Quad8, Isotropic>,
+                   Model<Axisym3, LegacyQuad, Isotropic>) {
+  constexpr int NPC = M::Element::kNodes;
+  const double a = 0.025, b = 0.05, L = 0.5, phi = 0.01, G = kE / (2 * (1 + kNu));
+  Problem<M> p;
+  p.mesh      = rectangle_mesh<NPC>(a, b, 0, L, 4, 20);
+  p.materials = {M::Material::constant(kE, kNu)};
+  fix_plane(p.conditions, p.mesh, 0.0, 6, zero3);  // u_z = u_theta = 0 at the base
+  fix_plane(p.conditions, p.mesh, L, 4, [&](const Vec2& x) { return Vec3(0, 0, phi * x(0)); });
+  LinearStatic<M> fe(std::move(p));
+  const Solution& s = fe.solve();
+  const auto& m     = fe.problem().mesh;
+  const double u_max = phi * b;
+  double torque      = 0;
+  for (int n = 0; n < m.node_count(); ++n) {
+    CHECK(std::abs(s.displacement(n, 2) - phi * m.nodes[n](0) * m.nodes[n](1) / L) < 1e-3 * u_max);
+    if (m.nodes[n](1) == 0) torque += s.reaction(n, 2) * m.nodes[n](0);
+  }
+  for (const auto& v : fe.centroid_values()) CHECK(rel(v.stress(voigt::z_theta), G * phi * v.r / L) < 0.01);
+  if constexpr (!std::is_same_v<typename M::Element, LegacyQuad>)  // its sub-triangle values are first order
+    for (const auto& v : fe.point_values()) CHECK(rel(v.stress(voigt::z_theta), G * phi * v.r / L) < 0.01);
+  const double J = std::numbers::pi * (std::pow(b, 4) - std::pow(a, 4)) / 2;
+  CHECK(rel(-torque, G * J * phi / L) < 0.01);
+}
+
+TEST_CASE_TEMPLATE("[verification] solid shaft under angular acceleration (THEORY.md V4): twist and torque", M,
+                   Model<Axisym3, Quad4, Isotropic>, Model<Axisym3, LegacyQuad, Isotropic>) {
+  const double c = 0.05, L = 0.5, wdot = 1e4, G = kE / (2 * (1 + kNu));
+  Problem<M> p;
+  // Nodes on the axis. The legacy quad's CSTs converge more slowly in the theta shear: twice as fine.
+  constexpr int k = std::is_same_v<typename M::Element, LegacyQuad> ? 2 : 1;
+  p.mesh                         = rectangle_mesh<4>(0.0, c, 0, L, 5 * k, 20 * k);
+  p.materials                    = {M::Material::constant(kE, kNu, 0, kRho)};
+  p.inertia.angular_acceleration = wdot;
+  fix_plane(p.conditions, p.mesh, 0.0, 6, zero3);
+  LinearStatic<M> fe(std::move(p));
+  const Solution& s = fe.solve();
+  const auto& m     = fe.problem().mesh;
+  // u_theta = rho wdot r / G (z^2 / 2 - L z); reaction torque rho J L wdot = 385.3 N m.
+  const auto exact = [&](double r, double z) { return kRho * wdot * r / G * (z * z / 2 - L * z); };
+  double torque    = 0;
+  for (int n = 0; n < m.node_count(); ++n) {
+    CHECK(std::abs(s.displacement(n, 2) - exact(m.nodes[n](0), m.nodes[n](1))) < 0.005 * std::abs(exact(c, L)));
+    if (m.nodes[n](1) == 0) torque += s.reaction(n, 2) * m.nodes[n](0);
+    if (m.nodes[n](0) == 0) CHECK(s.displacement(n, 2) == 0.0);  // axis: u_theta = 0 imposed
+  }
+  const double expected = kRho * std::numbers::pi * std::pow(c, 4) / 2 * L * wdot;
+  CHECK(expected == doctest::Approx(385.3).epsilon(1e-3));
+  CHECK(rel(torque, expected) < 1e-9);
+  CHECK(rel(exact(c, L) / c, -1.2756e-4) < 1e-3);
+}
+
+TEST_CASE("[verification] SAGA with no theta loads and ALPHA = 0 gives SAAS's u_r, u_z to 1e-10") {
+  ElasticConstants ply;
+  ply.E_N = 140e9, ply.E_S = 10e9, ply.E_T = 9e9, ply.nu_NS = 0.3, ply.nu_NT = 0.28, ply.nu_ST = 0.4;
+  ply.G_NS = 5e9, ply.G_ST = 3.5e9, ply.G_TN = 4.5e9, ply.alpha_N = 1e-6, ply.alpha_S = 20e-6, ply.alpha_T = 25e-6;
+  auto build = [&]<class M>(std::type_identity<M>) {
+    Problem<M> p;
+    p.mesh = rectangle_mesh<4>(0.1, 0.15, 0, 0.2, 4, 8);
+    p.mesh.cell_tags.assign(p.mesh.cells.size(), CellTag{0, {0.4, 0.0}});
+    p.materials                = {Orthotropic::constant(ply, 1600)};
+    p.edge_loads               = bore_pressure(p.mesh, 4, 8, 50e6);
+    p.inertia.angular_velocity = 500;
+    p.inertia.axial_acceleration = 2e4;
+    p.temperature              = VecX::Constant(p.mesh.node_count(), 80);
+    p.reference_temperature    = 20;
+    fix_plane(p.conditions, p.mesh, 0.0, 6, zero3);  // u_theta: ignored by SAAS, holds SAGA's spin
+    return LinearStatic<M>(std::move(p));
+  };
+  auto saas = build(std::type_identity<Saas>{});
+  auto saga = build(std::type_identity<Saga>{});
+  const auto& u2 = saas.solve().displacement;
+  const auto& u3 = saga.solve().displacement;
+  const double scale = u2.cwiseAbs().maxCoeff();
+  CHECK(scale > 0);
+  CHECK((u2.leftCols<2>() - u3.leftCols<2>()).cwiseAbs().maxCoeff() < 1e-10 * scale);
+  CHECK(u3.col(2).cwiseAbs().maxCoeff() < 1e-10 * scale);
+}
+
+TEST_CASE("[verification] helically wound orthotropic tube under axial load twists; the twist flips with ALPHA") {
+  ElasticConstants ply;
+  ply.E_N = 140e9, ply.E_S = 10e9, ply.E_T = 9e9, ply.nu_NS = 0.3, ply.nu_NT = 0.28, ply.nu_ST = 0.4;
+  ply.G_NS = 5e9, ply.G_ST = 3.5e9, ply.G_TN = 4.5e9;
+  const double a = 0.1, b = 0.12, L = 0.2, sigma = 50e6;
+  const int nr = 2, nz = 8;
+  auto run = [&](double alpha) {
+    Problem<Saga> p;
+    p.mesh = rectangle_mesh<4>(a, b, 0, L, nr, nz);
+    p.mesh.cell_tags.assign(p.mesh.cells.size(), CellTag{0, {0.0, alpha}});  // BETA = 0: N along z, then helical
+    p.materials  = {Orthotropic::constant(ply)};
+    p.edge_loads = top_pressure(p.mesh, nr, nz, -sigma);  // negative pressure: tension
+    fix_plane(p.conditions, p.mesh, 0.0, 6, zero3);       // base: u_z = u_theta = 0
+    LinearStatic<Saga> fe(std::move(p));
+    fe.solve();
+    return fe;
+  };
+  auto plus = run(0.5), minus = run(-0.5);
+  const Solution &sp = plus.solution(), &sm = minus.solution();
+  const auto& m      = plus.problem().mesh;
+  const int top      = nearest_node(m, b, L);
+  CHECK(std::abs(sp.displacement(top, 2)) > 0.05 * std::abs(sp.displacement(top, 1)));  // it twists
+  CHECK(rel(sp.displacement(top, 2), -sm.displacement(top, 2)) < 1e-10);                 // flips with ALPHA
+  CHECK(rel(sp.displacement(top, 1), sm.displacement(top, 1)) < 1e-10);
+  // Reactions balance the applied load: sum R_z = -sigma pi (b^2 - a^2); no net torque.
+  const double F = sigma * std::numbers::pi * (b * b - a * a);
+  double Rz = 0, T = 0;
+  for (int n = 0; n < m.node_count(); ++n) Rz += sp.reaction(n, 1), T += sp.reaction(n, 2) * m.nodes[n](0);
+  CHECK(std::abs(Rz + F) < 1e-9 * F);
+  CHECK(std::abs(T) < 1e-9 * F * b);
+}
+
+TEST_CASE_TEMPLATE("[verification] uniform temperature rise on a free tube: zero stress, u_r = alpha dT r", M,
+                   Model<Axisym2, Quad4, Isotropic>, Model<Axisym3, LegacyQuad, Isotropic>,
+                   Model<Axisym2, Quad8, Orthotropic>, Model<Axisym3, Quad4, Orthotropic>) {
+  constexpr int NPC = M::Element::kNodes;
+  const double alpha = 12e-6, dT = 100;
+  Problem<M> p;
+  p.mesh = rectangle_mesh<NPC>(0.1, 0.2, 0, 0.1, 4, 4);
+  if constexpr (std::is_same_v<typename M::Material, Isotropic>) {
+    p.materials = {Isotropic::constant(kE, kNu, alpha)};
+  } else {
+    p.materials = {Orthotropic::constant(ElasticConstants::isotropic(kE, kNu, alpha))};
+  }
+  p.temperature           = VecX::Constant(p.mesh.node_count(), 20 + dT);
+  p.reference_temperature = 20;
+  fix_plane(p.conditions, p.mesh, 0.0, 6, zero3);  // u_z and (3 DOF) u_theta on the base plane
+  LinearStatic<M> fe(std::move(p));
+  const Solution& s = fe.solve();
+  const auto& m     = fe.problem().mesh;
+  for (int n = 0; n < m.node_count(); ++n) {
+    CHECK(std::abs(s.displacement(n, 0) - alpha * dT * m.nodes[n](0)) < 1e-9 * alpha * dT * 0.2);
+    CHECK(std::abs(s.displacement(n, 1) - alpha * dT * m.nodes[n](1)) < 1e-9 * alpha * dT * 0.2);
+  }
+  for (const auto& v : fe.point_values()) CHECK(v.stress.norm() < 1e-9 * kE * alpha * dT);
+  // THEORY.md V8 example: alpha 12e-6 /K, dT 100 K, r = 0.1 m gives u_r = 0.12 mm.
+  CHECK(rel(s.displacement(nearest_node(m, 0.1, 0.0), 0), 0.12e-3) < 1e-9);
+}
