@@ -44,7 +44,10 @@ std::vector<EdgeLoad> top_pressure(const Mesh<NPC>& m, int nr, int nz, double p)
 template <int NPC, class F>
 void fix_plane(std::vector<NodalCondition>& out, const Mesh<NPC>& m, double z0, int code, F value) {
   for (int n = 0; n < m.node_count(); ++n)
-    if (std::abs(m.nodes[n](1) - z0) < 1e-12) out.push_back({n, code, value(m.nodes[n])});
+    if (std::abs(m.nodes[n](1) - z0) < 1e-12) {
+      const Vec3 v = value(m.nodes[n]);
+      out.push_back({n, code, {v(0), v(1), v(2)}});
+    }
 }
 inline Vec3 zero3(const Vec2&) { return Vec3::Zero(); }
 

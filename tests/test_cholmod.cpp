@@ -5,7 +5,7 @@
 using namespace gapfe;
 using namespace gapfe::test;
 
-TEST_CASE("[solver] CHOLMOD and Eigen LDLT agree on the Lame tube; both reuse the symbolic analysis") {
+TEST_CASE("[solver] CHOLMOD and Eigen LDLT agree on the Lame tube and reuse the symbolic analysis") {
   using Fast = Model<Axisym2, Quad4, Isotropic, CholmodLlt>;
   using Slow = Model<Axisym2, Quad4, Isotropic, EigenLdlt>;
   auto build = [&]<class M>(std::type_identity<M>) {

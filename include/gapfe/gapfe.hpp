@@ -2,6 +2,7 @@
 // gapfe: header-only C++20 finite elements for axisymmetric structures. Umbrella header: everything
 // except solver/cholmod.hpp (CHOLMOD is GPL and opt-in).
 #include "gapfe/driver/linear_static.hpp"
+#include "gapfe/io/vtu_writer.hpp"
 #include "gapfe/mesh/structured.hpp"
 #include "gapfe/model.hpp"
 #include "gapfe/version.hpp"

@@ -6,6 +6,7 @@
 // Nodes on the axis (r = 0 within 1e-9 of the mesh size) get u_r = u_theta = 0: a smooth field needs
 // it, and the exact stiffness of u_r there is infinite (THEORY.md 1.3). A card that prescribes a
 // non-zero u_r or u_theta there, or loads those components, is an input error.
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -48,25 +49,25 @@ struct DofMap {
       const std::string where = "boundary condition at node " + std::to_string(c.node + 1);
       if (c.node < 0 || c.node >= nn) throw InputError(where + ": no such node");
       if (c.code < 0 || c.code > 7) throw InputError(where + ": code must be 0-7, got " + std::to_string(c.code));
-      if (!c.value.allFinite()) throw InputError(where + ": non-finite value");
+      if (!std::isfinite(c.value[0]) || !std::isfinite(c.value[1]) || !std::isfinite(c.value[2])) throw InputError(where + ": non-finite value");
       for (int k = 0; k < 3; ++k) {
         if (k == dof::theta && DofsPerNode == 2) {
-          if (c.value(k) != 0)
+          if (c.value[k] != 0)
             throw InputError(where + ": a theta " + (c.prescribed(k) ? "displacement" : "load") +
                              " needs the 3-DOF (SAGA) kinematics");
           continue;
         }
         const int d = m.dof(c.node, k);
         if (m.on_axis[c.node] && k != dof::z) {
-          if (c.value(k) != 0)
+          if (c.value[k] != 0)
             throw InputError(where + ": the node is on the axis, where " + kName[k] +
                              " = 0 is imposed; a non-zero " + kName[k] + (c.prescribed(k) ? " displacement" : " load") +
                              " is not allowed");
           continue;
         }
         fixed[d]         = c.prescribed(k);
-        m.prescribed(d)  = c.prescribed(k) ? c.value(k) : 0.0;
-        m.nodal_force(d) = c.prescribed(k) ? 0.0 : c.value(k);
+        m.prescribed(d)  = c.prescribed(k) ? c.value[k] : 0.0;
+        m.nodal_force(d) = c.prescribed(k) ? 0.0 : c.value[k];
       }
     }
     m.equation.assign(fixed.size(), -1);

@@ -1,6 +1,8 @@
 #pragma once
 // Loads and constraints as the seed's cards give them (Appendix A, Data 5 and 12-15), in the
 // library's full-ring convention (types.hpp): a nodal force is the total around the circumference.
+#include <array>
+
 #include "gapfe/core/types.hpp"
 
 namespace gapfe {
@@ -11,7 +13,9 @@ namespace gapfe {
 struct NodalCondition {
   int node = 0;
   int code = 0;
-  Vec3 value{0, 0, 0};  ///< (XR, XZ, XT): displacement [length] or total force [force] per component
+  /// (XR, XZ, XT): displacement [length] or total force [force] per component. A std::array, not an
+  /// Eigen vector, so that `{n, code}` and `{n, code, {}}` mean zeros rather than uninitialized storage.
+  std::array<double, 3> value{};
   bool prescribed(int component) const { return (code >> component) & 1; }
 };
 

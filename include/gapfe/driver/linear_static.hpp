@@ -105,6 +105,14 @@ class LinearStatic {
     return sol_;
   }
 
+  /// Assemble stiffness values and right-hand side only (what solve() does first); for benchmarks and
+  /// for callers that want the system without solving it.
+  void assemble_system() {
+    validate_loads();
+    assemble();
+  }
+  const VecX& rhs() const { return rhs_; }
+
   /// Strain and stress at every stiffness point of every cell (after solve()).
   std::vector<PointValues> point_values() const { return recover(false); }
   /// Strain and stress at every cell's centroid (LegacyQuad: the r-bar A weighted mean of its four

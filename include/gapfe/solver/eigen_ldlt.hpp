@@ -21,7 +21,7 @@ class EigenLdlt {
   bool factorize(const SpMat& k) {
     ldlt_.factorize(k);
     failure_.clear();
-    if (ldlt_.info() != Eigen::Success) return fail("Eigen SimplicialLDLT reported a numerical failure", -1);
+    if (ldlt_.info() != Eigen::Success) return fail("stiffness is singular (zero pivot)", -1);
     const VecX& d    = ldlt_.vectorD();
     Eigen::Index worst = 0;
     const double dmax  = d.cwiseAbs().maxCoeff();
