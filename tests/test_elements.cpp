@@ -68,3 +68,25 @@ TEST_CASE("[element] edge loads: uniform pressure on a straight edge, closed for
   CHECK(rel(f3.col(0).sum(), f.col(0).sum()) < 1e-13);
   CHECK(rel(f3.col(1).sum(), f.col(1).sum()) < 1e-13);
 }
+
+TEST_CASE("[element] the vectorized Quad4 2-DOF batch kernel equals the generic kernel (1e-12)") {
+  // A general, fully populated 4x4 material block (helical orthotropic) and distorted cells.
+  ElasticConstants c;
+  c.E_N = 140e9, c.E_S = 10e9, c.E_T = 9e9, c.nu_NS = 0.3, c.nu_NT = 0.28, c.nu_ST = 0.4;
+  c.G_NS = 5e9, c.G_ST = 3.5e9, c.G_TN = 4.5e9;
+  using K        = ElementKernel<Axisym2, Quad4>;
+  const Mat66 d6 = Orthotropic::constant(c).localize({0.3, 0.5}, 0, 0).stiffness;
+  Quad4Axisym2Batch<8> batch;
+  std::array<Mat<4, 2>, 8> x;
+  for (int l = 0; l < 8; ++l) {
+    x[l] << 0.0 + 0.1 * l, 0.0, 1.0 + 0.1 * l, 0.1 * l, 1.1, 1.0 + 0.05 * l, 0.05 * l, 0.9;
+    for (int a = 0; a < 4; ++a) batch.r[a][l] = x[l](a, 0), batch.z[a][l] = x[l](a, 1);
+    batch.set_material(l, d6.topLeftCorner<4, 4>() * (1.0 + 0.1 * l));
+  }
+  batch.compute();
+  for (int l = 0; l < 8; ++l) {
+    const K::Matrix k = K::stiffness(x[l], K::restrict(d6) * (1.0 + 0.1 * l));
+    for (int i = 0, m = 0; i < 8; ++i)
+      for (int j = i; j < 8; ++j, ++m) CHECK(std::abs(batch.k[m][l] - k(i, j)) <= 1e-12 * k.norm());
+  }
+}

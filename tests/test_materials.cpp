@@ -112,3 +112,19 @@ TEST_CASE("[material] validation names the material and the problem") {
   unsorted.table.rows = {ElasticConstants::isotropic(2e11, 0.3, 0, 100), ElasticConstants::isotropic(2e11, 0.3, 0, 50)};
   CHECK_THROWS_WITH_AS(unsorted.validate("m"), doctest::Contains("increase"), InputError);
 }
+
+TEST_CASE("[material] temperature field from (r, z, T) points: exact at nodes, bounded, constant") {
+  const auto m = rectangle_mesh<4>(0.1, 0.2, 0, 0.1, 2, 2);
+  std::vector<TemperaturePoint> at_nodes;
+  for (const auto& x : m.nodes) at_nodes.push_back({x(0), x(1), 100 + 1000 * x(0) - 500 * x(1)});
+  const VecX t = nodal_temperatures(m, at_nodes);
+  for (int n = 0; n < m.node_count(); ++n)
+    CHECK(t(n) == doctest::Approx(100 + 1000 * m.nodes[n](0) - 500 * m.nodes[n](1)).epsilon(1e-14));
+  const VecX two = nodal_temperatures(m, {{0.1, 0.0, 20}, {0.2, 0.1, 220}});
+  CHECK(two.minCoeff() >= 20);
+  CHECK(two.maxCoeff() <= 220);
+  CHECK(two(0) == 20.0);
+  CHECK(constant_temperature(m, 75).isConstant(75));
+  CHECK_THROWS_AS(nodal_temperatures(m, {}), InputError);
+  CHECK_THROWS_AS(nodal_temperatures(m, {{0.1, 0.0, std::nan("")}}), InputError);
+}

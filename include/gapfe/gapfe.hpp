@@ -4,5 +4,6 @@
 #include "gapfe/driver/linear_static.hpp"
 #include "gapfe/io/vtu_writer.hpp"
 #include "gapfe/mesh/structured.hpp"
+#include "gapfe/mesh/temperature.hpp"
 #include "gapfe/model.hpp"
 #include "gapfe/version.hpp"

@@ -5,6 +5,7 @@
 // material constants may change between calls; which DOFs are prescribed and the mesh may not).
 //
 // Conventions: full ring (types.hpp). Reactions are total ring forces at prescribed DOFs.
+#include <algorithm>
 #include <chrono>
 #include <memory>
 #include <string>
@@ -15,6 +16,7 @@
 #include "gapfe/assembly/dof_map.hpp"
 #include "gapfe/assembly/edge_loads.hpp"
 #include "gapfe/assembly/element_kernel.hpp"
+#include "gapfe/assembly/quad4_batch.hpp"
 #include "gapfe/assembly/sparsity.hpp"
 #include "gapfe/mesh/mesh.hpp"
 #include "gapfe/post/point_values.hpp"
@@ -55,6 +57,8 @@ class LinearStatic {
   using Solver               = typename M::LinearSolver;
   static constexpr int kNd   = Kin::kDofsPerNode;
   static constexpr bool kTri = !std::is_void_v<Tri>;
+  /// Quad4 with 2 DOF assembles through the vectorized batch kernel (same result, BENCHMARKS.md).
+  static constexpr bool kBatchedQuad4 = std::is_same_v<Elem, Quad4> && kNd == 2;
 
   explicit LinearStatic(Problem<M> problem) : p_(std::move(problem)) {
     validate();
@@ -191,30 +195,80 @@ class LinearStatic {
     double* values = k_.valuePtr();
     for_each_cell([&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e, const std::array<int, NPC>& cell,
                                                const CellTag& tag) {
-      using Kernel         = ElementKernel<Kin, E>;
-      constexpr int n      = Kernel::kDofs;
-      constexpr int per    = n * (n + 1) / 2;
-      const auto& offsets  = std::is_same_v<E, Elem> ? cell_offsets_ : tri_offsets_;
-      const int* off       = offsets.data() + e * per;
+      if constexpr (kBatchedQuad4 && std::is_same_v<E, Elem>) return;  // done in batches below
+      using Kernel        = ElementKernel<Kin, E>;
+      constexpr int n     = Kernel::kDofs;
+      const int* off      = (std::is_same_v<E, Elem> ? cell_offsets_ : tri_offsets_).data() + e * (n * (n + 1) / 2);
       typename Kernel::Matrix k;
       typename Kernel::Vector f;
       element_system<E>(cell, tag, k, f);
       for (int i = 0, c = 0; i < n; ++i)
         for (int j = i; j < n; ++j, ++c)
           if (off[c] >= 0) values[off[c]] += k(i, j);
-      // Loads, and the prescribed-displacement columns moved to the right-hand side.
-      std::array<int, n> dof;
-      for (int a = 0; a < E::kNodes; ++a)
-        for (int c = 0; c < kNd; ++c) dof[a * kNd + c] = dofs_.dof(cell[a], c);
-      for (int i = 0; i < n; ++i) {
-        const int eq = dofs_.equation[dof[i]];
-        if (eq < 0) continue;
-        double r = f(i);
+      add_element_rhs(cell, f, [&](int i, int j) { return k(i, j); });
+    });
+    if constexpr (kBatchedQuad4) assemble_quad4_batched(values);
+  }
+
+  /// Element load into the right-hand side, and the prescribed-displacement columns moved there:
+  /// rhs_i += f_i - sum_j K_ij u_j over prescribed j. `k(i, j)` gives the element stiffness.
+  template <std::size_t NPC, class Vector, class Stiffness>
+  void add_element_rhs(const std::array<int, NPC>& cell, const Vector& f, Stiffness&& k) {
+    constexpr int n = kNd * static_cast<int>(NPC);
+    std::array<int, n> dof;
+    bool moved = false;
+    for (int a = 0; a < static_cast<int>(NPC); ++a)
+      for (int c = 0; c < kNd; ++c) {
+        dof[a * kNd + c] = dofs_.dof(cell[a], c);
+        moved |= dofs_.equation[dof[a * kNd + c]] < 0 && dofs_.prescribed(dof[a * kNd + c]) != 0;
+      }
+    for (int i = 0; i < n; ++i) {
+      const int eq = dofs_.equation[dof[i]];
+      if (eq < 0) continue;
+      double r = f(i);
+      if (moved)
         for (int j = 0; j < n; ++j)
           if (dofs_.equation[dof[j]] < 0) r -= k(i, j) * dofs_.prescribed(dof[j]);
-        rhs_(eq) += r;
+      rhs_(eq) += r;
+    }
+  }
+
+  /// Quad4 cells with 2 DOF: stiffness from the vectorized batch kernel (assembly/quad4_batch.hpp), W
+  /// cells at a time; loads, when there are any, from the generic kernel.
+  void assemble_quad4_batched(double* values) {
+    using Kernel     = ElementKernel<Kin, Elem>;
+    using Batch      = Quad4Axisym2Batch<8>;
+    const auto& m    = p_.mesh;
+    const std::size_t count = m.cells.size();
+    static constexpr auto kUpper = [] {  // (i, j) -> index in the upper-triangle row-major list
+      std::array<std::array<int, 8>, 8> t{};
+      for (int i = 0, c = 0; i < 8; ++i)
+        for (int j = i; j < 8; ++j, ++c) t[i][j] = t[j][i] = c;
+      return t;
+    }();
+    Batch batch;
+    for (std::size_t e0 = 0; e0 < count; e0 += Batch::kLanes) {
+      const int lanes = static_cast<int>(std::min<std::size_t>(Batch::kLanes, count - e0));
+      for (int l = 0; l < Batch::kLanes; ++l) {
+        const std::size_t e = e0 + static_cast<std::size_t>(std::min(l, lanes - 1));  // pad with the last cell
+        for (int a = 0; a < 4; ++a) batch.r[a][l] = m.nodes[m.cells[e][a]](0), batch.z[a][l] = m.nodes[m.cells[e][a]](1);
+        batch.set_material(l, local(m.cell_tag(e), cell_temperature(m.cells[e])).stiffness.template topLeftCorner<4, 4>());
       }
-    });
+      batch.compute();
+      for (int l = 0; l < lanes; ++l) {
+        const std::size_t e = e0 + static_cast<std::size_t>(l);
+        const int* off      = cell_offsets_.data() + e * 36;
+        for (int c = 0; c < 36; ++c)
+          if (off[c] >= 0) values[off[c]] += batch.k[c][l];
+        const auto& lp                         = local(m.cell_tag(e), cell_temperature(m.cells[e]));
+        const typename Kernel::StrainVector th = Kernel::restrict(lp.thermal_strain);
+        const BodyForce body                   = body_force(lp.density);
+        typename Kernel::Vector f              = Kernel::Vector::Zero();
+        if (body.any() || !th.isZero(0.0))
+          f = Kernel::shape_load(coords<Elem>(m.cells[e]), Kernel::restrict(lp.stiffness), th, body);
+        add_element_rhs(m.cells[e], f, [&](int i, int j) { return batch.k[kUpper[i][j]][l]; });
+      }
+    }
   }
 
   /// Edge tractions into external_ (all DOFs). The edge must belong to a cell that has it from M to N
