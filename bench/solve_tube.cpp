@@ -15,9 +15,9 @@
 namespace {
 template <class Elem, class Solver>
 int run(int nr, int nz, const std::string& name) {
-  using M     = gapfe::Model<gapfe::Axisym2, Elem, gapfe::Isotropic, Solver>;
-  using clock = std::chrono::steady_clock;
-  const auto t0 = clock::now();
+  using M        = gapfe::Model<gapfe::Axisym2, Elem, gapfe::Isotropic, Solver>;
+  using clock    = std::chrono::steady_clock;
+  const auto t0  = clock::now();
   const double a = 0.1, b = 0.2, L = nz * (b - a) / nr;
   gapfe::Problem<M> p;
   p.mesh      = gapfe::rectangle_mesh<Elem::kNodes>(a, b, 0, L, nr, nz);
@@ -36,8 +36,8 @@ int run(int nr, int nz, const std::string& name) {
   std::cout << "gapfe nr=" << nr << " nz=" << nz << " dofs=" << fe.dofs().free_count << " solver=" << name
             << " setup_s=" << std::chrono::duration<double>(t1 - t0).count() << " assemble_s=" << t.assemble
             << " factor_s=" << t.factorize << " solve_s=" << t.solve << " reactions_s=" << t.reactions
-            << " total_s=" << std::chrono::duration<double>(t2 - t0).count() << " u_bore=" << s.displacement(0, 0)
-            << '\n';
+            << " total_s=" << std::chrono::duration<double>(t2 - t0).count()
+            << " u_bore=" << s.displacement(0, 0) << '\n';
   return 0;
 }
 }  // namespace
@@ -47,11 +47,16 @@ int main(int argc, char** argv) try {
   std::string solver = "eigen", element = "quad4";
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string k = argv[i], v = argv[i + 1];
-    if (k == "--nr") nr = std::stoi(v);
-    else if (k == "--nz") nz = std::stoi(v);
-    else if (k == "--solver") solver = v;
-    else if (k == "--element") element = v;
-    else throw gapfe::InputError("unknown option " + k);
+    if (k == "--nr")
+      nr = std::stoi(v);
+    else if (k == "--nz")
+      nz = std::stoi(v);
+    else if (k == "--solver")
+      solver = v;
+    else if (k == "--element")
+      element = v;
+    else
+      throw gapfe::InputError("unknown option " + k);
   }
   if (solver == "eigen") {
     if (element == "legacy") return run<gapfe::LegacyQuad, gapfe::EigenLdlt>(nr, nz, solver);

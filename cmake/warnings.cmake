@@ -11,7 +11,8 @@ function(gapfe_warnings target)
     target_compile_options(${target} PRIVATE -Werror)
   endif()
   if(GAPFE_NATIVE)
-    target_compile_options(${target} PRIVATE -march=native)
+    # g++ 12 flags Eigen's AVX-512 packet code (avx512fintrin.h '__Y' used uninitialized): false positives.
+    target_compile_options(${target} PRIVATE -march=native -Wno-maybe-uninitialized -Wno-uninitialized)
   endif()
   if(GAPFE_SANITIZE)
     target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer

@@ -7,7 +7,9 @@
 namespace gapfe::test {
 
 /// Relative difference |a - b| / |b|.
-inline double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
+inline double rel(double a, double b) {
+  return std::abs(a - b) / std::abs(b);
+}
 
 /// Lame thick cylinder (THEORY.md V1): inner pressure p, plane strain.
 struct Lame {
@@ -37,7 +39,8 @@ std::vector<EdgeLoad> bore_pressure(const Mesh<NPC>& m, int nr, int nz, double p
 template <int NPC>
 std::vector<EdgeLoad> top_pressure(const Mesh<NPC>& m, int nr, int nz, double p) {
   std::vector<EdgeLoad> loads;
-  for (int i = 0; i < nr; ++i) loads.push_back({m.cells[(nz - 1) * nr + i][2], m.cells[(nz - 1) * nr + i][3], p, 0, 0});
+  for (int i = 0; i < nr; ++i)
+    loads.push_back({m.cells[(nz - 1) * nr + i][2], m.cells[(nz - 1) * nr + i][3], p, 0, 0});
   return loads;
 }
 /// A condition with `code` and value(r, z) on every node with z == z0.
@@ -49,6 +52,8 @@ void fix_plane(std::vector<NodalCondition>& out, const Mesh<NPC>& m, double z0, 
       out.push_back({n, code, {v(0), v(1), v(2)}});
     }
 }
-inline Vec3 zero3(const Vec2&) { return Vec3::Zero(); }
+inline Vec3 zero3(const Vec2&) {
+  return Vec3::Zero();
+}
 
 }  // namespace gapfe::test

@@ -1,5 +1,6 @@
 // The CHOLMOD policy gives the Eigen default's answer and detects singular systems the same way.
 #include "gapfe/solver/cholmod.hpp"
+
 #include "support.hpp"
 
 using namespace gapfe;
@@ -17,8 +18,8 @@ TEST_CASE("[solver] CHOLMOD and Eigen LDLT agree on the Lame tube and reuse the 
     fix_plane(p.conditions, p.mesh, 0.05, 2, zero3);
     return LinearStatic<M>(std::move(p));
   };
-  auto fast = build(std::type_identity<Fast>{});
-  auto slow = build(std::type_identity<Slow>{});
+  auto fast     = build(std::type_identity<Fast>{});
+  auto slow     = build(std::type_identity<Slow>{});
   const auto u1 = fast.solve().displacement, u2 = slow.solve().displacement;
   CHECK((u1 - u2).cwiseAbs().maxCoeff() < 1e-10 * u2.cwiseAbs().maxCoeff());
   // Second solve with doubled load on the same factorization pattern: doubled answer.

@@ -10,13 +10,14 @@ namespace {
 
 template <class Kin, class Elem>
 int zero_modes(const Mat<Elem::kNodes, 2>& x) {
-  const Mat66 C = Isotropic::constant(200e9, 0.3).localize({}, 0, 0).stiffness;
-  using K       = ElementKernel<Kin, Elem>;
+  const Mat66 C              = Isotropic::constant(200e9, 0.3).localize({}, 0, 0).stiffness;
+  using K                    = ElementKernel<Kin, Elem>;
   const typename K::Matrix k = K::stiffness(x, K::restrict(C));
   CHECK((k - k.transpose()).norm() <= 1e-12 * k.norm());
   const Eigen::SelfAdjointEigenSolver<typename K::Matrix> eig(k);
   int zeros = 0;
-  for (int i = 0; i < K::kDofs; ++i) zeros += std::abs(eig.eigenvalues()(i)) < 1e-10 * eig.eigenvalues().maxCoeff();
+  for (int i = 0; i < K::kDofs; ++i)
+    zeros += std::abs(eig.eigenvalues()(i)) < 1e-10 * eig.eigenvalues().maxCoeff();
   return zeros;
 }
 
@@ -47,7 +48,8 @@ TEST_CASE("[element] legacy quad: condensed stiffness has rank 10 in 3 DOF (THEO
   CHECK(zero_modes<Axisym3, LegacyQuad>(q) == 2);  // 12 - 10
 }
 
-TEST_CASE("[element] edge loads: uniform pressure on a straight edge, closed form 2 pi p L (2 r_M + r_N) / 6") {
+TEST_CASE(
+    "[element] edge loads: uniform pressure on a straight edge, closed form 2 pi p L (2 r_M + r_N) / 6") {
   Mat<2, 2> x;
   x << 0.1, 0.3, 0.4, 0.7;  // M = (0.1, 0.3), N = (0.4, 0.7): L = 0.5
   const double p = 3e6, L = 0.5;

@@ -6,7 +6,7 @@ using namespace gapfe;
 using namespace gapfe::test;
 
 namespace {
-using Q4 = Model<Axisym2, Quad4, Isotropic>;
+using Q4   = Model<Axisym2, Quad4, Isotropic>;
 using Q4x3 = Model<Axisym3, Quad4, Isotropic>;
 
 template <class M = Q4>
@@ -43,8 +43,8 @@ TEST_CASE("[errors] pressure card whose nodes are not an element edge, or with t
   p.edge_loads.push_back({0, 4, 1e6, 0, 0});
   LinearStatic<Q4> fe(std::move(p));
   CHECK_THROWS_WITH_AS(fe.solve(), doctest::Contains("not the ends of an element edge"), InputError);
-  auto q                   = tube();
-  q.edge_loads[0]          = {q.edge_loads[0].node_n, q.edge_loads[0].node_m, 1e6, 0, 0};
+  auto q          = tube();
+  q.edge_loads[0] = {q.edge_loads[0].node_n, q.edge_loads[0].node_m, 1e6, 0, 0};
   LinearStatic<Q4> fe2(std::move(q));
   CHECK_THROWS_WITH_AS(fe2.solve(), doctest::Contains("left"), InputError);
 }
@@ -53,7 +53,7 @@ TEST_CASE("[errors] theta loads in the 2-DOF kinematics need SAGA") {
   auto p = tube();
   p.conditions.push_back({3, 0, {0, 0, 5.0}});
   CHECK_THROWS_WITH_AS(LinearStatic<Q4>(std::move(p)), doctest::Contains("3-DOF"), InputError);
-  auto q                          = tube();
+  auto q                         = tube();
   q.inertia.angular_acceleration = 10;
   LinearStatic<Q4> fe(std::move(q));
   CHECK_THROWS_WITH_AS(fe.solve(), doctest::Contains("3-DOF"), InputError);
@@ -67,8 +67,10 @@ TEST_CASE("[errors] axis nodes: a radial load or non-zero radial displacement th
   CHECK_THROWS_WITH_AS(LinearStatic<Q4>(std::move(p)), doctest::Contains("axis"), InputError);
 }
 
-TEST_CASE("[errors] bad numbers: NaN load, unknown node, bad BC code, wrong temperature count, undefined material") {
-  auto nan_load = tube();
+TEST_CASE(
+    "[errors] bad numbers: NaN load, unknown node, bad BC code, wrong temperature count, undefined "
+    "material") {
+  auto nan_load                   = tube();
   nan_load.edge_loads[0].pressure = std::nan("");
   LinearStatic<Q4> fe(std::move(nan_load));
   CHECK_THROWS_WITH_AS(fe.solve(), doctest::Contains("non-finite"), InputError);
@@ -88,7 +90,6 @@ TEST_CASE("[errors] bad numbers: NaN load, unknown node, bad BC code, wrong temp
   auto bad_mat = tube();
   bad_mat.mesh.cell_tags.assign(bad_mat.mesh.cells.size(), CellTag{3, {}});
   CHECK_THROWS_WITH_AS(LinearStatic<Q4>(std::move(bad_mat)), doctest::Contains("material 4"), InputError);
-
 }
 
 TEST_CASE("[errors] Quad8 meshes cannot carry 3-node cells") {
@@ -111,8 +112,8 @@ TEST_CASE("[extremes] near-incompressible (nu = 0.4999) Lame tube stays finite, 
 TEST_CASE("[extremes] tiny and huge length scales give the same strains (scale invariance)") {
   for (double scale : {1e-6, 1.0, 1e4}) {
     Problem<Q4> p;
-    p.mesh = rectangle_mesh<4>(0.1 * scale, 0.2 * scale, 0, 0.1 * scale, 4, 2);
-    p.materials = {Isotropic::constant(200e9, 0.3)};
+    p.mesh       = rectangle_mesh<4>(0.1 * scale, 0.2 * scale, 0, 0.1 * scale, 4, 2);
+    p.materials  = {Isotropic::constant(200e9, 0.3)};
     p.edge_loads = bore_pressure(p.mesh, 4, 2, 1e8);
     fix_plane(p.conditions, p.mesh, 0.0, 2, zero3);
     fix_plane(p.conditions, p.mesh, 0.1 * scale, 2, zero3);

@@ -28,7 +28,7 @@ TEST_CASE("[material] T_eps = T_sigma^-T and both are orthogonal-like for any BE
 
 TEST_CASE("[material] explicit ALPHA = 0 strain rotation (THEORY.md 3.3)") {
   const double beta = 0.37, s = std::sin(beta), c = std::cos(beta);
-  const Mat66 te    = strain_rotation(stress_rotation(material_axes({beta, 0.0})));
+  const Mat66 te = strain_rotation(stress_rotation(material_axes({beta, 0.0})));
   Vec6 e;
   e << 1e-3, -2e-3, 0.5e-3, 0.7e-3, -0.3e-3, 0.9e-3;  // [rr, zz, tt, rz, z-theta, theta-r]
   const Vec6 m = te * e;                              // [NN, SS, TT, NS, ST, TN]
@@ -40,7 +40,8 @@ TEST_CASE("[material] explicit ALPHA = 0 strain rotation (THEORY.md 3.3)") {
   CHECK(m(5) == doctest::Approx(2 * s * c * (e(1) - e(0)) + (s * s - c * c) * e(3)).epsilon(1e-13));
 }
 
-TEST_CASE("[material] orthotropic: compliance inverse, reciprocity, no in-plane/torsion coupling at ALPHA = 0") {
+TEST_CASE(
+    "[material] orthotropic: compliance inverse, reciprocity, no in-plane/torsion coupling at ALPHA = 0") {
   const Orthotropic m = Orthotropic::constant(fibre());
   const auto p0       = m.localize({0.4, 0.0}, 0, 0);
   CHECK(p0.stiffness.topRightCorner<4, 2>().norm() < 1e-13 * p0.stiffness.norm());
@@ -56,14 +57,15 @@ TEST_CASE("[material] orthotropic: compliance inverse, reciprocity, no in-plane/
   CHECK(rel(e(1), -0.3 * 1e8 / 140e9) < 1e-14);
   CHECK(rel(e(2), -0.28 * 1e8 / 140e9) < 1e-14);
   // Rotating the fibre into the hoop direction (BETA = 90 deg, ALPHA = 90 deg: N = theta) puts E_N in C(tt).
-  const auto ph = m.localize({std::numbers::pi / 2, std::numbers::pi / 2}, 0, 0);
+  const auto ph  = m.localize({std::numbers::pi / 2, std::numbers::pi / 2}, 0, 0);
   const Mat66 sh = ph.stiffness.inverse();
   CHECK(rel(1 / sh(voigt::hoop, voigt::hoop), 140e9) < 1e-10);
 }
 
 TEST_CASE("[material] isotropic equals orthotropic with equal constants, in any frame") {
-  const auto iso   = Isotropic::constant(200e9, 0.3, 12e-6).localize({}, 150, 50);
-  const auto ortho = Orthotropic::constant(ElasticConstants::isotropic(200e9, 0.3, 12e-6)).localize({0.7, 0.4}, 150, 50);
+  const auto iso = Isotropic::constant(200e9, 0.3, 12e-6).localize({}, 150, 50);
+  const auto ortho =
+      Orthotropic::constant(ElasticConstants::isotropic(200e9, 0.3, 12e-6)).localize({0.7, 0.4}, 150, 50);
   CHECK((iso.stiffness - ortho.stiffness).norm() < 1e-12 * iso.stiffness.norm());
   CHECK((iso.thermal_strain - ortho.thermal_strain).norm() < 1e-15);
   CHECK(rel(iso.thermal_strain(voigt::hoop), 12e-6 * 100) < 1e-14);
@@ -71,8 +73,9 @@ TEST_CASE("[material] isotropic equals orthotropic with equal constants, in any 
 
 TEST_CASE("[material] temperature table: linear interpolation, constant outside, free-strain input") {
   Isotropic m;
-  m.table.rows = {ElasticConstants::isotropic(200e9, 0.30, 11e-6, 20), ElasticConstants::isotropic(180e9, 0.32, 13e-6, 220),
-                  ElasticConstants::isotropic(150e9, 0.34, 14e-6, 420)};
+  m.table.rows             = {ElasticConstants::isotropic(200e9, 0.30, 11e-6, 20),
+                              ElasticConstants::isotropic(180e9, 0.32, 13e-6, 220),
+                              ElasticConstants::isotropic(150e9, 0.34, 14e-6, 420)};
   const ElasticConstants c = m.table.at(120);
   CHECK(rel(c.E_N, 190e9) < 1e-14);
   CHECK(rel(c.nu_NS, 0.31) < 1e-14);
@@ -82,7 +85,7 @@ TEST_CASE("[material] temperature table: linear interpolation, constant outside,
   // Coefficients: eps = alpha(T) (T - T_ref).
   CHECK(rel(m.localize({}, 120, 20).thermal_strain(0), 12e-6 * 100) < 1e-13);
   // Free strain: eps = e(T) - e(T_ref).
-  m.table.thermal = ThermalInput::free_strain;
+  m.table.thermal         = ThermalInput::free_strain;
   m.table.rows[0].alpha_N = m.table.rows[0].alpha_S = m.table.rows[0].alpha_T = 0.0;
   m.table.rows[1].alpha_N = m.table.rows[1].alpha_S = m.table.rows[1].alpha_T = 2e-3;
   CHECK(rel(m.localize({}, 120, 20).thermal_strain(voigt::zz), 1e-3) < 1e-13);
@@ -91,7 +94,7 @@ TEST_CASE("[material] temperature table: linear interpolation, constant outside,
 
 TEST_CASE("[material] orthotropic thermal strain maps to global axes with shear parts (THEORY.md 3.4)") {
   const double beta = 0.5, s = std::sin(beta), c = std::cos(beta), dT = 100;
-  const auto p      = Orthotropic::constant(fibre()).localize({beta, 0.0}, dT, 0);
+  const auto p    = Orthotropic::constant(fibre()).localize({beta, 0.0}, dT, 0);
   const double aN = -0.5e-6 * dT, aT = 28e-6 * dT, aS = 30e-6 * dT;
   // N = (s, c) and T = (-c, s) in (r, z): eps_g = aN N N^T + aT T T^T, engineering rz shear doubled.
   CHECK(rel(p.thermal_strain(voigt::rr), aN * s * s + aT * c * c) < 1e-12);
@@ -103,13 +106,14 @@ TEST_CASE("[material] orthotropic thermal strain maps to global axes with shear 
 TEST_CASE("[material] validation names the material and the problem") {
   ElasticConstants bad = fibre();
   bad.nu_NS            = 5.0;  // |nu_NS| >= sqrt(E_N / E_S) = 3.74
-  CHECK_THROWS_WITH_AS(Orthotropic::constant(bad).validate("material 2"),
-                       doctest::Contains("material 2"), InputError);
+  CHECK_THROWS_WITH_AS(Orthotropic::constant(bad).validate("material 2"), doctest::Contains("material 2"),
+                       InputError);
   CHECK_THROWS_AS(Isotropic::constant(200e9, 0.5).validate("m"), InputError);
   CHECK_THROWS_AS(Isotropic::constant(-1, 0.3).validate("m"), InputError);
   CHECK_NOTHROW(Isotropic::constant(200e9, 0.4999).validate("m"));
   Isotropic unsorted;
-  unsorted.table.rows = {ElasticConstants::isotropic(2e11, 0.3, 0, 100), ElasticConstants::isotropic(2e11, 0.3, 0, 50)};
+  unsorted.table.rows = {ElasticConstants::isotropic(2e11, 0.3, 0, 100),
+                         ElasticConstants::isotropic(2e11, 0.3, 0, 50)};
   CHECK_THROWS_WITH_AS(unsorted.validate("m"), doctest::Contains("increase"), InputError);
 }
 

@@ -29,8 +29,10 @@ Mesh<Elem::kNodes> patch(double r0) {
     t.nodes = q.nodes;
     for (std::size_t e = 0; e < q.cells.size(); ++e) {
       const auto& c = q.cells[e];
-      if (e % 2 == 0) t.cells.push_back({c[0], c[1], c[2]}), t.cells.push_back({c[0], c[2], c[3]});
-      else t.cells.push_back({c[0], c[1], c[3]}), t.cells.push_back({c[1], c[2], c[3]});
+      if (e % 2 == 0)
+        t.cells.push_back({c[0], c[1], c[2]}), t.cells.push_back({c[0], c[2], c[3]});
+      else
+        t.cells.push_back({c[0], c[1], c[3]}), t.cells.push_back({c[1], c[2], c[3]});
     }
     return t;
   } else {
@@ -44,8 +46,8 @@ Mesh<Elem::kNodes> patch(double r0) {
       return mid[key] = m.node_count() - 1;
     };
     for (const auto& c : q.cells)
-      m.cells.push_back({c[0], c[1], c[2], c[3], midside(c[0], c[1]), midside(c[1], c[2]), midside(c[2], c[3]),
-                         midside(c[3], c[0])});
+      m.cells.push_back({c[0], c[1], c[2], c[3], midside(c[0], c[1]), midside(c[1], c[2]),
+                         midside(c[2], c[3]), midside(c[3], c[0])});
     return m;
   }
 }
@@ -62,7 +64,7 @@ struct LinearField {
 /// nodal displacements and every integration-point strain against the field to 1e-10 relative.
 template <class M>
 void patch_test(double r0, bool all_nodes) {
-  using Elem = typename M::Element;
+  using Elem        = typename M::Element;
   constexpr int kNd = M::kDofsPerNode;
   Problem<M> p;
   p.mesh      = patch<Elem>(r0);
@@ -74,8 +76,9 @@ void patch_test(double r0, bool all_nodes) {
   if (kNd == 2) field.w = 0;
   const double size = 2.0;
   for (int n = 0; n < p.mesh.node_count(); ++n) {
-    const Vec2 x        = p.mesh.nodes[n];
-    const bool boundary = std::abs(x(0) - r0) < 1e-12 || x(1) == 0 || std::abs(x(0) - (r0 + 2)) < 1e-12 || x(1) == 2;
+    const Vec2 x = p.mesh.nodes[n];
+    const bool boundary =
+        std::abs(x(0) - r0) < 1e-12 || x(1) == 0 || std::abs(x(0) - (r0 + 2)) < 1e-12 || x(1) == 2;
     if (all_nodes || boundary) {
       const Vec3 u = field.at(x);
       p.conditions.push_back({n, kNd == 3 ? 7 : 3, {u(0), u(1), u(2)}});
@@ -83,7 +86,7 @@ void patch_test(double r0, bool all_nodes) {
   }
   (void)size;
   LinearStatic<M> analysis(std::move(p));
-  const Solution& s = analysis.solve();
+  const Solution& s    = analysis.solve();
   const double u_scale = field.at(Vec2(r0 + 2, 2)).norm();
   for (int n = 0; n < analysis.problem().mesh.node_count(); ++n) {
     const Vec3 exact = field.at(analysis.problem().mesh.nodes[n]);
@@ -101,8 +104,12 @@ TEST_CASE_TEMPLATE("[element] patch test, boundary prescribed, interior free", M
                    Model<Axisym2, LegacyQuad, Isotropic>, Model<Axisym3, LegacyQuad, Isotropic>,
                    Model<Axisym2, Quad8, Isotropic>, Model<Axisym3, Quad8, Isotropic>,
                    Model<Axisym2, Tri3, Isotropic>, Model<Axisym3, Tri3, Isotropic>) {
-  SUBCASE("off the axis") { patch_test<M>(1.0, false); }
-  SUBCASE("touching r = 0") { patch_test<M>(0.0, false); }
+  SUBCASE("off the axis") {
+    patch_test<M>(1.0, false);
+  }
+  SUBCASE("touching r = 0") {
+    patch_test<M>(0.0, false);
+  }
 }
 
 TEST_CASE_TEMPLATE("[element] patch test, every node prescribed (strain consistency incl. rz shear)", M,
@@ -110,7 +117,10 @@ TEST_CASE_TEMPLATE("[element] patch test, every node prescribed (strain consiste
                    Model<Axisym2, LegacyQuad, Isotropic>, Model<Axisym3, LegacyQuad, Isotropic>,
                    Model<Axisym2, Quad8, Isotropic>, Model<Axisym3, Quad8, Isotropic>,
                    Model<Axisym2, Tri3, Isotropic>, Model<Axisym3, Tri3, Isotropic>) {
-  SUBCASE("off the axis") { patch_test<M>(1.0, true); }
-  SUBCASE("touching r = 0") { patch_test<M>(0.0, true); }
+  SUBCASE("off the axis") {
+    patch_test<M>(1.0, true);
+  }
+  SUBCASE("touching r = 0") {
+    patch_test<M>(0.0, true);
+  }
 }
-

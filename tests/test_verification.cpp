@@ -28,17 +28,17 @@ LinearStatic<M> lame_tube(int nr, int nz, double height = 0) {
 /// L2 norm of the radial displacement error over the domain (full ring), 4x4 Gauss per cell.
 template <class Elem>
 double l2_error_ur(const LinearStatic<Model<Axisym2, Elem, Isotropic>>& fe, const Lame& exact) {
-  const auto& m = fe.problem().mesh;
-  const auto& u = fe.solution().displacement;
+  const auto& m       = fe.problem().mesh;
+  const auto& u       = fe.solution().displacement;
   constexpr auto rule = gauss::square<4>();
-  double err = 0;
+  double err          = 0;
   for (const auto& cell : m.cells) {
     Mat<Elem::kNodes, 2> x;
     Vec<Elem::kNodes> ue;
     for (int a = 0; a < Elem::kNodes; ++a) x.row(a) = m.nodes[cell[a]].transpose(), ue(a) = u(cell[a], 0);
     for (int q = 0; q < static_cast<int>(rule.weight.size()); ++q) {
-      double det   = 0;
-      const auto g = Elem::at(x, rule.point[q][0], rule.point[q][1], rule.weight[q], det);
+      double det     = 0;
+      const auto g   = Elem::at(x, rule.point[q][0], rule.point[q][1], rule.weight[q], det);
       const double d = g.N.dot(ue) - exact.displacement(g.r);
       err += d * d * g.weight;
     }
@@ -51,7 +51,8 @@ double lame_convergence_order(int nr0) {
   const Lame exact{0.1, 0.2, 100e6, kE, kNu};
   std::array<double, 3> e{};
   for (int k = 0; k < 3; ++k) {
-    auto fe = lame_tube<Model<Axisym2, Elem, Isotropic>>(nr0 << k, 1, 0.02);  // fixed domain: plane strain, 1-D
+    auto fe =
+        lame_tube<Model<Axisym2, Elem, Isotropic>>(nr0 << k, 1, 0.02);  // fixed domain: plane strain, 1-D
     fe.solve();
     e[k] = l2_error_ur<Elem>(fe, exact);
   }
@@ -62,13 +63,14 @@ double lame_convergence_order(int nr0) {
 
 }  // namespace
 
-TEST_CASE_TEMPLATE("[verification] Lame tube, plane strain: bore u_r within 0.5%, hoop stress at the innermost "
-                   "centroid within 1%",
-                   M, Model<Axisym2, Quad4, Isotropic>, Model<Axisym2, LegacyQuad, Isotropic>,
-                   Model<Axisym2, Quad8, Isotropic>, Model<Axisym3, Quad4, Isotropic>) {
+TEST_CASE_TEMPLATE(
+    "[verification] Lame tube, plane strain: bore u_r within 0.5%, hoop stress at the innermost "
+    "centroid within 1%",
+    M, Model<Axisym2, Quad4, Isotropic>, Model<Axisym2, LegacyQuad, Isotropic>,
+    Model<Axisym2, Quad8, Isotropic>, Model<Axisym3, Quad4, Isotropic>) {
   const Lame exact{0.1, 0.2, 100e6, kE, kNu};
   const int nr = 8, nz = 2;  // a modest mesh: 8 cells through the wall
-  auto fe      = lame_tube<M>(nr, nz);
+  auto fe           = lame_tube<M>(nr, nz);
   const Solution& s = fe.solve();
   const int bore    = nearest_node(fe.problem().mesh, 0.1, 0.0);
   CHECK(rel(s.displacement(bore, 0), exact.displacement(0.1)) < 0.005);
@@ -103,7 +105,7 @@ TEST_CASE_TEMPLATE("[verification] spinning hollow tube, plane strain: u_r withi
   // Closed form from the plane-strain ODE (lambda + 2G)(u'' + u'/r - u/r^2) = -rho w^2 r:
   // u = C1 r + C2 / r - k r^3, k = rho w^2 / 8 (lambda + 2G); sigma_r(a) = sigma_r(b) = 0.
   const double lambda = kE * kNu / ((1 + kNu) * (1 - 2 * kNu)), G = kE / (2 * (1 + kNu));
-  const double k      = kRho * w * w / (8 * (lambda + 2 * G));
+  const double k = kRho * w * w / (8 * (lambda + 2 * G));
   Mat<2, 2> A;
   Vec2 rhs;
   for (int i = 0; i < 2; ++i) {
@@ -117,11 +119,12 @@ TEST_CASE_TEMPLATE("[verification] spinning hollow tube, plane strain: u_r withi
   const auto quads = rectangle_mesh<NPC>(a, b, 0, nz * h, nr, nz);
   if constexpr (M::Element::kNodes == 3) {  // split every quad into two triangles
     p.mesh.nodes = quads.nodes;
-    for (const auto& c : quads.cells) p.mesh.cells.push_back({c[0], c[1], c[2]}), p.mesh.cells.push_back({c[0], c[2], c[3]});
+    for (const auto& c : quads.cells)
+      p.mesh.cells.push_back({c[0], c[1], c[2]}), p.mesh.cells.push_back({c[0], c[2], c[3]});
   } else {
     p.mesh = quads;
   }
-  p.materials                 = {M::Material::constant(kE, kNu, 0, kRho)};
+  p.materials                = {M::Material::constant(kE, kNu, 0, kRho)};
   p.inertia.angular_velocity = w;
   fix_plane(p.conditions, p.mesh, 0.0, 6, zero3);
   fix_plane(p.conditions, p.mesh, nz * h, 6, zero3);
@@ -133,10 +136,11 @@ TEST_CASE_TEMPLATE("[verification] spinning hollow tube, plane strain: u_r withi
   }
 }
 
-TEST_CASE_TEMPLATE("[verification] hollow shaft twisted at one end (SAGA): u_t = phi r z / L within 0.1%, "
-                   "tau_zt = G phi r / L within 1%",
-                   M, Model<Axisym3, Quad4, Isotropic>, Model<Axisym3, Quad8, Isotropic>,
-                   Model<Axisym3, LegacyQuad, Isotropic>) {
+TEST_CASE_TEMPLATE(
+    "[verification] hollow shaft twisted at one end (SAGA): u_t = phi r z / L within 0.1%, "
+    "tau_zt = G phi r / L within 1%",
+    M, Model<Axisym3, Quad4, Isotropic>, Model<Axisym3, Quad8, Isotropic>,
+    Model<Axisym3, LegacyQuad, Isotropic>) {
   constexpr int NPC = M::Element::kNodes;
   const double a = 0.025, b = 0.05, L = 0.5, phi = 0.01, G = kE / (2 * (1 + kNu));
   Problem<M> p;
@@ -145,8 +149,8 @@ TEST_CASE_TEMPLATE("[verification] hollow shaft twisted at one end (SAGA): u_t =
   fix_plane(p.conditions, p.mesh, 0.0, 6, zero3);  // u_z = u_theta = 0 at the base
   fix_plane(p.conditions, p.mesh, L, 4, [&](const Vec2& x) { return Vec3(0, 0, phi * x(0)); });
   LinearStatic<M> fe(std::move(p));
-  const Solution& s = fe.solve();
-  const auto& m     = fe.problem().mesh;
+  const Solution& s  = fe.solve();
+  const auto& m      = fe.problem().mesh;
   const double u_max = phi * b;
   double torque      = 0;
   for (int n = 0; n < m.node_count(); ++n) {
@@ -160,12 +164,12 @@ TEST_CASE_TEMPLATE("[verification] hollow shaft twisted at one end (SAGA): u_t =
   CHECK(rel(-torque, G * J * phi / L) < 0.01);
 }
 
-TEST_CASE_TEMPLATE("[verification] solid shaft under angular acceleration (THEORY.md V4): twist and torque", M,
-                   Model<Axisym3, Quad4, Isotropic>, Model<Axisym3, LegacyQuad, Isotropic>) {
+TEST_CASE_TEMPLATE("[verification] solid shaft under angular acceleration (THEORY.md V4): twist and torque",
+                   M, Model<Axisym3, Quad4, Isotropic>, Model<Axisym3, LegacyQuad, Isotropic>) {
   const double c = 0.05, L = 0.5, wdot = 1e4, G = kE / (2 * (1 + kNu));
   Problem<M> p;
   // Nodes on the axis. The legacy quad's CSTs converge more slowly in the theta shear: twice as fine.
-  constexpr int k = std::is_same_v<typename M::Element, LegacyQuad> ? 2 : 1;
+  constexpr int k                = std::is_same_v<typename M::Element, LegacyQuad> ? 2 : 1;
   p.mesh                         = rectangle_mesh<4>(0.0, c, 0, L, 5 * k, 20 * k);
   p.materials                    = {M::Material::constant(kE, kNu, 0, kRho)};
   p.inertia.angular_acceleration = wdot;
@@ -177,7 +181,8 @@ TEST_CASE_TEMPLATE("[verification] solid shaft under angular acceleration (THEOR
   const auto exact = [&](double r, double z) { return kRho * wdot * r / G * (z * z / 2 - L * z); };
   double torque    = 0;
   for (int n = 0; n < m.node_count(); ++n) {
-    CHECK(std::abs(s.displacement(n, 2) - exact(m.nodes[n](0), m.nodes[n](1))) < 0.005 * std::abs(exact(c, L)));
+    CHECK(std::abs(s.displacement(n, 2) - exact(m.nodes[n](0), m.nodes[n](1))) <
+          0.005 * std::abs(exact(c, L)));
     if (m.nodes[n](1) == 0) torque += s.reaction(n, 2) * m.nodes[n](0);
     if (m.nodes[n](0) == 0) CHECK(s.displacement(n, 2) == 0.0);  // axis: u_theta = 0 imposed
   }
@@ -190,31 +195,33 @@ TEST_CASE_TEMPLATE("[verification] solid shaft under angular acceleration (THEOR
 TEST_CASE("[verification] SAGA with no theta loads and ALPHA = 0 gives SAAS's u_r, u_z to 1e-10") {
   ElasticConstants ply;
   ply.E_N = 140e9, ply.E_S = 10e9, ply.E_T = 9e9, ply.nu_NS = 0.3, ply.nu_NT = 0.28, ply.nu_ST = 0.4;
-  ply.G_NS = 5e9, ply.G_ST = 3.5e9, ply.G_TN = 4.5e9, ply.alpha_N = 1e-6, ply.alpha_S = 20e-6, ply.alpha_T = 25e-6;
-  auto build = [&]<class M>(std::type_identity<M>) {
+  ply.G_NS = 5e9, ply.G_ST = 3.5e9, ply.G_TN = 4.5e9, ply.alpha_N = 1e-6, ply.alpha_S = 20e-6,
+  ply.alpha_T = 25e-6;
+  auto build  = [&]<class M>(std::type_identity<M>) {
     Problem<M> p;
     p.mesh = rectangle_mesh<4>(0.1, 0.15, 0, 0.2, 4, 8);
     p.mesh.cell_tags.assign(p.mesh.cells.size(), CellTag{0, {0.4, 0.0}});
-    p.materials                = {Orthotropic::constant(ply, 1600)};
-    p.edge_loads               = bore_pressure(p.mesh, 4, 8, 50e6);
-    p.inertia.angular_velocity = 500;
+    p.materials                  = {Orthotropic::constant(ply, 1600)};
+    p.edge_loads                 = bore_pressure(p.mesh, 4, 8, 50e6);
+    p.inertia.angular_velocity   = 500;
     p.inertia.axial_acceleration = 2e4;
-    p.temperature              = VecX::Constant(p.mesh.node_count(), 80);
-    p.reference_temperature    = 20;
+    p.temperature                = VecX::Constant(p.mesh.node_count(), 80);
+    p.reference_temperature      = 20;
     fix_plane(p.conditions, p.mesh, 0.0, 6, zero3);  // u_theta: ignored by SAAS, holds SAGA's spin
     return LinearStatic<M>(std::move(p));
   };
-  auto saas = build(std::type_identity<Saas>{});
-  auto saga = build(std::type_identity<Saga>{});
-  const auto& u2 = saas.solve().displacement;
-  const auto& u3 = saga.solve().displacement;
+  auto saas          = build(std::type_identity<Saas>{});
+  auto saga          = build(std::type_identity<Saga>{});
+  const auto& u2     = saas.solve().displacement;
+  const auto& u3     = saga.solve().displacement;
   const double scale = u2.cwiseAbs().maxCoeff();
   CHECK(scale > 0);
   CHECK((u2.leftCols<2>() - u3.leftCols<2>()).cwiseAbs().maxCoeff() < 1e-10 * scale);
   CHECK(u3.col(2).cwiseAbs().maxCoeff() < 1e-10 * scale);
 }
 
-TEST_CASE("[verification] helically wound orthotropic tube under axial load twists; the twist flips with ALPHA") {
+TEST_CASE(
+    "[verification] helically wound orthotropic tube under axial load twists; the twist flips with ALPHA") {
   ElasticConstants ply;
   ply.E_N = 140e9, ply.E_S = 10e9, ply.E_T = 9e9, ply.nu_NS = 0.3, ply.nu_NT = 0.28, ply.nu_ST = 0.4;
   ply.G_NS = 5e9, ply.G_ST = 3.5e9, ply.G_TN = 4.5e9;
@@ -223,7 +230,8 @@ TEST_CASE("[verification] helically wound orthotropic tube under axial load twis
   auto run = [&](double alpha) {
     Problem<Saga> p;
     p.mesh = rectangle_mesh<4>(a, b, 0, L, nr, nz);
-    p.mesh.cell_tags.assign(p.mesh.cells.size(), CellTag{0, {0.0, alpha}});  // BETA = 0: N along z, then helical
+    p.mesh.cell_tags.assign(p.mesh.cells.size(),
+                            CellTag{0, {0.0, alpha}});  // BETA = 0: N along z, then helical
     p.materials  = {Orthotropic::constant(ply)};
     p.edge_loads = top_pressure(p.mesh, nr, nz, -sigma);  // negative pressure: tension
     fix_plane(p.conditions, p.mesh, 0.0, 6, zero3);       // base: u_z = u_theta = 0
@@ -233,10 +241,10 @@ TEST_CASE("[verification] helically wound orthotropic tube under axial load twis
   };
   auto plus = run(0.5), minus = run(-0.5);
   const Solution &sp = plus.solution(), &sm = minus.solution();
-  const auto& m      = plus.problem().mesh;
-  const int top      = nearest_node(m, b, L);
+  const auto& m = plus.problem().mesh;
+  const int top = nearest_node(m, b, L);
   CHECK(std::abs(sp.displacement(top, 2)) > 0.05 * std::abs(sp.displacement(top, 1)));  // it twists
-  CHECK(rel(sp.displacement(top, 2), -sm.displacement(top, 2)) < 1e-10);                 // flips with ALPHA
+  CHECK(rel(sp.displacement(top, 2), -sm.displacement(top, 2)) < 1e-10);                // flips with ALPHA
   CHECK(rel(sp.displacement(top, 1), sm.displacement(top, 1)) < 1e-10);
   // Reactions balance the applied load: sum R_z = -sigma pi (b^2 - a^2); no net torque.
   const double F = sigma * std::numbers::pi * (b * b - a * a);
@@ -249,7 +257,7 @@ TEST_CASE("[verification] helically wound orthotropic tube under axial load twis
 TEST_CASE_TEMPLATE("[verification] uniform temperature rise on a free tube: zero stress, u_r = alpha dT r", M,
                    Model<Axisym2, Quad4, Isotropic>, Model<Axisym3, LegacyQuad, Isotropic>,
                    Model<Axisym2, Quad8, Orthotropic>, Model<Axisym3, Quad4, Orthotropic>) {
-  constexpr int NPC = M::Element::kNodes;
+  constexpr int NPC  = M::Element::kNodes;
   const double alpha = 12e-6, dT = 100;
   Problem<M> p;
   p.mesh = rectangle_mesh<NPC>(0.1, 0.2, 0, 0.1, 4, 4);

@@ -14,7 +14,7 @@
 namespace gapfe {
 
 template <class Kin, class Elem, class Law, class Solver = EigenLdlt>
-  requires KinematicsFor<Kin, Elem> && MaterialLaw<Law> && LinearSolver<Solver>
+requires KinematicsFor<Kin, Elem> && MaterialLaw<Law> && LinearSolver<Solver>
 struct Model {
   using Kinematics                  = Kin;
   using Element                     = Elem;

@@ -9,8 +9,8 @@ int main() {
   using Tube = gapfe::Model<gapfe::Axisym2, gapfe::Quad4, gapfe::Isotropic>;
   gapfe::Problem<Tube> p;
   p.mesh      = gapfe::rectangle_mesh<4>(0.1, 0.2, 0.0, 0.02, 16, 2);  // r in [0.1, 0.2] m
-  p.materials = {gapfe::Isotropic::constant(200e9, 0.3)};                // E [Pa], nu
-  for (int j = 0; j < 2; ++j) {                                         // 100 MPa on the bore
+  p.materials = {gapfe::Isotropic::constant(200e9, 0.3)};              // E [Pa], nu
+  for (int j = 0; j < 2; ++j) {                                        // 100 MPa on the bore
     const auto& cell = p.mesh.cells[j * 16];
     p.edge_loads.push_back({cell[3], cell[0], 100e6});  // from M to N, element on the left
   }

@@ -36,11 +36,11 @@ struct DofMap {
     const double axis_tol = 1e-9 * mesh.size();
     for (int n = 0; n < nn; ++n) {
       if (mesh.nodes[n](0) < -axis_tol)
-        throw InputError("node " + std::to_string(n + 1) + " has negative radius r = " +
-                         std::to_string(mesh.nodes[n](0)));
+        throw InputError("node " + std::to_string(n + 1) +
+                         " has negative radius r = " + std::to_string(mesh.nodes[n](0)));
       if (mesh.nodes[n](0) <= axis_tol) {
-        m.on_axis[n]                    = true;
-        fixed[m.dof(n, dof::r)]         = true;
+        m.on_axis[n]            = true;
+        fixed[m.dof(n, dof::r)] = true;
         if constexpr (DofsPerNode == 3) fixed[m.dof(n, dof::theta)] = true;
       }
     }
@@ -48,8 +48,10 @@ struct DofMap {
     for (const auto& c : conditions) {  // later cards win, as in the seed
       const std::string where = "boundary condition at node " + std::to_string(c.node + 1);
       if (c.node < 0 || c.node >= nn) throw InputError(where + ": no such node");
-      if (c.code < 0 || c.code > 7) throw InputError(where + ": code must be 0-7, got " + std::to_string(c.code));
-      if (!std::isfinite(c.value[0]) || !std::isfinite(c.value[1]) || !std::isfinite(c.value[2])) throw InputError(where + ": non-finite value");
+      if (c.code < 0 || c.code > 7)
+        throw InputError(where + ": code must be 0-7, got " + std::to_string(c.code));
+      if (!std::isfinite(c.value[0]) || !std::isfinite(c.value[1]) || !std::isfinite(c.value[2]))
+        throw InputError(where + ": non-finite value");
       for (int k = 0; k < 3; ++k) {
         if (k == dof::theta && DofsPerNode == 2) {
           if (c.value[k] != 0)
@@ -61,8 +63,8 @@ struct DofMap {
         if (m.on_axis[c.node] && k != dof::z) {
           if (c.value[k] != 0)
             throw InputError(where + ": the node is on the axis, where " + kName[k] +
-                             " = 0 is imposed; a non-zero " + kName[k] + (c.prescribed(k) ? " displacement" : " load") +
-                             " is not allowed");
+                             " = 0 is imposed; a non-zero " + kName[k] +
+                             (c.prescribed(k) ? " displacement" : " load") + " is not allowed");
           continue;
         }
         fixed[d]         = c.prescribed(k);

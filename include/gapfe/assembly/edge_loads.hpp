@@ -4,8 +4,8 @@
 // d the unit tangent from M to N, n = (d_z, -d_r) the outward normal (element on the left).
 // For a straight 2-node edge and uniform p this gives F_M = 2 pi p L (2 r_M + r_N) / 6: the heavier
 // share goes to the node at larger r. 4 Gauss points integrate linear and quadratic edges exactly.
-#include "gapfe/element/quadrature.hpp"
 #include "gapfe/core/types.hpp"
+#include "gapfe/element/quadrature.hpp"
 
 namespace gapfe {
 
@@ -14,7 +14,7 @@ namespace gapfe {
 template <int EN>
 Mat<EN, 3> edge_forces(const Mat<EN, 2>& x, double pressure, double shear, double transverse_shear) {
   static_assert(EN == 2 || EN == 3);
-  using G = gauss::Line<4>;
+  using G      = gauss::Line<4>;
   Mat<EN, 3> f = Mat<EN, 3>::Zero();
   for (int q = 0; q < 4; ++q) {
     const double s = G::x[q];
@@ -28,9 +28,9 @@ Mat<EN, 3> edge_forces(const Mat<EN, 2>& x, double pressure, double shear, doubl
     }
     const Vec2 pos = x.transpose() * n, tangent = x.transpose() * dn;
     const double jac = tangent.norm();
-    const Vec2 d = tangent / jac, outward(d(1), -d(0));
-    const Vec2 t = -pressure * outward + shear * d;
-    const double w = kTwoPi * pos(0) * jac * G::w[q];
+    const Vec2 d     = tangent / jac, outward(d(1), -d(0));
+    const Vec2 t     = -pressure * outward + shear * d;
+    const double w   = kTwoPi * pos(0) * jac * G::w[q];
     for (int a = 0; a < EN; ++a) {
       f(a, 0) += n(a) * t(0) * w;
       f(a, 1) += n(a) * t(1) * w;

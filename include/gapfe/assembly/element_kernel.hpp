@@ -22,7 +22,7 @@ struct BodyForce {
 };
 
 template <class Kin, class Elem>
-  requires KinematicsFor<Kin, Elem>
+requires KinematicsFor<Kin, Elem>
 struct ElementKernel {
   static constexpr int kDofsPerNode = Kin::kDofsPerNode;
   static constexpr int kStrain      = Kin::kStrain;
@@ -61,9 +61,9 @@ struct ElementKernel {
     ShapeMatrix k = ShapeMatrix::Zero();
     double det    = 0;
     for (int q = 0; q < Elem::kStiffnessPoints; ++q) {
-      const auto g                               = Elem::stiffness_point(x, q, det);
-      const Mat<kStrain, kShapeDofs> b           = Kin::B(g);
-      const Mat<kStrain, kShapeDofs> d_b         = D * b;
+      const auto g                       = Elem::stiffness_point(x, q, det);
+      const Mat<kStrain, kShapeDofs> b   = Kin::B(g);
+      const Mat<kStrain, kShapeDofs> d_b = D * b;
       k.noalias() += g.weight * (b.transpose() * d_b);
     }
     return k;

@@ -6,8 +6,9 @@
 // DATA LAYOUT ASSUMPTIONS (lane l = element within the batch, fastest index):
 //   r[a][l], z[a][l]        nodal coordinates, a = 0..3 counterclockwise
 //   d[q][m][l]              material matrix at Gauss point q, the 10 entries of the symmetric 4x4 block
-//                           [rr, zz, hoop, rz] in order (0,0) (0,1) (0,2) (0,3) (1,1) (1,2) (1,3) (2,2) (2,3) (3,3);
-//                           per point so that a plastic tangent fits (set all four alike for elasticity)
+//                           [rr, zz, hoop, rz] in order (0,0) (0,1) (0,2) (0,3) (1,1) (1,2) (1,3) (2,2) (2,3)
+//                           (3,3); per point so that a plastic tangent fits (set all four alike for
+//                           elasticity)
 //   k[c][l]                 the 8x8 stiffness, upper triangle i <= j row-major (36 entries), DOFs
 //                           (u_r0, u_z0, u_r1, u_z1, ...): the order scatter_offsets() uses
 // Cost: about 2.2 kflop per element (see BENCHMARKS.md).

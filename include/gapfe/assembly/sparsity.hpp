@@ -25,7 +25,8 @@ class SparsityBuilder {
   /// Register a group of cells (call for every group, then build()).
   template <std::size_t NPC>
   void add(const Connectivity<NPC>& cells) {
-    groups_.push_back({static_cast<int>(NPC), reinterpret_cast<const int*>(cells.data()), static_cast<int>(cells.size())});
+    groups_.push_back(
+        {static_cast<int>(NPC), reinterpret_cast<const int*>(cells.data()), static_cast<int>(cells.size())});
   }
 
   /// Build the lower-triangular pattern (values zero).
@@ -38,8 +39,8 @@ class SparsityBuilder {
     incident_.resize(static_cast<std::size_t>(incident_ptr_[nn_]));
     for (std::size_t gi = 0; gi < groups_.size(); ++gi)
       for (int e = 0; e < groups_[gi].count; ++e)
-        for (int a = 0; a < groups_[gi].npc; ++a) incident_[fill[groups_[gi].nodes[e * groups_[gi].npc + a]]++] = {
-            static_cast<int>(gi), e};
+        for (int a = 0; a < groups_[gi].npc; ++a)
+          incident_[fill[groups_[gi].nodes[e * groups_[gi].npc + a]]++] = {static_cast<int>(gi), e};
 
     // Column by column: rows are the free DOFs of neighbours m >= n with equation >= the column's.
     std::vector<int> outer(static_cast<std::size_t>(free_count_) + 1, 0), inner, mark(nn_, -1), neighbours;
@@ -66,8 +67,8 @@ class SparsityBuilder {
       }
     }
     std::vector<double> values(inner.size(), 0.0);
-    return Eigen::Map<const SpMat>(free_count_, free_count_, static_cast<Eigen::Index>(inner.size()), outer.data(),
-                                   inner.data(), values.data());
+    return Eigen::Map<const SpMat>(free_count_, free_count_, static_cast<Eigen::Index>(inner.size()),
+                                   outer.data(), inner.data(), values.data());
   }
 
  private:
@@ -89,7 +90,8 @@ class SparsityBuilder {
 
 /// Offsets of each element's local upper triangle into the value array of `pattern`.
 template <int DofsPerNode, std::size_t NPC>
-std::vector<int> scatter_offsets(const SpMat& pattern, const std::vector<int>& equation, const Connectivity<NPC>& cells) {
+std::vector<int> scatter_offsets(const SpMat& pattern, const std::vector<int>& equation,
+                                 const Connectivity<NPC>& cells) {
   constexpr int n = DofsPerNode * static_cast<int>(NPC), per = n * (n + 1) / 2;
   std::vector<int> off(cells.size() * per);
   const int* outer = pattern.outerIndexPtr();
@@ -106,7 +108,8 @@ std::vector<int> scatter_offsets(const SpMat& pattern, const std::vector<int>& e
           continue;
         }
         const int row = std::max(eq[i], eq[j]), col = std::min(eq[i], eq[j]);
-        off[e * per + k] = static_cast<int>(std::lower_bound(inner + outer[col], inner + outer[col + 1], row) - inner);
+        off[e * per + k] =
+            static_cast<int>(std::lower_bound(inner + outer[col], inner + outer[col + 1], row) - inner);
       }
   }
   return off;

@@ -56,10 +56,10 @@ concept MaterialLaw = std::semiregular<typename M::State> &&
              const typename M::State& s, const StepContext& ctx, const std::string& where) {
   { M::kLinear } -> std::convertible_to<bool>;
   { m.localize(f, T, T) } -> std::same_as<typename M::Local>;
-  { p.stiffness } -> std::convertible_to<Mat66>;       // initial (elastic) stiffness, global axes
-  { p.thermal_strain } -> std::convertible_to<Vec6>;   // global axes
+  { p.stiffness } -> std::convertible_to<Mat66>;      // initial (elastic) stiffness, global axes
+  { p.thermal_strain } -> std::convertible_to<Vec6>;  // global axes
   { p.density } -> std::convertible_to<double>;
-  { p.to_material } -> std::convertible_to<Mat66>;     // T_sigma, for output in material axes
+  { p.to_material } -> std::convertible_to<Mat66>;  // T_sigma, for output in material axes
   { M::update(p, strain, s, ctx) } -> std::same_as<PointResponse<typename M::State>>;
   m.validate(where);
 };

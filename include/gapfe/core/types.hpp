@@ -11,10 +11,11 @@
 //   over 360 degrees (as in Abaqus and ANSYS). A per-radian legacy load is 1/(2 pi) of ours.
 // Sign: tension positive; a pressure is positive in compression (seed Data 13).
 // DOF order per node: (u_r, u_z, u_theta); the 2-DOF (SAAS) kinematics drops u_theta.
-#include <Eigen/Core>
-#include <Eigen/SparseCore>
 #include <array>
 #include <numbers>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
 
 namespace gapfe {
 

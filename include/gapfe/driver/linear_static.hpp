@@ -66,8 +66,8 @@ class LinearStatic {
     SparsityBuilder<kNd> sb(p_.mesh.node_count(), dofs_.equation, dofs_.free_count);
     sb.add(p_.mesh.cells);
     if constexpr (kTri) sb.add(p_.mesh.triangles);
-    k_             = sb.build();
-    cell_offsets_  = scatter_offsets<kNd>(k_, dofs_.equation, p_.mesh.cells);
+    k_            = sb.build();
+    cell_offsets_ = scatter_offsets<kNd>(k_, dofs_.equation, p_.mesh.cells);
     if constexpr (kTri) tri_offsets_ = scatter_offsets<kNd>(k_, dofs_.equation, p_.mesh.triangles);
     if (dofs_.free_count > 0) solver_->analyze(k_);  // all prescribed: a pure recovery, nothing to factorize
   }
@@ -83,7 +83,7 @@ class LinearStatic {
   /// Assemble, factorize, solve, recover reactions. Throws SolveError when the stiffness is singular
   /// (say, a missing constraint) and InputError for loads that do not fit the mesh or the kinematics.
   const Solution& solve() {
-    using clock = std::chrono::steady_clock;
+    using clock        = std::chrono::steady_clock;
     const auto seconds = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
     validate_loads();
     auto t0 = clock::now();
@@ -144,7 +144,8 @@ class LinearStatic {
   /// The law resolved for a cell; consecutive cells with the same material, frame and temperature
   /// (the usual case in structured meshes) share one evaluation.
   const typename Law::Local& local(const CellTag& tag, double T) const {
-    if (!cache_valid_ || tag.material != cache_tag_.material || !(tag.frame == cache_tag_.frame) || T != cache_T_) {
+    if (!cache_valid_ || tag.material != cache_tag_.material || !(tag.frame == cache_tag_.frame) ||
+        T != cache_T_) {
       cache_local_ = p_.materials[tag.material].localize(tag.frame, T, p_.reference_temperature);
       cache_tag_ = tag, cache_T_ = T, cache_valid_ = true;
     }
@@ -159,7 +160,8 @@ class LinearStatic {
   template <class F>
   void for_each_cell(F&& f) const {
     const auto& m = p_.mesh;
-    for (std::size_t e = 0; e < m.cells.size(); ++e) f(std::type_identity<Elem>{}, e, m.cells[e], m.cell_tag(e));
+    for (std::size_t e = 0; e < m.cells.size(); ++e)
+      f(std::type_identity<Elem>{}, e, m.cells[e], m.cell_tag(e));
     if constexpr (kTri)
       for (std::size_t e = 0; e < m.triangles.size(); ++e)
         f(std::type_identity<Tri>{}, e, m.triangles[e], m.triangle_tag(e));
@@ -168,10 +170,11 @@ class LinearStatic {
   /// Condensed element stiffness and load (body + thermal) of one cell.
   template <class E, std::size_t NPC>
   void element_system(const std::array<int, NPC>& cell, const CellTag& tag,
-                      typename ElementKernel<Kin, E>::Matrix& k, typename ElementKernel<Kin, E>::Vector& f) const {
-    using Kernel   = ElementKernel<Kin, E>;
-    const auto x   = coords<E>(cell);
-    const auto& lp = local(tag, cell_temperature(cell));
+                      typename ElementKernel<Kin, E>::Matrix& k,
+                      typename ElementKernel<Kin, E>::Vector& f) const {
+    using Kernel                           = ElementKernel<Kin, E>;
+    const auto x                           = coords<E>(cell);
+    const auto& lp                         = local(tag, cell_temperature(cell));
     const typename Kernel::StrainMatrix d  = Kernel::restrict(lp.stiffness);
     const typename Kernel::StrainVector th = Kernel::restrict(lp.thermal_strain);
     const BodyForce body                   = body_force(lp.density);
@@ -186,19 +189,20 @@ class LinearStatic {
   // ---------------------------------------------------------------- assembly
   void assemble() {
     Eigen::Map<VecX>(k_.valuePtr(), k_.nonZeros()).setZero();
-    rhs_          = VecX::Zero(dofs_.free_count);
-    external_     = dofs_.nodal_force;
-    cache_valid_  = false;
+    rhs_         = VecX::Zero(dofs_.free_count);
+    external_    = dofs_.nodal_force;
+    cache_valid_ = false;
     add_edge_loads();
     for (std::size_t d = 0; d < dofs_.equation.size(); ++d)
       if (dofs_.equation[d] >= 0) rhs_(dofs_.equation[d]) += external_(static_cast<Eigen::Index>(d));
     double* values = k_.valuePtr();
-    for_each_cell([&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e, const std::array<int, NPC>& cell,
-                                               const CellTag& tag) {
+    for_each_cell([&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
+                                                const std::array<int, NPC>& cell, const CellTag& tag) {
       if constexpr (kBatchedQuad4 && std::is_same_v<E, Elem>) return;  // done in batches below
-      using Kernel        = ElementKernel<Kin, E>;
-      constexpr int n     = Kernel::kDofs;
-      const int* off      = (std::is_same_v<E, Elem> ? cell_offsets_ : tri_offsets_).data() + e * (n * (n + 1) / 2);
+      using Kernel    = ElementKernel<Kin, E>;
+      constexpr int n = Kernel::kDofs;
+      const int* off =
+          (std::is_same_v<E, Elem> ? cell_offsets_ : tri_offsets_).data() + e * (n * (n + 1) / 2);
       typename Kernel::Matrix k;
       typename Kernel::Vector f;
       element_system<E>(cell, tag, k, f);
@@ -236,10 +240,10 @@ class LinearStatic {
   /// Quad4 cells with 2 DOF: stiffness from the vectorized batch kernel (assembly/quad4_batch.hpp), W
   /// cells at a time; loads, when there are any, from the generic kernel.
   void assemble_quad4_batched(double* values) {
-    using Kernel     = ElementKernel<Kin, Elem>;
-    using Batch      = Quad4Axisym2Batch<8>;
-    const auto& m    = p_.mesh;
-    const std::size_t count = m.cells.size();
+    using Kernel                 = ElementKernel<Kin, Elem>;
+    using Batch                  = Quad4Axisym2Batch<8>;
+    const auto& m                = p_.mesh;
+    const std::size_t count      = m.cells.size();
     static constexpr auto kUpper = [] {  // (i, j) -> index in the upper-triangle row-major list
       std::array<std::array<int, 8>, 8> t{};
       for (int i = 0, c = 0; i < 8; ++i)
@@ -250,9 +254,12 @@ class LinearStatic {
     for (std::size_t e0 = 0; e0 < count; e0 += Batch::kLanes) {
       const int lanes = static_cast<int>(std::min<std::size_t>(Batch::kLanes, count - e0));
       for (int l = 0; l < Batch::kLanes; ++l) {
-        const std::size_t e = e0 + static_cast<std::size_t>(std::min(l, lanes - 1));  // pad with the last cell
-        for (int a = 0; a < 4; ++a) batch.r[a][l] = m.nodes[m.cells[e][a]](0), batch.z[a][l] = m.nodes[m.cells[e][a]](1);
-        batch.set_material(l, local(m.cell_tag(e), cell_temperature(m.cells[e])).stiffness.template topLeftCorner<4, 4>());
+        const std::size_t e =
+            e0 + static_cast<std::size_t>(std::min(l, lanes - 1));  // pad with the last cell
+        for (int a = 0; a < 4; ++a)
+          batch.r[a][l] = m.nodes[m.cells[e][a]](0), batch.z[a][l] = m.nodes[m.cells[e][a]](1);
+        batch.set_material(
+            l, local(m.cell_tag(e), cell_temperature(m.cells[e])).stiffness.template topLeftCorner<4, 4>());
       }
       batch.compute();
       for (int l = 0; l < lanes; ++l) {
@@ -280,8 +287,8 @@ class LinearStatic {
       const EdgeLoad& l = p_.edge_loads[k];
       const auto it     = edges_.find(edge_key(l.node_m, l.node_n));
       if (it == edges_.end()) {
-        const std::string what = "edge load " + std::to_string(k + 1) + " from node " + std::to_string(l.node_m + 1) +
-                                 " to node " + std::to_string(l.node_n + 1);
+        const std::string what = "edge load " + std::to_string(k + 1) + " from node " +
+                                 std::to_string(l.node_m + 1) + " to node " + std::to_string(l.node_n + 1);
         if (edges_.count(edge_key(l.node_n, l.node_m)))
           throw InputError(what + ": the element must lie to the left going from M to N; swap M and N");
         throw InputError(what + ": the two nodes are not the ends of an element edge");
@@ -298,7 +305,8 @@ class LinearStatic {
     Mat<en, 2> x;
     std::array<int, en> node;
     // kEdges lists (start, end) for 2-node edges and (start, mid, end) for 3-node edges.
-    for (int a = 0; a < en; ++a) node[a] = cell[E::kEdges[edge][a]], x.row(a) = p_.mesh.nodes[node[a]].transpose();
+    for (int a = 0; a < en; ++a)
+      node[a] = cell[E::kEdges[edge][a]], x.row(a) = p_.mesh.nodes[node[a]].transpose();
     const Mat<en, 3> f = edge_forces<en>(x, l.pressure, l.shear, l.transverse_shear);
     for (int a = 0; a < en; ++a)
       for (int c = 0; c < kNd; ++c) external_(dofs_.dof(node[a], c)) += f(a, c);
@@ -313,10 +321,11 @@ class LinearStatic {
   };
   void build_edge_index() {
     if (!edges_.empty()) return;
-    for_each_cell([&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e, const std::array<int, NPC>& cell,
-                                               const CellTag&) {
+    for_each_cell([&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
+                                                const std::array<int, NPC>& cell, const CellTag&) {
       for (int k = 0; k < static_cast<int>(E::kEdges.size()); ++k)
-        edges_[edge_key(cell[E::kEdges[k].front()], cell[E::kEdges[k].back()])] = {!std::is_same_v<E, Elem>, e, k};
+        edges_[edge_key(cell[E::kEdges[k].front()], cell[E::kEdges[k].back()])] = {!std::is_same_v<E, Elem>,
+                                                                                   e, k};
     });
   }
 
@@ -324,8 +333,8 @@ class LinearStatic {
   void reactions() {
     VecX internal = VecX::Zero(u_.size());
     cache_valid_  = false;
-    for_each_cell([&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t, const std::array<int, NPC>& cell,
-                                               const CellTag& tag) {
+    for_each_cell([&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t,
+                                                const std::array<int, NPC>& cell, const CellTag& tag) {
       using Kernel = ElementKernel<Kin, E>;
       typename Kernel::Matrix k;
       typename Kernel::Vector f, ue;
@@ -342,9 +351,9 @@ class LinearStatic {
     double out_of_balance = 0, applied = 0;
     for (int n = 0; n < nn; ++n)
       for (int c = 0; c < kNd; ++c) {
-        const int d               = dofs_.dof(n, c);
-        sol_.displacement(n, c)   = u_(d);
-        const double unbalanced   = internal(d) - external_(d);
+        const int d             = dofs_.dof(n, c);
+        sol_.displacement(n, c) = u_(d);
+        const double unbalanced = internal(d) - external_(d);
         if (dofs_.equation[d] < 0) {
           sol_.reaction(n, c) = unbalanced;
         } else {
@@ -359,26 +368,27 @@ class LinearStatic {
   std::vector<PointValues> recover(bool centroids) const {
     std::vector<PointValues> out;
     cache_valid_ = false;
-    for_each_cell([&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e, const std::array<int, NPC>& cell,
-                                               const CellTag& tag) {
-      using Kernel   = ElementKernel<Kin, E>;
-      const auto x   = coords<E>(cell);
-      const auto& lp = local(tag, cell_temperature(cell));
+    for_each_cell([&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
+                                                const std::array<int, NPC>& cell, const CellTag& tag) {
+      using Kernel                          = ElementKernel<Kin, E>;
+      const auto x                          = coords<E>(cell);
+      const auto& lp                        = local(tag, cell_temperature(cell));
       const typename Kernel::StrainMatrix d = Kernel::restrict(lp.stiffness);
       typename Kernel::Vector ue;
       for (int a = 0; a < E::kNodes; ++a)
         for (int c = 0; c < kNd; ++c) ue(a * kNd + c) = u_(dofs_.dof(cell[a], c));
       typename Kernel::ShapeVector us;
       if constexpr (Kernel::kInner > 0) {
-        us = Kernel::expand(Kernel::shape_stiffness(x, d),
-                            Kernel::shape_load(x, d, Kernel::restrict(lp.thermal_strain), body_force(lp.density)), ue);
+        us = Kernel::expand(
+            Kernel::shape_stiffness(x, d),
+            Kernel::shape_load(x, d, Kernel::restrict(lp.thermal_strain), body_force(lp.density)), ue);
       } else {
         us = ue;
       }
       const Mat<E::kShapeNodes, 2> xs = E::shape_coords(x);
       const bool triangle             = !std::is_same_v<E, Elem>;
       const Mat66 to_strain_material  = strain_rotation(lp.to_material);
-      auto values_at = [&](const PointGeometry<E::kShapeNodes>& g, int point) {
+      auto values_at                  = [&](const PointGeometry<E::kShapeNodes>& g, int point) {
         PointValues v;
         v.cell = static_cast<int>(e), v.triangle = triangle, v.point = point;
         v.r = g.r, v.z = g.N.dot(xs.col(1));
@@ -390,20 +400,23 @@ class LinearStatic {
       };
       double det = 0;
       if (!centroids) {
-        for (int q = 0; q < E::kStiffnessPoints; ++q) out.push_back(values_at(E::stiffness_point(x, q, det), q));
+        for (int q = 0; q < E::kStiffnessPoints; ++q)
+          out.push_back(values_at(E::stiffness_point(x, q, det), q));
       } else if constexpr (requires { E::centroid_point(x, det); }) {
         out.push_back(values_at(E::centroid_point(x, det), -1));
       } else {  // weighted mean of the stiffness points (LegacyQuad)
         PointValues mean{};
         double w = 0;
-        mean.strain.setZero(), mean.stress.setZero(), mean.strain_material.setZero(), mean.stress_material.setZero();
+        mean.strain.setZero(), mean.stress.setZero(), mean.strain_material.setZero(),
+            mean.stress_material.setZero();
         for (int q = 0; q < E::kStiffnessPoints; ++q) {
-          const auto g       = E::stiffness_point(x, q, det);
+          const auto g        = E::stiffness_point(x, q, det);
           const PointValues v = values_at(g, q);
           w += g.weight;
           mean.r += g.weight * v.r, mean.z += g.weight * v.z;
           mean.strain += g.weight * v.strain, mean.stress += g.weight * v.stress;
-          mean.strain_material += g.weight * v.strain_material, mean.stress_material += g.weight * v.stress_material;
+          mean.strain_material += g.weight * v.strain_material,
+              mean.stress_material += g.weight * v.stress_material;
         }
         mean.r /= w, mean.z /= w, mean.strain /= w, mean.stress /= w;
         mean.strain_material /= w, mean.stress_material /= w;
@@ -420,7 +433,8 @@ class LinearStatic {
     if (m.nodes.empty()) throw InputError("the mesh has no nodes");
     if (m.cells.empty() && m.triangles.empty()) throw InputError("the mesh has no cells");
     if (p_.materials.empty()) throw InputError("no materials given");
-    for (std::size_t i = 0; i < p_.materials.size(); ++i) p_.materials[i].validate("material " + std::to_string(i + 1));
+    for (std::size_t i = 0; i < p_.materials.size(); ++i)
+      p_.materials[i].validate("material " + std::to_string(i + 1));
     if (!m.cell_tags.empty() && m.cell_tags.size() != m.cells.size())
       throw InputError("mesh: cell_tags must be empty or one per cell");
     if (!m.triangle_tags.empty() && m.triangle_tags.size() != m.triangles.size())
@@ -430,9 +444,10 @@ class LinearStatic {
         throw InputError("this element type has no 3-node companion: the mesh must not contain triangles");
     for (const auto& x : m.nodes)
       if (!x.allFinite()) throw InputError("mesh: a node has non-finite coordinates");
-    for_each_cell([&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e, const std::array<int, NPC>& cell,
-                                               const CellTag& tag) {
-      const std::string name = std::string(std::is_same_v<E, Elem> ? "element " : "triangle ") + std::to_string(e + 1);
+    for_each_cell([&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
+                                                const std::array<int, NPC>& cell, const CellTag& tag) {
+      const std::string name =
+          std::string(std::is_same_v<E, Elem> ? "element " : "triangle ") + std::to_string(e + 1);
       for (int n : cell)
         if (n < 0 || n >= m.node_count()) throw InputError(name + ": node index out of range");
       if (tag.material < 0 || tag.material >= static_cast<int>(p_.materials.size()))
@@ -446,13 +461,15 @@ class LinearStatic {
         if (!(det > 0) || !(g.r > 0)) {
           std::string nodes;
           for (int n : cell) nodes += " " + std::to_string(n + 1);
-          throw InputError(name + " (nodes" + nodes + ") is inverted, degenerate or not counterclockwise (Jacobian " +
+          throw InputError(name + " (nodes" + nodes +
+                           ") is inverted, degenerate or not counterclockwise (Jacobian " +
                            std::to_string(det) + " at point " + std::to_string(q + 1) + ")");
         }
       }
     });
     if (p_.temperature.size() != 0 && p_.temperature.size() != m.node_count())
-      throw InputError("temperature: one value per node expected, got " + std::to_string(p_.temperature.size()));
+      throw InputError("temperature: one value per node expected, got " +
+                       std::to_string(p_.temperature.size()));
   }
   void validate_loads() const {
     if (!p_.temperature.allFinite() || !std::isfinite(p_.reference_temperature))
@@ -470,13 +487,13 @@ class LinearStatic {
                          ": a transverse (theta) shear needs the 3-DOF (SAGA) kinematics");
     }
     if (kNd == 2 && in.angular_acceleration != 0)
-      throw InputError("inertia load: angular acceleration loads u_theta and needs the 3-DOF (SAGA) kinematics");
+      throw InputError(
+          "inertia load: angular acceleration loads u_theta and needs the 3-DOF (SAGA) kinematics");
   }
   std::string describe_equation(int eq) const {
     static constexpr const char* kName[3] = {"u_r", "u_z", "u_theta"};
     for (std::size_t d = 0; d < dofs_.equation.size(); ++d)
-      if (dofs_.equation[d] == eq)
-        return "node " + std::to_string(d / kNd + 1) + " " + kName[d % kNd];
+      if (dofs_.equation[d] == eq) return "node " + std::to_string(d / kNd + 1) + " " + kName[d % kNd];
     return "equation " + std::to_string(eq);
   }
 
@@ -491,8 +508,8 @@ class LinearStatic {
   std::unordered_map<std::uint64_t, EdgeRef> edges_;
   mutable typename Law::Local cache_local_{};
   mutable CellTag cache_tag_{};
-  mutable double cache_T_     = 0;
-  mutable bool cache_valid_   = false;
+  mutable double cache_T_   = 0;
+  mutable bool cache_valid_ = false;
 };
 
 }  // namespace gapfe

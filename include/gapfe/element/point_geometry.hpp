@@ -45,7 +45,7 @@ inline PointGeometry<NN> cst_point(const Mat<NN, 2>& x, const std::array<int, 3>
   const double r1 = x(tri[0], 0), z1 = x(tri[0], 1);
   const double r2 = x(tri[1], 0), z2 = x(tri[1], 1);
   const double r3 = x(tri[2], 0), z3 = x(tri[2], 1);
-  two_area        = (r2 - r1) * (z3 - z1) - (r3 - r1) * (z2 - z1);
+  two_area = (r2 - r1) * (z3 - z1) - (r3 - r1) * (z2 - z1);
   PointGeometry<NN> g;
   g.N.setZero();
   g.dN_dx.setZero();

@@ -42,7 +42,9 @@ struct Quad4 {
   static PointGeometry<4> stiffness_point(const Mat<4, 2>& x, int q, double& det) {
     return at(x, kRule.point[q][0], kRule.point[q][1], kRule.weight[q], det);
   }
-  static PointGeometry<4> load_point(const Mat<4, 2>& x, int q, double& det) { return stiffness_point(x, q, det); }
+  static PointGeometry<4> load_point(const Mat<4, 2>& x, int q, double& det) {
+    return stiffness_point(x, q, det);
+  }
   /// Reference centroid (xi = eta = 0), weight = full-ring volume estimate 2 pi r |J| 4.
   static PointGeometry<4> centroid_point(const Mat<4, 2>& x, double& det) { return at(x, 0, 0, 4.0, det); }
 };

@@ -62,7 +62,9 @@ struct Quad8 {
   static PointGeometry<8> stiffness_point(const Mat<8, 2>& x, int q, double& det) {
     return at(x, kRule.point[q][0], kRule.point[q][1], kRule.weight[q], det);
   }
-  static PointGeometry<8> load_point(const Mat<8, 2>& x, int q, double& det) { return stiffness_point(x, q, det); }
+  static PointGeometry<8> load_point(const Mat<8, 2>& x, int q, double& det) {
+    return stiffness_point(x, q, det);
+  }
   static PointGeometry<8> centroid_point(const Mat<8, 2>& x, double& det) { return at(x, 0, 0, 4.0, det); }
 };
 

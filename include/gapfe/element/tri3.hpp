@@ -32,7 +32,9 @@ struct Tri3 {
     const auto& p = triangle_rule::kDegree4;
     return cst_point<3>(x, kTri, p.point[q][0], p.point[q][1], p.weight[q], det);
   }
-  static PointGeometry<3> centroid_point(const Mat<3, 2>& x, double& det) { return stiffness_point(x, 0, det); }
+  static PointGeometry<3> centroid_point(const Mat<3, 2>& x, double& det) {
+    return stiffness_point(x, 0, det);
+  }
 };
 
 }  // namespace gapfe

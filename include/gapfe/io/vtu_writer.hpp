@@ -12,27 +12,32 @@
 namespace gapfe {
 
 namespace detail {
-inline int vtk_cell_type(int nodes) { return nodes == 3 ? 5 : nodes == 4 ? 9 : 23; }  // triangle, quad, quad8
+inline int vtk_cell_type(int nodes) {
+  return nodes == 3 ? 5 : nodes == 4 ? 9 : 23;
+}  // triangle, quad, quad8
 }  // namespace detail
 
 /// Write `path`; throws InputError when the file cannot be written (nothing half-written is left
 /// behind under the final name: the file is written to path + ".tmp" and renamed).
 template <class M>
 void write_vtu(const std::string& path, const LinearStatic<M>& fe) {
-  const auto& m    = fe.problem().mesh;
-  const auto& s    = fe.solution();
-  const auto cells = fe.centroid_values();
+  const auto& m         = fe.problem().mesh;
+  const auto& s         = fe.solution();
+  const auto cells      = fe.centroid_values();
   const std::string tmp = path + ".tmp";
   {
     std::ofstream out(tmp);
     if (!out) throw InputError("cannot write " + path);
     out.precision(12);
     const std::size_t nc = m.cells.size() + m.triangles.size();
-    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-        << "<UnstructuredGrid><Piece NumberOfPoints=\"" << m.node_count() << "\" NumberOfCells=\"" << nc << "\">\n"
+    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
+           "byte_order=\"LittleEndian\">\n"
+        << "<UnstructuredGrid><Piece NumberOfPoints=\"" << m.node_count() << "\" NumberOfCells=\"" << nc
+        << "\">\n"
         << "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
     for (const auto& x : m.nodes) out << x(0) << ' ' << x(1) << " 0\n";
-    out << "</DataArray></Points>\n<Cells><DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n";
+    out << "</DataArray></Points>\n<Cells><DataArray type=\"Int32\" Name=\"connectivity\" "
+           "format=\"ascii\">\n";
     for (const auto& c : m.cells) {
       for (int n : c) out << n << ' ';
       out << '\n';

@@ -11,12 +11,13 @@
 // and eps_th = alpha(T) (T - T_ref); `free_strain` means it holds the free expansion e(T) and
 // eps_th = e(T) - e(T_ref). In global axes eps_th_g = T_sigma^T eps_th_m (shear parts when BETA is
 // not a multiple of 90 degrees).
-#include <Eigen/Cholesky>
-#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
 
 #include "gapfe/core/concepts.hpp"
 #include "gapfe/core/error.hpp"
@@ -26,10 +27,10 @@ namespace gapfe {
 
 /// One row of the property table, in material axes (N, S, T). Stresses and moduli share one unit.
 struct ElasticConstants {
-  double temperature = 0.0;                    ///< table temperature [deg]
-  double E_N = 0, E_S = 0, E_T = 0;            ///< Young's moduli [stress]
-  double nu_NS = 0, nu_NT = 0, nu_ST = 0;      ///< Poisson's ratios (Jones: -eps_S / eps_N under sigma_N ...)
-  double G_NS = 0, G_ST = 0, G_TN = 0;         ///< shear moduli [stress]
+  double temperature = 0.0;                ///< table temperature [deg]
+  double E_N = 0, E_S = 0, E_T = 0;        ///< Young's moduli [stress]
+  double nu_NS = 0, nu_NT = 0, nu_ST = 0;  ///< Poisson's ratios (Jones: -eps_S / eps_N under sigma_N ...)
+  double G_NS = 0, G_ST = 0, G_TN = 0;     ///< shear moduli [stress]
   double alpha_N = 0, alpha_S = 0, alpha_T = 0;  ///< expansion coefficients [1/deg] or free strains [-]
 
   /// An isotropic row.
@@ -77,17 +78,25 @@ struct ElasticTable {
   ElasticConstants at(double T) const {
     if (T <= rows.front().temperature) return rows.front();
     if (T >= rows.back().temperature) return rows.back();
-    const auto hi = std::upper_bound(rows.begin(), rows.end(), T,
-                                     [](double t, const ElasticConstants& c) { return t < c.temperature; });
-    const auto& b = *hi;
-    const auto& a = *(hi - 1);
+    const auto hi  = std::upper_bound(rows.begin(), rows.end(), T,
+                                      [](double t, const ElasticConstants& c) { return t < c.temperature; });
+    const auto& b  = *hi;
+    const auto& a  = *(hi - 1);
     const double s = (T - a.temperature) / (b.temperature - a.temperature);
     const auto mix = [s](double x, double y) { return x + s * (y - x); };
     return {T,
-            mix(a.E_N, b.E_N),         mix(a.E_S, b.E_S),         mix(a.E_T, b.E_T),
-            mix(a.nu_NS, b.nu_NS),     mix(a.nu_NT, b.nu_NT),     mix(a.nu_ST, b.nu_ST),
-            mix(a.G_NS, b.G_NS),       mix(a.G_ST, b.G_ST),       mix(a.G_TN, b.G_TN),
-            mix(a.alpha_N, b.alpha_N), mix(a.alpha_S, b.alpha_S), mix(a.alpha_T, b.alpha_T)};
+            mix(a.E_N, b.E_N),
+            mix(a.E_S, b.E_S),
+            mix(a.E_T, b.E_T),
+            mix(a.nu_NS, b.nu_NS),
+            mix(a.nu_NT, b.nu_NT),
+            mix(a.nu_ST, b.nu_ST),
+            mix(a.G_NS, b.G_NS),
+            mix(a.G_ST, b.G_ST),
+            mix(a.G_TN, b.G_TN),
+            mix(a.alpha_N, b.alpha_N),
+            mix(a.alpha_S, b.alpha_S),
+            mix(a.alpha_T, b.alpha_T)};
   }
 
   /// Thermal strain in material axes (N, S, T normal components) at T, relative to T_ref.
@@ -113,7 +122,7 @@ struct ElasticPoint {
   Mat66 stiffness;      ///< C_g = T_eps^T C_m T_eps [stress]
   Vec6 thermal_strain;  ///< eps_th in global Voigt order [-]
   double density = 0.0;
-  Mat66 to_material;    ///< T_sigma: sigma_material = to_material * sigma_global
+  Mat66 to_material;  ///< T_sigma: sigma_material = to_material * sigma_global
 };
 
 /// Per-point history of a law without history: costs nothing.

@@ -20,11 +20,11 @@ struct CellTag {
 template <int NodesPerCell>
 struct Mesh {
   static constexpr int kNodesPerCell = NodesPerCell;
-  std::vector<Vec2> nodes;                              ///< (r, z) [length]
-  std::vector<std::array<int, NodesPerCell>> cells;     ///< the model's element
-  std::vector<CellTag> cell_tags;                       ///< parallel to cells (empty: all default)
-  std::vector<std::array<int, 3>> triangles;            ///< 3-corner cells (CST)
-  std::vector<CellTag> triangle_tags;                   ///< parallel to triangles (empty: all default)
+  std::vector<Vec2> nodes;                           ///< (r, z) [length]
+  std::vector<std::array<int, NodesPerCell>> cells;  ///< the model's element
+  std::vector<CellTag> cell_tags;                    ///< parallel to cells (empty: all default)
+  std::vector<std::array<int, 3>> triangles;         ///< 3-corner cells (CST)
+  std::vector<CellTag> triangle_tags;                ///< parallel to triangles (empty: all default)
 
   int node_count() const { return static_cast<int>(nodes.size()); }
   CellTag cell_tag(std::size_t e) const { return cell_tags.empty() ? CellTag{} : cell_tags[e]; }

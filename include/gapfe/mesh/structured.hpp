@@ -14,7 +14,8 @@ namespace gapfe {
 /// grid of (2 nr + 1) x (2 nz + 1) points without cell centres). `ratio_r` > 0 grades radial sizes
 /// geometrically (each cell ratio_r times the previous); 1 is uniform.
 template <int NodesPerCell>
-Mesh<NodesPerCell> rectangle_mesh(double r0, double r1, double z0, double z1, int nr, int nz, double ratio_r = 1.0) {
+Mesh<NodesPerCell> rectangle_mesh(double r0, double r1, double z0, double z1, int nr, int nz,
+                                  double ratio_r = 1.0) {
   static_assert(NodesPerCell == 4 || NodesPerCell == 8, "rectangle_mesh makes 4- or 8-node cells");
   if (nr < 1 || nz < 1 || !(r1 > r0) || !(z1 > z0) || r0 < 0 || !(ratio_r > 0))
     throw InputError("rectangle_mesh: need nr, nz >= 1, 0 <= r0 < r1, z0 < z1 and ratio_r > 0");
@@ -24,10 +25,10 @@ Mesh<NodesPerCell> rectangle_mesh(double r0, double r1, double z0, double z1, in
   for (int i = 0; i < nr; ++i) total += h, h *= ratio_r;
   rc[0] = r0, h = (r1 - r0) / total;
   for (int i = 0; i < nr; ++i) rc[i + 1] = rc[i] + h, h *= ratio_r;
-  rc[nr] = r1;
+  rc[nr]             = r1;
   constexpr int kSub = NodesPerCell == 8 ? 2 : 1;
   const int ni = kSub * nr + 1, nj = kSub * nz + 1;
-  auto r_at    = [&](int i) { return i % kSub == 0 ? rc[i / kSub] : 0.5 * (rc[i / kSub] + rc[i / kSub + 1]); };
+  auto r_at = [&](int i) { return i % kSub == 0 ? rc[i / kSub] : 0.5 * (rc[i / kSub] + rc[i / kSub + 1]); };
 
   Mesh<NodesPerCell> m;
   std::vector<int> id(static_cast<std::size_t>(ni) * nj, -1);
@@ -44,8 +45,8 @@ Mesh<NodesPerCell> rectangle_mesh(double r0, double r1, double z0, double z1, in
       if constexpr (NodesPerCell == 4) {
         m.cells.push_back({at(I, J), at(I + 1, J), at(I + 1, J + 1), at(I, J + 1)});
       } else {
-        m.cells.push_back({at(I, J), at(I + 2, J), at(I + 2, J + 2), at(I, J + 2), at(I + 1, J), at(I + 2, J + 1),
-                           at(I + 1, J + 2), at(I, J + 1)});
+        m.cells.push_back({at(I, J), at(I + 2, J), at(I + 2, J + 2), at(I, J + 2), at(I + 1, J),
+                           at(I + 2, J + 1), at(I + 1, J + 2), at(I, J + 1)});
       }
     }
   return m;

@@ -14,7 +14,7 @@
 namespace gapfe {
 
 struct TemperaturePoint {
-  double r = 0, z = 0;       ///< [length]
+  double r = 0, z = 0;     ///< [length]
   double temperature = 0;  ///< [deg]
 };
 
@@ -28,7 +28,7 @@ VecX nodal_temperatures(const Mesh<NPC>& mesh, const std::vector<TemperaturePoin
   VecX t(mesh.node_count());
   for (int n = 0; n < mesh.node_count(); ++n) {
     double sum_w = 0, sum_wt = 0;
-    bool exact   = false;
+    bool exact = false;
     for (const auto& p : points) {
       const double d2 = (mesh.nodes[n] - Vec2(p.r, p.z)).squaredNorm();
       if (d2 <= tol2) {

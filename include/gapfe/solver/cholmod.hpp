@@ -4,8 +4,9 @@
 // opt-in: it is not in gapfe.hpp, and needs the gapfe::cholmod CMake target (GAPFE_HAS_CHOLMOD).
 // Link BLAS from OpenBLAS: the supernodal factorization is BLAS-3 bound, several times slower on the
 // reference BLAS.
-#include <Eigen/CholmodSupport>
 #include <string>
+
+#include <Eigen/CholmodSupport>
 
 #include "gapfe/core/concepts.hpp"
 
@@ -18,7 +19,7 @@ class CholmodLlt {
   double singular_rcond = 1e-14;
 
   CholmodLlt() {
-    cholmod_common& c = llt_.cholmod();
+    cholmod_common& c    = llt_.cholmod();
     c.nmethods           = 1;
     c.method[0].ordering = CHOLMOD_AMD;
     c.postorder          = 1;
@@ -28,9 +29,11 @@ class CholmodLlt {
   bool factorize(const SpMat& k) {
     failure_.clear();
     llt_.factorize(k);
-    if (llt_.info() != Eigen::Success) return fail("stiffness is singular or not positive definite (CHOLMOD)");
+    if (llt_.info() != Eigen::Success)
+      return fail("stiffness is singular or not positive definite (CHOLMOD)");
     const double rcond = cholmod_rcond(llt_.factor(), &llt_.cholmod());
-    if (!(rcond > singular_rcond)) return fail("stiffness is singular (CHOLMOD rcond " + std::to_string(rcond) + ")");
+    if (!(rcond > singular_rcond))
+      return fail("stiffness is singular (CHOLMOD rcond " + std::to_string(rcond) + ")");
     return true;
   }
   VecX solve(const VecX& b) const { return llt_.solve(b); }

@@ -3,9 +3,10 @@
 // analyze() once per pattern, factorize() per matrix. A singular or indefinite stiffness (a missing
 // constraint, an inverted element) is detected from the pivots, not left to produce huge or NaN
 // displacements: factorize() returns false and failure() names the equation of the worst pivot.
+#include <string>
+
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCholesky>
-#include <string>
 
 #include "gapfe/core/concepts.hpp"
 
@@ -22,7 +23,7 @@ class EigenLdlt {
     ldlt_.factorize(k);
     failure_.clear();
     if (ldlt_.info() != Eigen::Success) return fail("stiffness is singular (zero pivot)", -1);
-    const VecX& d    = ldlt_.vectorD();
+    const VecX& d      = ldlt_.vectorD();
     Eigen::Index worst = 0;
     const double dmax  = d.cwiseAbs().maxCoeff();
     const double dmin  = d.minCoeff(&worst);
