@@ -1,4 +1,4 @@
-// gapfe_solve_tube --nr NR --nz NZ [--solver eigen|cholmod] [--element quad4|legacy|quad8]
+// gapfe_solve_tube --nr NR --nz NZ [--solver eigen|eigen-amd|cholmod] [--element quad4|legacy]
 // One plane-strain Lame thick-tube solve (a = 0.1, b = 0.2 m, p = 100 MPa, square cells, the same
 // problem bench/ccx_compare.py gives CalculiX), printing one line:
 //   gapfe nr=.. nz=.. dofs=.. solver=.. setup_s=.. assemble_s=.. factor_s=.. solve_s=.. total_s=.. u_bore=..
@@ -57,6 +57,10 @@ int main(int argc, char** argv) try {
       element = v;
     else
       throw gapfe::InputError("unknown option " + k);
+  }
+  if (solver == "eigen-amd") {
+    if (element == "legacy") return run<gapfe::LegacyQuad, gapfe::EigenLdltAmd>(nr, nz, solver);
+    return run<gapfe::Quad4, gapfe::EigenLdltAmd>(nr, nz, solver);
   }
   if (solver == "eigen") {
     if (element == "legacy") return run<gapfe::LegacyQuad, gapfe::EigenLdlt>(nr, nz, solver);

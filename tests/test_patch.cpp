@@ -1,5 +1,6 @@
 // Constant-strain patch tests: every element, both kinematics, patches on and off the axis.
 #include <map>
+#include <tuple>
 
 #include "support.hpp"
 
@@ -99,11 +100,13 @@ void patch_test(double r0, bool all_nodes) {
 
 }  // namespace
 
-TEST_CASE_TEMPLATE("[element] patch test, boundary prescribed, interior free", M,
-                   Model<Axisym2, Quad4, Isotropic>, Model<Axisym3, Quad4, Isotropic>,
-                   Model<Axisym2, LegacyQuad, Isotropic>, Model<Axisym3, LegacyQuad, Isotropic>,
-                   Model<Axisym2, Quad8, Isotropic>, Model<Axisym3, Quad8, Isotropic>,
-                   Model<Axisym2, Tri3, Isotropic>, Model<Axisym3, Tri3, Isotropic>) {
+// Every element in both kinematics.
+using AllVariants = std::tuple<Model<Axisym2, Quad4, Isotropic>, Model<Axisym3, Quad4, Isotropic>,
+                               Model<Axisym2, LegacyQuad, Isotropic>, Model<Axisym3, LegacyQuad, Isotropic>,
+                               Model<Axisym2, Quad8, Isotropic>, Model<Axisym3, Quad8, Isotropic>,
+                               Model<Axisym2, Tri3, Isotropic>, Model<Axisym3, Tri3, Isotropic>>;
+
+TEST_CASE_TEMPLATE_DEFINE("[element] patch test, boundary prescribed, interior free", M, boundary_patch) {
   SUBCASE("off the axis") {
     patch_test<M>(1.0, false);
   }
@@ -111,12 +114,10 @@ TEST_CASE_TEMPLATE("[element] patch test, boundary prescribed, interior free", M
     patch_test<M>(0.0, false);
   }
 }
+TEST_CASE_TEMPLATE_APPLY(boundary_patch, AllVariants);
 
-TEST_CASE_TEMPLATE("[element] patch test, every node prescribed (strain consistency incl. rz shear)", M,
-                   Model<Axisym2, Quad4, Isotropic>, Model<Axisym3, Quad4, Isotropic>,
-                   Model<Axisym2, LegacyQuad, Isotropic>, Model<Axisym3, LegacyQuad, Isotropic>,
-                   Model<Axisym2, Quad8, Isotropic>, Model<Axisym3, Quad8, Isotropic>,
-                   Model<Axisym2, Tri3, Isotropic>, Model<Axisym3, Tri3, Isotropic>) {
+TEST_CASE_TEMPLATE_DEFINE("[element] patch test, every node prescribed (strain consistency incl. rz shear)",
+                          M, all_nodes_patch) {
   SUBCASE("off the axis") {
     patch_test<M>(1.0, true);
   }
@@ -124,3 +125,4 @@ TEST_CASE_TEMPLATE("[element] patch test, every node prescribed (strain consiste
     patch_test<M>(0.0, true);
   }
 }
+TEST_CASE_TEMPLATE_APPLY(all_nodes_patch, AllVariants);

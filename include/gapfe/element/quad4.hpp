@@ -4,13 +4,13 @@
 //   4 ---- 3     eta        nodes counterclockwise from the corner nearest the origin
 //   |      |      ^         (seed Fig. 1: IX(N,1..4) = (I,J), (I+1,J), (I+1,J+1), (I,J+1))
 //   1 ---- 2      +--> xi   local numbering here is 0-based: 0, 1, 2, 3
-#include "gapfe/element/point_geometry.hpp"
+#include "gapfe/element/isoparametric.hpp"
 #include "gapfe/element/quadrature.hpp"
 #include "gapfe/element/tri3.hpp"
 
 namespace gapfe {
 
-struct Quad4 {
+struct Quad4 : Isoparametric<Quad4, 4, 4> {
   static constexpr int kNodes           = 4;
   static constexpr int kShapeNodes      = 4;  // no condensed interior nodes
   static constexpr int kStiffnessPoints = 4;
@@ -34,19 +34,6 @@ struct Quad4 {
     }
     return d;
   }
-  static PointGeometry<4> at(const Mat<4, 2>& x, double xi, double eta, double w, double& det) {
-    return isoparametric_point<4>(x, N(xi, eta), dN(xi, eta), w, det);
-  }
-  /// Coordinates of the shape nodes: the element has no interior nodes.
-  static const Mat<4, 2>& shape_coords(const Mat<4, 2>& x) { return x; }
-  static PointGeometry<4> stiffness_point(const Mat<4, 2>& x, int q, double& det) {
-    return at(x, kRule.point[q][0], kRule.point[q][1], kRule.weight[q], det);
-  }
-  static PointGeometry<4> load_point(const Mat<4, 2>& x, int q, double& det) {
-    return stiffness_point(x, q, det);
-  }
-  /// Reference centroid (xi = eta = 0), weight = full-ring volume estimate 2 pi r |J| 4.
-  static PointGeometry<4> centroid_point(const Mat<4, 2>& x, double& det) { return at(x, 0, 0, 4.0, det); }
 };
 
 }  // namespace gapfe

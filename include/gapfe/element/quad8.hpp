@@ -6,12 +6,12 @@
 //   8         6      (drawn 1-based: 5..8)
 //   |         |
 //   1 -- 5 -- 2
-#include "gapfe/element/point_geometry.hpp"
+#include "gapfe/element/isoparametric.hpp"
 #include "gapfe/element/quadrature.hpp"
 
 namespace gapfe {
 
-struct Quad8 {
+struct Quad8 : Isoparametric<Quad8, 8, 9> {
   static constexpr int kNodes           = 8;
   static constexpr int kShapeNodes      = 8;
   static constexpr int kStiffnessPoints = 9;
@@ -54,18 +54,6 @@ struct Quad8 {
     }
     return d;
   }
-  static PointGeometry<8> at(const Mat<8, 2>& x, double xi, double eta, double w, double& det) {
-    return isoparametric_point<8>(x, N(xi, eta), dN(xi, eta), w, det);
-  }
-  /// Coordinates of the shape nodes: the element has no interior nodes.
-  static const Mat<8, 2>& shape_coords(const Mat<8, 2>& x) { return x; }
-  static PointGeometry<8> stiffness_point(const Mat<8, 2>& x, int q, double& det) {
-    return at(x, kRule.point[q][0], kRule.point[q][1], kRule.weight[q], det);
-  }
-  static PointGeometry<8> load_point(const Mat<8, 2>& x, int q, double& det) {
-    return stiffness_point(x, q, det);
-  }
-  static PointGeometry<8> centroid_point(const Mat<8, 2>& x, double& det) { return at(x, 0, 0, 4.0, det); }
 };
 
 }  // namespace gapfe

@@ -1,20 +1,27 @@
 #pragma once
-// EigenLdlt: the embedded default, Eigen's SimplicialLDLT with AMD ordering on the lower triangle.
+// EigenLdlt: the embedded default, Eigen's SimplicialLDLT on the lower triangle, nested-dissection ordering.
 // analyze() once per pattern, factorize() per matrix. A singular or indefinite stiffness (a missing
 // constraint, an inverted element) is detected from the pivots, not left to produce huge or NaN
 // displacements: factorize() returns false and failure() names the equation of the worst pivot.
 #include <string>
+#include <type_traits>
 
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCholesky>
 
 #include "gapfe/core/concepts.hpp"
+#include "gapfe/solver/nested_dissection.hpp"
 
 namespace gapfe {
 
-class EigenLdlt {
+/// Ordering: NestedDissectionOrdering (default; fewer operations on gapfe's 2-D meshes, BENCHMARKS.md)
+/// or Eigen::AMDOrdering<int>.
+template <class Ordering>
+class EigenLdltWith {
  public:
-  static constexpr const char* kName = "Eigen SimplicialLDLT (AMD)";
+  static constexpr const char* kName = std::is_same_v<Ordering, NestedDissectionOrdering>
+                                           ? "Eigen SimplicialLDLT (nested dissection)"
+                                           : "Eigen SimplicialLDLT (AMD)";
   /// Pivots below this fraction of the largest pivot mean a singular system (rigid-body mode).
   double singular_pivot_ratio = 1e-13;
 
@@ -46,10 +53,13 @@ class EigenLdlt {
     failed_equation_ = eq;
     return false;
   }
-  Eigen::SimplicialLDLT<SpMat, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
+  Eigen::SimplicialLDLT<SpMat, Eigen::Lower, Ordering> ldlt_;
   std::string failure_;
   int failed_equation_ = -1;
 };
+using EigenLdlt    = EigenLdltWith<NestedDissectionOrdering>;
+using EigenLdltAmd = EigenLdltWith<Eigen::AMDOrdering<int>>;
 static_assert(LinearSolver<EigenLdlt>);
+static_assert(LinearSolver<EigenLdltAmd>);
 
 }  // namespace gapfe
