@@ -132,3 +132,16 @@ TEST_CASE("[material] temperature field from (r, z, T) points: exact at nodes, b
   CHECK_THROWS_AS(nodal_temperatures(m, {}), InputError);
   CHECK_THROWS_AS(nodal_temperatures(m, {{0.1, 0.0, std::nan("")}}), InputError);
 }
+
+TEST_CASE("[material] card 6 IANG/NANG: ALPHA alternates in sign every NANG cells along I") {
+  const double a = 0.5;
+  for (int i = 0; i < 6; ++i) CHECK(helical_frame(0.1, a, 0, 0, i).alpha == a);  // IANG = 0: constant
+  const std::array<double, 6> every2{a, a, -a, -a, a, a};
+  for (int i = 0; i < 6; ++i) {
+    CHECK(helical_frame(0.1, a, 1, 2, i).alpha == every2[i]);
+    CHECK(helical_frame(0.1, a, 1, 2, i).beta == 0.1);
+    CHECK(helical_frame(0.1, a, 1, 1, i).alpha == (i % 2 ? -a : a));
+  }
+  CHECK_THROWS_WITH_AS(helical_frame(0, a, 1, 0, 0), doctest::Contains("NANG"), InputError);
+  CHECK_THROWS_AS(helical_frame(0, a, 2, 1, 0), InputError);
+}

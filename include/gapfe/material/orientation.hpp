@@ -7,6 +7,9 @@
 //   N = (cos a sin b, cos a cos b, sin a),  S = (-sin a sin b, -sin a cos b, cos a),  T = (-cos b, sin b, 0)
 // With ALPHA = 0 the N-T plane is the r-z plane and S is the hoop direction. An orthotropic C is
 // unchanged when an axis is reversed, so handedness does not matter.
+#include <string>
+
+#include "gapfe/core/error.hpp"
 #include "gapfe/core/types.hpp"
 
 namespace gapfe {
@@ -18,6 +21,17 @@ struct MaterialFrame {
   double alpha                                = 0.0;  ///< [rad]
   bool operator==(const MaterialFrame&) const = default;
 };
+
+/// The frame of the cell at I-offset `i_offset` (I - IMIN of its material block, from 0) under the seed's
+/// card 6 helical option: IANG = 0 keeps ALPHA for the whole block; IANG = 1 flips its sign every NANG
+/// cells along I (+ALPHA for the first NANG, -ALPHA for the next NANG, ...), an angle-ply winding.
+inline MaterialFrame helical_frame(double beta, double alpha, int iang, int nang, int i_offset) {
+  if (iang != 0 && iang != 1) throw InputError("IANG must be 0 or 1, got " + std::to_string(iang));
+  if (iang == 1 && nang < 1) throw InputError("IANG = 1 needs NANG >= 1, got " + std::to_string(nang));
+  if (i_offset < 0) throw InputError("helical_frame: negative I offset");
+  const bool flipped = iang == 1 && (i_offset / nang) % 2 == 1;
+  return {beta, flipped ? -alpha : alpha};
+}
 
 /// Rows: the material axes N, S, T in global (r, z, theta) components.
 inline Mat33 material_axes(const MaterialFrame& f) {
