@@ -44,7 +44,6 @@ struct DofMap {
         if constexpr (DofsPerNode == 3) fixed[m.dof(n, dof::theta)] = true;
       }
     }
-    static constexpr const char* kName[3] = {"u_r", "u_z", "u_theta"};
     for (const auto& c : conditions) {  // later cards win, as in the seed
       const std::string where = "boundary condition at node " + std::to_string(c.node + 1);
       if (c.node < 0 || c.node >= nn) throw InputError(where + ": no such node");
@@ -62,8 +61,8 @@ struct DofMap {
         const int d = m.dof(c.node, k);
         if (m.on_axis[c.node] && k != dof::z) {
           if (c.value[k] != 0)
-            throw InputError(where + ": the node is on the axis, where " + kName[k] +
-                             " = 0 is imposed; a non-zero " + kName[k] +
+            throw InputError(where + ": the node is on the axis, where " + dof::kName[k] +
+                             " = 0 is imposed; a non-zero " + dof::kName[k] +
                              (c.prescribed(k) ? " displacement" : " load") + " is not allowed");
           continue;
         }

@@ -45,28 +45,25 @@ struct Quad4Axisym2Batch {
  private:
   void point(int q) {
     const double xi = Quad4::kRule.point[q][0], eta = Quad4::kRule.point[q][1];
-    const double wq = kTwoPi * Quad4::kRule.weight[q];
-    double n[4], dxi[4], deta[4];
-    for (int a = 0; a < 4; ++a) {
-      const double xa = Quad4::kCorners[a][0], ya = Quad4::kCorners[a][1];
-      n[a]    = 0.25 * (1 + xa * xi) * (1 + ya * eta);
-      dxi[a]  = 0.25 * xa * (1 + ya * eta);
-      deta[a] = 0.25 * ya * (1 + xa * xi);
-    }
+    const double wq    = kTwoPi * Quad4::kRule.weight[q];
+    const Vec<4> n     = Quad4::N(xi, eta);  // the element's own shape functions, evaluated once per point
+    const Mat<4, 2> dn = Quad4::dN(xi, eta);
+    const double dxi[4]{dn(0, 0), dn(1, 0), dn(2, 0), dn(3, 0)},
+        deta[4]{dn(0, 1), dn(1, 1), dn(2, 1), dn(3, 1)};
     alignas(64) double nr[4][W], nz[4][W], hoop[4][W], w[W];
     for (int l = 0; l < W; ++l) {
       double r_xi = 0, z_xi = 0, r_eta = 0, z_eta = 0, rq = 0;
       for (int a = 0; a < 4; ++a) {
         r_xi += dxi[a] * r[a][l], z_xi += dxi[a] * z[a][l];
         r_eta += deta[a] * r[a][l], z_eta += deta[a] * z[a][l];
-        rq += n[a] * r[a][l];
+        rq += n(a) * r[a][l];
       }
       const double det = r_xi * z_eta - z_xi * r_eta, inv = 1.0 / det, inv_r = 1.0 / rq;
       // [N_r; N_z] = J^-1 [N_xi; N_eta], J = [[r_xi, z_xi], [r_eta, z_eta]]
       for (int a = 0; a < 4; ++a) {
         nr[a][l]   = (z_eta * dxi[a] - z_xi * deta[a]) * inv;
         nz[a][l]   = (r_xi * deta[a] - r_eta * dxi[a]) * inv;
-        hoop[a][l] = n[a] * inv_r;
+        hoop[a][l] = n(a) * inv_r;
       }
       w[l] = wq * rq * det;
     }

@@ -43,6 +43,8 @@ inline constexpr std::array<std::array<int, 2>, 6> kPairs{{{0, 0}, {1, 1}, {2, 2
 /// Nodal displacement components.
 namespace dof {
 inline constexpr int r = 0, z = 1, theta = 2;
-}
+/// Component names for messages, indexed by component.
+inline constexpr std::array<const char*, 3> kName{"u_r", "u_z", "u_theta"};
+}  // namespace dof
 
 }  // namespace gapfe

@@ -491,9 +491,8 @@ class LinearStatic {
           "inertia load: angular acceleration loads u_theta and needs the 3-DOF (SAGA) kinematics");
   }
   std::string describe_equation(int eq) const {
-    static constexpr const char* kName[3] = {"u_r", "u_z", "u_theta"};
     for (std::size_t d = 0; d < dofs_.equation.size(); ++d)
-      if (dofs_.equation[d] == eq) return "node " + std::to_string(d / kNd + 1) + " " + kName[d % kNd];
+      if (dofs_.equation[d] == eq) return "node " + std::to_string(d / kNd + 1) + " " + dof::kName[d % kNd];
     return "equation " + std::to_string(eq);
   }
 
