@@ -1,8 +1,13 @@
 #pragma once
 // gapfe: header-only C++20 finite elements for axisymmetric structures. Umbrella header: everything
 // except solver/cholmod.hpp (CHOLMOD is GPL and opt-in).
+#include "gapfe/driver/deck_run.hpp"
 #include "gapfe/driver/linear_static.hpp"
+#include "gapfe/io/deck.hpp"
+#include "gapfe/io/deck_output.hpp"
+#include "gapfe/io/deck_scene.hpp"
 #include "gapfe/io/vtu_writer.hpp"
+#include "gapfe/mesh/ij_grid.hpp"
 #include "gapfe/mesh/structured.hpp"
 #include "gapfe/mesh/temperature.hpp"
 #include "gapfe/model.hpp"

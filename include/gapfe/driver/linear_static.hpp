@@ -82,14 +82,17 @@ class LinearStatic {
 
   /// Assemble, factorize, solve, recover reactions. Throws SolveError when the stiffness is singular
   /// (say, a missing constraint) and InputError for loads that do not fit the mesh or the kinematics.
-  const Solution& solve() {
+  /// `same_stiffness`: the caller changed only loads and prescribed values since the last solve (not
+  /// materials or temperatures), so the last factorization is reused (load steps of a linear run).
+  const Solution& solve(bool same_stiffness = false) {
     using clock        = std::chrono::steady_clock;
     const auto seconds = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
     validate_loads();
+    refresh_condition_values();
     auto t0 = clock::now();
     assemble();
     auto t1 = clock::now();
-    if (dofs_.free_count > 0 && !solver_->factorize(k_)) {
+    if (dofs_.free_count > 0 && !(same_stiffness && factorized_) && !(factorized_ = solver_->factorize(k_))) {
       std::string where;
       if (const int eq = solver_->failed_equation(); eq >= 0) where = " near " + describe_equation(eq);
       throw SolveError(solver_->failure() + where +
@@ -113,6 +116,7 @@ class LinearStatic {
   /// for callers that want the system without solving it.
   void assemble_system() {
     validate_loads();
+    refresh_condition_values();
     assemble();
   }
   const VecX& rhs() const { return rhs_; }
@@ -471,6 +475,14 @@ class LinearStatic {
       throw InputError("temperature: one value per node expected, got " +
                        std::to_string(p_.temperature.size()));
   }
+  /// Condition values may change between solves; which DOFs they prescribe may not.
+  void refresh_condition_values() {
+    DofMap<kNd> now = DofMap<kNd>::build(p_.mesh, p_.conditions);
+    if (now.equation != dofs_.equation)
+      throw InputError("boundary conditions: the set of prescribed DOFs changed after construction");
+    dofs_ = std::move(now);
+  }
+
   void validate_loads() const {
     if (!p_.temperature.allFinite() || !std::isfinite(p_.reference_temperature))
       throw InputError("temperature: non-finite value");
@@ -501,7 +513,8 @@ class LinearStatic {
   SpMat k_;
   VecX rhs_, external_, u_;
   std::vector<int> cell_offsets_, tri_offsets_;
-  std::unique_ptr<Solver> solver_ = std::make_unique<Solver>();  // solvers are not movable; the analysis is
+  std::unique_ptr<Solver> solver_ = std::make_unique<Solver>();  // solvers are not movable
+  bool factorized_                = false;                       // solver_ holds a factorization of k_
   Solution sol_;
   SolveTimings time_;
   std::unordered_map<std::uint64_t, EdgeRef> edges_;

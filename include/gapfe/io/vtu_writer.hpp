@@ -1,73 +1,150 @@
 #pragma once
-// VTK XML unstructured grid (ASCII) for ParaView: the meridian plane as x = r, y = z. Point data:
-// displacement (u_r, u_z, u_theta) and reaction; cell data: centroid stress and strain in global
-// Voigt order [rr, zz, hoop, rz, z-theta, theta-r] and the material index.
+// VTK XML unstructured grid (ASCII) for ParaView: the meridian plane as x = r, y = z, and the PVD
+// collection that strings one file per load step together. Numbers are written in the shortest form
+// that reads back to the same double (std::to_chars).
+//
+// Files are written to path + ".tmp" and renamed, so an interrupted run never leaves a half-written
+// file under the final name.
+#include <charconv>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "gapfe/core/error.hpp"
 #include "gapfe/driver/linear_static.hpp"
 
 namespace gapfe {
 
-namespace detail {
-inline int vtk_cell_type(int nodes) {
-  return nodes == 3 ? 5 : nodes == 4 ? 9 : 23;
-}  // triangle, quad, quad8
-}  // namespace detail
+/// A point or cell array: `components` values per point or cell, row after row.
+struct VtuField {
+  std::string name;
+  int components = 1;
+  std::vector<double> values;
+  bool integer = false;  ///< written as Int32 (material ids, status codes)
+};
 
-/// Write `path`; throws InputError when the file cannot be written (nothing half-written is left
-/// behind under the final name: the file is written to path + ".tmp" and renamed).
-template <class M>
-void write_vtu(const std::string& path, const LinearStatic<M>& fe) {
-  const auto& m         = fe.problem().mesh;
-  const auto& s         = fe.solution();
-  const auto cells      = fe.centroid_values();
+/// Cells as VTK wants them: VTK types 5 (triangle), 9 (quad), 23 (quad8).
+struct VtuCells {
+  std::vector<int> connectivity, offsets;
+  std::vector<std::uint8_t> types;
+  void add(const int* nodes, int count) {
+    connectivity.insert(connectivity.end(), nodes, nodes + count);
+    offsets.push_back(static_cast<int>(connectivity.size()));
+    types.push_back(count == 3 ? 5 : count == 4 ? 9 : 23);
+  }
+  std::size_t size() const { return types.size(); }
+};
+
+namespace detail {
+
+inline void append_number(std::string& s, double v) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  s.append(buf, r.ptr);
+}
+inline void append_number(std::string& s, long long v) {
+  char buf[24];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  s.append(buf, r.ptr);
+}
+
+/// Write `text` to `path` through a temporary file and a rename.
+inline void write_file_atomically(const std::string& path, const std::string& text) {
   const std::string tmp = path + ".tmp";
   {
-    std::ofstream out(tmp);
+    std::ofstream out(tmp, std::ios::binary);
     if (!out) throw InputError("cannot write " + path);
-    out.precision(12);
-    const std::size_t nc = m.cells.size() + m.triangles.size();
-    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
-           "byte_order=\"LittleEndian\">\n"
-        << "<UnstructuredGrid><Piece NumberOfPoints=\"" << m.node_count() << "\" NumberOfCells=\"" << nc
-        << "\">\n"
-        << "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-    for (const auto& x : m.nodes) out << x(0) << ' ' << x(1) << " 0\n";
-    out << "</DataArray></Points>\n<Cells><DataArray type=\"Int32\" Name=\"connectivity\" "
-           "format=\"ascii\">\n";
-    for (const auto& c : m.cells) {
-      for (int n : c) out << n << ' ';
-      out << '\n';
-    }
-    for (const auto& c : m.triangles) out << c[0] << ' ' << c[1] << ' ' << c[2] << '\n';
-    out << "</DataArray>\n<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">\n";
-    std::size_t off = 0;
-    for (std::size_t e = 0; e < m.cells.size(); ++e) out << (off += m.cells[e].size()) << '\n';
-    for (std::size_t e = 0; e < m.triangles.size(); ++e) out << (off += 3) << '\n';
-    out << "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
-    for (std::size_t e = 0; e < m.cells.size(); ++e) out << detail::vtk_cell_type(M::Element::kNodes) << '\n';
-    for (std::size_t e = 0; e < m.triangles.size(); ++e) out << "5\n";
-    out << "</DataArray></Cells>\n<PointData Vectors=\"displacement\">\n";
-    out << "<DataArray type=\"Float64\" Name=\"displacement\" NumberOfComponents=\"3\" format=\"ascii\">\n"
-        << s.displacement << "\n</DataArray>\n";
-    out << "<DataArray type=\"Float64\" Name=\"reaction\" NumberOfComponents=\"3\" format=\"ascii\">\n"
-        << s.reaction << "\n</DataArray>\n</PointData>\n<CellData>\n";
-    for (const bool stress : {true, false}) {
-      out << "<DataArray type=\"Float64\" Name=\"" << (stress ? "stress" : "strain")
-          << "\" NumberOfComponents=\"6\" format=\"ascii\">\n";
-      for (const auto& v : cells) out << (stress ? v.stress : v.strain).transpose() << '\n';
-      out << "</DataArray>\n";
-    }
-    out << "<DataArray type=\"Int32\" Name=\"material\" format=\"ascii\">\n";
-    for (std::size_t e = 0; e < m.cells.size(); ++e) out << m.cell_tag(e).material + 1 << '\n';
-    for (std::size_t e = 0; e < m.triangles.size(); ++e) out << m.triangle_tag(e).material + 1 << '\n';
-    out << "</DataArray>\n</CellData>\n</Piece></UnstructuredGrid></VTKFile>\n";
+    out.write(text.data(), static_cast<std::streamsize>(text.size()));
     if (!out) throw InputError("error while writing " + path);
   }
   if (std::rename(tmp.c_str(), path.c_str()) != 0) throw InputError("cannot rename " + tmp + " to " + path);
+}
+
+inline void append_array(std::string& s, const VtuField& f) {
+  s += "<DataArray type=\"";
+  s += f.integer ? "Int32" : "Float64";
+  s += "\" Name=\"" + f.name + "\" NumberOfComponents=\"" + std::to_string(f.components) +
+       "\" format=\"ascii\">\n";
+  for (std::size_t k = 0; k < f.values.size(); ++k) {
+    if (f.integer)
+      append_number(s, static_cast<long long>(f.values[k]));
+    else
+      append_number(s, f.values[k]);
+    s += (k + 1) % static_cast<std::size_t>(f.components) == 0 ? '\n' : ' ';
+  }
+  s += "</DataArray>\n";
+}
+
+}  // namespace detail
+
+/// Write nodes (r, z), cells and point / cell arrays to `path`.
+inline void write_vtu(const std::string& path, const std::vector<Vec2>& nodes, const VtuCells& cells,
+                      const std::vector<VtuField>& point_data, const std::vector<VtuField>& cell_data) {
+  std::string s;
+  s.reserve(nodes.size() * 64 + cells.size() * 96);
+  s += "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
+       "byte_order=\"LittleEndian\">\n";
+  s += "<UnstructuredGrid><Piece NumberOfPoints=\"" + std::to_string(nodes.size()) + "\" NumberOfCells=\"" +
+       std::to_string(cells.size()) + "\">\n";
+  s += "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  for (const auto& x : nodes) {
+    detail::append_number(s, x(0));
+    s += ' ';
+    detail::append_number(s, x(1));
+    s += " 0\n";
+  }
+  s += "</DataArray></Points>\n<Cells>\n";
+  const auto ints = [&](const char* name, const auto& v) {
+    s += std::string("<DataArray type=\"Int32\" Name=\"") + name + "\" format=\"ascii\">\n";
+    for (const auto x : v) detail::append_number(s, static_cast<long long>(x)), s += '\n';
+    s += "</DataArray>\n";
+  };
+  ints("connectivity", cells.connectivity);
+  ints("offsets", cells.offsets);
+  s += "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+  for (const auto t : cells.types) detail::append_number(s, static_cast<long long>(t)), s += '\n';
+  s += "</DataArray>\n</Cells>\n<PointData>\n";
+  for (const auto& f : point_data) detail::append_array(s, f);
+  s += "</PointData>\n<CellData>\n";
+  for (const auto& f : cell_data) detail::append_array(s, f);
+  s += "</CellData>\n</Piece></UnstructuredGrid></VTKFile>\n";
+  detail::write_file_atomically(path, s);
+}
+
+/// A ParaView collection: one dataset per (time, file) pair; `time` is the load increment count.
+inline void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& steps) {
+  std::string s = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
+  for (const auto& [time, file] : steps) {
+    s += "<DataSet timestep=\"";
+    detail::append_number(s, time);
+    s += "\" file=\"" + file + "\"/>\n";
+  }
+  s += "</Collection>\n</VTKFile>\n";
+  detail::write_file_atomically(path, s);
+}
+
+/// The solution of a LinearStatic: displacement and reaction per node; centroid stress and strain
+/// (global Voigt order [rr, zz, hoop, rz, z-theta, theta-r]) and material number (1-based) per cell.
+template <class M>
+void write_vtu(const std::string& path, const LinearStatic<M>& fe) {
+  const auto& m = fe.problem().mesh;
+  const auto& s = fe.solution();
+  VtuCells cells;
+  for (const auto& c : m.cells) cells.add(c.data(), static_cast<int>(c.size()));
+  for (const auto& c : m.triangles) cells.add(c.data(), 3);
+  std::vector<VtuField> point{{"displacement", 3, {}}, {"reaction", 3, {}}};
+  for (int n = 0; n < m.node_count(); ++n)
+    for (int c = 0; c < 3; ++c)
+      point[0].values.push_back(s.displacement(n, c)), point[1].values.push_back(s.reaction(n, c));
+  std::vector<VtuField> cell{{"stress", 6, {}}, {"strain", 6, {}}, {"material", 1, {}, true}};
+  for (const auto& v : fe.centroid_values())
+    for (int k = 0; k < 6; ++k) cell[0].values.push_back(v.stress(k)), cell[1].values.push_back(v.strain(k));
+  for (std::size_t e = 0; e < m.cells.size(); ++e) cell[2].values.push_back(m.cell_tag(e).material + 1);
+  for (std::size_t e = 0; e < m.triangles.size(); ++e)
+    cell[2].values.push_back(m.triangle_tag(e).material + 1);
+  write_vtu(path, m.nodes, cells, point, cell);
 }
 
 }  // namespace gapfe

@@ -1,6 +1,6 @@
 #pragma once
 // Structured meshes of a rectangle [r0, r1] x [z0, z1] in the meridian plane, for tests, benchmarks
-// and examples (the seed's I-J generator with line-segment cards lives in ij_generator.hpp).
+// and examples (the seed's I-J generator with line-segment cards lives in ij_grid.hpp).
 // Numbering follows the seed: nodes row by row, J (z) ascending, I (r) fastest; cell (I, J) has
 // corners (I,J), (I+1,J), (I+1,J+1), (I,J+1) counterclockwise.
 #include <stdexcept>

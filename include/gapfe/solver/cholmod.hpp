@@ -4,6 +4,7 @@
 // opt-in: it is not in gapfe.hpp, and needs the gapfe::cholmod CMake target (GAPFE_HAS_CHOLMOD).
 // Link BLAS from OpenBLAS: the supernodal factorization is BLAS-3 bound, several times slower on the
 // reference BLAS.
+#include <cstdio>
 #include <string>
 
 #include <Eigen/CholmodSupport>
@@ -24,6 +25,7 @@ class CholmodLlt {
     c.method[0].ordering = CHOLMOD_AMD;
     c.postorder          = 1;
     c.supernodal         = CHOLMOD_SUPERNODAL;
+    c.print              = 0;  // failures are reported through failure(), not printed by CHOLMOD
   }
   void analyze(const SpMat& k) { llt_.analyzePattern(k); }
   bool factorize(const SpMat& k) {
@@ -32,8 +34,11 @@ class CholmodLlt {
     if (llt_.info() != Eigen::Success)
       return fail("stiffness is singular or not positive definite (CHOLMOD)");
     const double rcond = cholmod_rcond(llt_.factor(), &llt_.cholmod());
-    if (!(rcond > singular_rcond))
-      return fail("stiffness is singular (CHOLMOD rcond " + std::to_string(rcond) + ")");
+    if (!(rcond > singular_rcond)) {
+      char text[64];
+      std::snprintf(text, sizeof text, "stiffness is singular (CHOLMOD rcond %.3g)", rcond);
+      return fail(text);
+    }
     return true;
   }
   VecX solve(const VecX& b) const { return llt_.solve(b); }

@@ -1,0 +1,168 @@
+#!/usr/bin/env python3
+"""Write card decks (BRL-CR-670 Appendix A) column-exact, for the examples and the benchmarks.
+
+    python3 bench/deckgen.py tube --ni 301 --nj 167 > tube.deck     # thick tube, 2*ni*nj DOFs
+    python3 bench/deckgen.py examples                               # rewrites examples/decks/*.deck
+
+Each card helper returns one 80-column line; the field widths are the seed's formats.
+"""
+import argparse
+import math
+import pathlib
+
+
+def f(value, width, decimals=None):
+    """A real in `width` columns with an explicit decimal point (so no implied-decimal surprises)."""
+    if decimals is not None:
+        text = f"{value:{width}.{decimals}f}"
+        if len(text) <= width:
+            return text
+    for digits in range(width - 2, 0, -1):
+        text = f"{value:{width}.{digits}g}"
+        if "." not in text and "e" not in text:
+            text = f"{value:.1f}".rjust(width)
+        if len(text) <= width:
+            return text
+    raise ValueError(f"{value} does not fit in {width} columns")
+
+
+def i(value, width):
+    text = f"{value:{width}d}"
+    assert len(text) == width, (value, width)
+    return text
+
+
+def segment(points, kind):
+    """Data 4: up to three (I, J, R, Z) points, then the type in columns 67-71 (3(2I3, 2F8.3), I5)."""
+    line = ""
+    for k in range(3):
+        if k < len(points):
+            pi, pj, r, z = points[k]
+            line += i(pi, 3) + i(pj, 3) + f(r, 8, 3) + f(z, 8, 3)
+        else:
+            line += " " * 22
+    return line + i(kind, 5)
+
+
+def control(numtc=0, nummat=1, numpc=0, numsc=0, numst=0, tref=0.0, inert=0, nlinc=1, inci=0, incf=0, iplot=0):
+    """Data 2 (6I5, F5.0, 6I5)."""
+    return (i(1, 5) + i(numtc, 5) + i(nummat, 5) + i(numpc, 5) + i(numsc, 5) + i(numst, 5) + f(tref, 5, 1)
+            + i(inert, 5) + i(nlinc, 5) + i(inci, 5) + i(incf, 5) + i(iplot, 5))
+
+
+def mesh_control(maxi, maxj, nseg, nbc, nmtl):
+    return "".join(i(v, 5) for v in (maxi, maxj, nseg, nbc, nmtl))
+
+
+def bc(i1, i2, j1, j2, code, xr=0.0, xz=0.0, xt=0.0):
+    """Data 5 (4I5, I10, 3F10.0)."""
+    return i(i1, 5) + i(i2, 5) + i(j1, 5) + i(j2, 5) + i(code, 10) + f(xr, 10) + f(xz, 10) + f(xt, 10)
+
+
+def block(mat, i1, i2, j1, j2, beta=0.0, alpha=0.0, iang=0, nang=0, ijdir=0):
+    """Data 6 (5I5, 2F10.0, 3I5)."""
+    return (i(mat, 5) + i(i1, 5) + i(i2, 5) + i(j1, 5) + i(j2, 5) + f(beta, 10) + f(alpha, 10) + i(iang, 5)
+            + i(nang, 5) + i(ijdir, 5))
+
+
+def material(ident, rows, density=0.0, free_expansion=False, yield_card=None, elastic_format=False):
+    """Data 10a, 10b (two cards per temperature row) and, in saac decks, Data 11 (blank = elastic).
+
+    rows: (T, E_N, E_S, E_T, nu_NS, nu_NT, nu_ST, G_NS, G_ST, G_TN, a_N, a_S, a_T)."""
+    out = [i(ident, 5) + i(len(rows), 5) + f(density, 10) + f(1.0 if free_expansion else 0.0, 10)]
+    for row in rows:
+        out.append("".join(f(v, 10) for v in row[:7]))
+        out.append("".join(f(v, 10) for v in row[7:]))
+    if not elastic_format:
+        out.append("" if yield_card is None else "".join(f(v, 10) for v in yield_card))
+    return out
+
+
+def isotropic(E, nu, alpha=0.0, T=0.0):
+    G = E / (2 * (1 + nu))
+    return (T, E, E, E, nu, nu, nu, G, G, G, alpha, alpha, alpha)
+
+
+def edge(m, n, value):
+    """Data 13-15 (2I5, F10.0)."""
+    return i(m, 5) + i(n, 5) + f(value, 10)
+
+
+def tube_deck(ni, nj, a=100.0, b=200.0, h=None, p=100.0, extension=("format = elastic",)):
+    """Thick tube a <= r <= b, 0 <= z <= h, plane strain (u_z = 0 on both ends), internal pressure p.
+    Nodes (ni x nj grid): node(I, J) = (J - 1) ni + I."""
+    h = h if h is not None else (b - a) * (nj - 1) / (ni - 1)
+    node = lambda I, J: (J - 1) * ni + I
+    lines = [f"$ {e}" for e in extension]
+    lines += [f"THICK TUBE {a:g} < r < {b:g}, internal pressure {p:g}, plane strain ({ni} x {nj} grid)",
+              control(numpc=nj - 1), mesh_control(ni, nj, 4, 2, 1),
+              segment([(1, 1, a, 0.0), (ni, 1, b, 0.0)], 1), segment([(ni, 1, b, 0.0), (ni, nj, b, h)], 1),
+              segment([(ni, nj, b, h), (1, nj, a, h)], 1), segment([(1, nj, a, h), (1, 1, a, 0.0)], 1),
+              bc(1, ni, 1, 1, 2), bc(1, ni, nj, nj, 2), block(1, 1, ni, 1, nj)]
+    lines += material(1, [isotropic(200000.0, 0.3, 1.2e-5)], density=7.85e-9, elastic_format=True)
+    lines += [edge(node(1, J + 1), node(1, J), p) for J in range(1, nj)]
+    return "\n".join(lines) + "\n"
+
+
+def helical_sleeve_deck():
+    """A steel shaft (r < 20) with a two-ply +-30 degree wound composite sleeve (20 < r < 30), fixed at
+    z = 0 and twisted by a transverse shear of 10 on its end face z = 100 (SAGA: needs u_theta)."""
+    ni, nj = 7, 11
+    node = lambda I, J: (J - 1) * ni + I
+    lines = ["$ format = elastic",
+             "$ Shaft with a helically wound sleeve in torsion: materials 1 steel, 2 composite (+-30 deg plies)",
+             "SHAFT WITH +-30 DEG WOUND SLEEVE, END SHEAR 10 (TORSION)",
+             control(nummat=2, numst=ni - 1), mesh_control(ni, nj, 4, 1, 2),
+             segment([(1, 1, 0.0, 0.0), (ni, 1, 30.0, 0.0)], 1), segment([(ni, 1, 30.0, 0.0), (ni, nj, 30.0, 100.0)], 1),
+             segment([(ni, nj, 30.0, 100.0), (1, nj, 0.0, 100.0)], 1), segment([(1, nj, 0.0, 100.0), (1, 1, 0.0, 0.0)], 1),
+             bc(1, ni, 1, 1, 7), block(1, 1, 5, 1, nj), block(2, 5, ni, 1, nj, 0.0, 30.0, 1, 1)]
+    lines += material(1, [isotropic(200000.0, 0.3)], elastic_format=True)
+    lines += material(2, [(0.0, 140000.0, 10000.0, 10000.0, 0.3, 0.3, 0.4, 5000.0, 3500.0, 5000.0, 0.0, 0.0, 0.0)],
+                      elastic_format=True)
+    lines += [edge(node(I + 1, nj), node(I, nj), 10.0) for I in range(1, ni)]
+    return "\n".join(lines) + "\n"
+
+
+def gap_body_deck():
+    """Two concentric tubes, inner 50 < r < 60 and outer 60.1 < r < 80, with a layer of gap elements
+    (material 2, IJDIR = 1: closure along I) across the 0.1 radial gap; internal pressure, plane strain.
+    A SAAC deck (yield cards, blank = elastic); `gapfe mesh` until gap elements land."""
+    ni, nj = 8, 5
+    h = 20.0
+    node = lambda I, J: (J - 1) * ni + I
+    rs = [50.0, 55.0, 60.0, 60.1, 65.0, 70.0, 75.0, 80.0]
+    lines = ["$ Two tubes across a 0.1 radial gap: material 1 inner tube, 2 gap elements, 3 outer tube",
+             "TWO TUBES ACROSS A 0.1 RADIAL GAP, INTERNAL PRESSURE 100",
+             control(nummat=3, numpc=nj - 1, nlinc=10), mesh_control(ni, nj, 2 + 2 * (ni - 1), 2, 3)]
+    lines += [segment([(I, 1, rs[I - 1], 0.0), (I + 1, 1, rs[I], 0.0)], 1) for I in range(1, ni)]
+    lines += [segment([(I, nj, rs[I - 1], h), (I + 1, nj, rs[I], h)], 1) for I in range(1, ni)]
+    lines += [segment([(1, 1, rs[0], 0.0), (1, nj, rs[0], h)], 1), segment([(ni, 1, rs[-1], 0.0), (ni, nj, rs[-1], h)], 1)]
+    lines += [bc(1, ni, 1, 1, 2), bc(1, ni, nj, nj, 2), block(1, 1, 3, 1, nj), block(2, 3, 4, 1, nj, ijdir=1),
+              block(3, 4, ni, 1, nj)]
+    lines += material(1, [isotropic(200000.0, 0.3)])
+    lines += material(2, [isotropic(1.0, 0.0)])
+    lines += material(3, [isotropic(200000.0, 0.3)])
+    lines += [edge(node(1, J + 1), node(1, J), 10.0) for J in range(1, nj)]
+    return "\n".join(lines) + "\n"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = ap.add_subparsers(dest="what", required=True)
+    t = sub.add_parser("tube")
+    t.add_argument("--ni", type=int, required=True)
+    t.add_argument("--nj", type=int, required=True)
+    sub.add_parser("examples")
+    args = ap.parse_args()
+    if args.what == "tube":
+        print(tube_deck(args.ni, args.nj), end="")
+    else:
+        out = pathlib.Path(__file__).resolve().parent.parent / "examples" / "decks"
+        out.mkdir(exist_ok=True)
+        (out / "thick_tube.deck").write_text(tube_deck(9, 3, h=10.0))
+        (out / "helical_sleeve.deck").write_text(helical_sleeve_deck())
+        (out / "gap_body.deck").write_text(gap_body_deck())
+
+
+if __name__ == "__main__":
+    main()

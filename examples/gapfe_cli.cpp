@@ -1,0 +1,278 @@
+// The `gapfe` command: run, mesh and info on a card deck (BRL-CR-670 Appendix A). The deck picks the
+// smallest compiled model variant that represents it; --variant forces a richer one.
+#include "gapfe_cli.hpp"
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "gapfe/driver/deck_run.hpp"
+#include "gapfe/io/deck_output.hpp"
+#include "gapfe/model.hpp"
+#include "gapfe/version.hpp"
+#ifdef GAPFE_HAS_CHOLMOD
+#include "gapfe/solver/cholmod.hpp"
+#endif
+
+namespace gapfe::cli {
+namespace {
+
+constexpr const char* kUsage =
+    "usage: gapfe run DECK --out DIR [options]   solve every load step; CSV, VTU and PVD files in DIR\n"
+    "       gapfe mesh DECK --out DIR [options]  the mesh only: mesh.svg with numbers, tables, mesh.vtu\n"
+    "       gapfe info DECK [options]            what the deck asks for and which variant serves it\n"
+    "options:\n"
+    "  --variant saas|saga      force a model variant (default: the smallest the deck needs)\n"
+    "  --set KEY=VALUE          a deck extension option (README: format, element, solver, bc_loads, ...)\n"
+    "  --format F, --element E, --solver S, --contact C, --plasticity P   shorthands for --set\n"
+    "  --quiet                  no log on standard output\n";
+
+struct Args {
+  std::string command, deck, out, variant;
+  std::vector<std::pair<std::string, std::string>> options;
+  bool quiet = false;
+};
+
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+Args parse(const std::vector<std::string>& a) {
+  Args r;
+  if (a.empty()) throw UsageError("no command given");
+  r.command = a[0];
+  if (r.command != "run" && r.command != "mesh" && r.command != "info")
+    throw UsageError("unknown command '" + r.command + "'");
+  for (std::size_t k = 1; k < a.size(); ++k) {
+    const std::string& s = a[k];
+    const auto value     = [&]() -> const std::string& {
+      if (k + 1 >= a.size()) throw UsageError(s + " needs a value");
+      return a[++k];
+    };
+    if (s == "--out") {
+      r.out = value();
+    } else if (s == "--variant") {
+      r.variant = value();
+      if (r.variant != "saas" && r.variant != "saga")
+        throw UsageError("--variant: '" + r.variant + "' is not a compiled variant (saas, saga)");
+    } else if (s == "--set") {
+      const std::string& kv = value();
+      const auto eq         = kv.find('=');
+      if (eq == std::string::npos) throw UsageError("--set needs KEY=VALUE, got '" + kv + "'");
+      r.options.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
+    } else if (s == "--format" || s == "--element" || s == "--solver" || s == "--contact" ||
+               s == "--plasticity") {
+      r.options.emplace_back(s.substr(2), value());
+    } else if (s == "--quiet") {
+      r.quiet = true;
+    } else if (!s.empty() && s[0] == '-') {
+      throw UsageError("unknown option '" + s + "'");
+    } else if (r.deck.empty()) {
+      r.deck = s;
+    } else {
+      throw UsageError("more than one deck given ('" + r.deck + "', '" + s + "')");
+    }
+  }
+  if (r.deck.empty()) throw UsageError("no deck given");
+  if (r.command != "info" && r.out.empty()) throw UsageError(r.command + " needs --out DIR");
+  return r;
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::system_error(errno, std::generic_category(), "cannot open deck '" + path + "'");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+#ifdef GAPFE_HAS_CHOLMOD
+using FastSolver = CholmodLlt;
+#else
+using FastSolver = EigenLdlt;
+#endif
+
+/// The model variant the deck needs, and why.
+std::string pick_variant(const DeckNeeds& needs, const std::string& forced, std::string& why) {
+  if (needs.needs_theta()) {
+    why = "3 DOF per node: " + needs.theta.front() +
+          (needs.theta.size() > 1 ? " (and " + std::to_string(needs.theta.size() - 1) + " more)" : "");
+    if (forced == "saas")
+      throw InputError("--variant saas cannot represent this deck: it needs u_theta (" + needs.theta.front() +
+                       ")");
+    return "saga";
+  }
+  why =
+      "no theta loads, theta displacements, transverse shear, angular acceleration or ALPHA: 2 DOF per node";
+  if (!forced.empty() && forced != "saas") {
+    why += "; " + forced + " forced by --variant, with u_theta = 0 at every node (its value by symmetry)";
+    return forced;
+  }
+  return "saas";
+}
+
+void describe(std::ostream& out, const Deck& d, const DeckScene& s) {
+  const char* format = d.options.format == DeckFormat::elastic ? "elastic (SAAS/SAGA, no yield cards)"
+                       : d.options.format == DeckFormat::saac3 ? "saac3 (rate card, yield cards)"
+                                                               : "saac (yield cards)";
+  out << "deck: " << d.title << "\n"
+      << "  format " << format << "; element " << d.options.element << "; " << d.materials.size()
+      << " material(s)\n"
+      << "  mesh " << d.mesh.max_i << " x " << d.mesh.max_j << " index grid: " << s.grid.node_count()
+      << " nodes, " << s.mesh.cells.size() << " quadrilaterals, " << s.mesh.triangles.size() << " triangles\n"
+      << "  " << d.boundary.size() << " boundary condition card(s), " << d.blocks.size()
+      << " material block(s), " << d.steps() << " load step(s)";
+  if (d.control.numtc != 0) out << ", temperature field";
+  if (d.control.inert != 0) out << ", inertia loads";
+  out << "\n";
+}
+
+template <class Kin, class Elem, class Solver>
+void run_variant(const Deck& d, const DeckScene& s, const std::string& dir, std::ostream& out,
+                 std::ostream& err, bool progress, bool quiet, double& write_time) {
+  using M = Model<Kin, Elem, Orthotropic, Solver>;
+  StepFiles files(dir, s);
+  SolveTimings total;
+  int equations = 0;
+  run_deck<M>(d, s, [&](int step, double inc, const LinearStatic<M>& fe) {
+    const auto& t = fe.timings();
+    total.assemble += t.assemble, total.factorize += t.factorize, total.solve += t.solve + t.reactions;
+    equations        = fe.dofs().free_count;
+    const auto start = Clock::now();
+    files.write(step, inc, fe);
+    write_time += since(start);
+    if (!std::isfinite(fe.solution().residual) || !fe.solution().displacement.allFinite())
+      throw SolveError("load step " + std::to_string(step) + ": the solution is not finite");
+    if (progress) err << "\rstep " << step << "/" << d.steps() << std::flush;
+  });
+  if (progress) err << "\r" << std::string(32, ' ') << "\r" << std::flush;
+  if (!quiet)
+    out << "  " << equations << " equations; assemble " << total.assemble << " s, factorize "
+        << total.factorize << " s, solve " << total.solve << " s\n";
+}
+
+template <class Solver>
+void run_with_solver(const std::string& variant, const Deck& d, const DeckScene& s, const std::string& dir,
+                     std::ostream& out, std::ostream& err, bool progress, bool quiet, double& write_time) {
+  const bool quad4 = d.options.element == "quad4";
+  if (variant == "saga") {
+    if (quad4)
+      run_variant<Axisym3, Quad4, Solver>(d, s, dir, out, err, progress, quiet, write_time);
+    else
+      run_variant<Axisym3, LegacyQuad, Solver>(d, s, dir, out, err, progress, quiet, write_time);
+  } else {
+    if (quad4)
+      run_variant<Axisym2, Quad4, Solver>(d, s, dir, out, err, progress, quiet, write_time);
+    else
+      run_variant<Axisym2, LegacyQuad, Solver>(d, s, dir, out, err, progress, quiet, write_time);
+  }
+}
+
+int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) {
+  std::ostringstream null_stream;
+  std::ostream& log = a.quiet ? null_stream : out;
+  log << std::setprecision(3);
+  auto t0                = Clock::now();
+  const std::string text = read_file(a.deck);
+  const Deck d           = read_deck(text, a.options);
+  const double t_read    = since(t0);
+  t0                     = Clock::now();
+  const DeckScene s      = build_scene<FastSolver>(d);
+  const double t_mesh    = since(t0);
+  describe(log, d, s);
+
+  std::string why;
+  const std::string variant = pick_variant(s.needs, a.variant, why);
+  log << "variant: " << variant << " (" << why << ")\n";
+  if (!s.needs.gaps.empty())
+    log << "  gaps: " << s.needs.gaps.front() << (s.needs.gaps.size() > 1 ? " and more" : "") << "\n";
+  if (!s.needs.plasticity.empty()) log << "  plasticity: " << s.needs.plasticity.front() << "\n";
+
+  if (a.command == "info") return ok;
+  std::filesystem::create_directories(a.out);
+  if (a.command == "mesh") {
+    write_mesh_files(a.out, d, s);
+    log << "wrote " << a.out << "/mesh.svg, mesh_nodes.csv, mesh_elements.csv, mesh.vtu\n";
+    return ok;
+  }
+  if (!s.needs.gaps.empty())
+    throw InputError(
+        "this deck has gap elements (" + s.needs.gaps.front() +
+        "); gap elements are not in this version of gapfe yet: `gapfe mesh` shows the mesh, or read "
+        "the deck with --format elastic to treat material 2 as an ordinary material");
+  if (!s.needs.plasticity.empty())
+    throw InputError(
+        "this deck asks for plasticity (" + s.needs.plasticity.front() +
+        "); plasticity is not in this version of gapfe yet: blank the yield cards for an elastic run");
+
+  std::string solver = d.options.solver;
+#ifdef GAPFE_HAS_CHOLMOD
+  if (solver == "auto") solver = "cholmod";
+#else
+  if (solver == "auto") solver = "eigen";
+  if (solver == "cholmod")
+    throw InputError("solver = cholmod: this gapfe was built without CHOLMOD (SuiteSparse)");
+#endif
+  double t_write = 0;
+  t0             = Clock::now();
+#ifdef GAPFE_HAS_CHOLMOD
+  if (solver == "cholmod") {
+    log << "solver: " << CholmodLlt::kName << "\n";
+    run_with_solver<CholmodLlt>(variant, d, s, a.out, log, err, progress, a.quiet, t_write);
+  } else
+#endif
+  {
+    log << "solver: " << EigenLdlt::kName << "\n";
+    run_with_solver<EigenLdlt>(variant, d, s, a.out, log, err, progress, a.quiet, t_write);
+  }
+  const double t_run = since(t0);
+  log << "time: read " << t_read << " s, mesh " << t_mesh << " s, analysis " << t_run - t_write
+      << " s, write " << t_write << " s\n"
+      << "wrote " << a.out << "/nodes.csv, elements.csv, result.pvd\n";
+  return ok;
+}
+
+}  // namespace
+
+int main(const std::vector<std::string>& args, std::ostream& out, std::ostream& err, bool progress) {
+  if (!args.empty() && (args[0] == "--help" || args[0] == "-h" || args[0] == "help")) {
+    out << kUsage;
+    return ok;
+  }
+  if (!args.empty() && args[0] == "--version") {
+    out << "gapfe " << GAPFE_VERSION_STRING << "\n";
+    return ok;
+  }
+  Args a;
+  try {
+    a = parse(args);
+  } catch (const UsageError& e) {
+    err << "gapfe: " << e.what() << "\n" << kUsage;
+    return usage;
+  }
+  try {
+    return execute(a, out, err, progress);
+  } catch (const InputError& e) {
+    err << "gapfe: error in " << a.deck << ": " << e.what() << "\n";
+    return input;
+  } catch (const SolveError& e) {
+    err << "gapfe: cannot solve " << a.deck << ": " << e.what() << "\n";
+    return solve;
+  } catch (const std::bad_alloc&) {
+    err << "gapfe: out of memory while processing " << a.deck << "\n";
+    return system;
+  } catch (const std::exception& e) {
+    err << "gapfe: " << e.what() << "\n";
+    return system;
+  }
+}
+
+}  // namespace gapfe::cli

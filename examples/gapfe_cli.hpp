@@ -1,0 +1,18 @@
+#pragma once
+// The `gapfe` command as a function, so that the tests can run it (and check its exit codes and
+// messages) in-process; gapfe.cpp is its main(). See README.md ("Running decks").
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace gapfe::cli {
+
+/// Exit codes: 0 success; 1 the deck or the model is wrong (InputError); 2 the system cannot be
+/// solved (SolveError); 3 a file cannot be read or written, or memory ran out; 64 bad command line.
+enum Exit : int { ok = 0, input = 1, solve = 2, system = 3, usage = 64 };
+
+/// `args` excludes the program name. Normal output goes to `out`, errors and progress to `err`;
+/// `progress` draws a step counter on `err` (gapfe.cpp turns it on when stderr is a terminal).
+int main(const std::vector<std::string>& args, std::ostream& out, std::ostream& err, bool progress = false);
+
+}  // namespace gapfe::cli

@@ -1,0 +1,548 @@
+#pragma once
+// The seed's card deck (BRL-CR-670 Appendix A, cards 0-15) as data, and its reader. The reader only
+// parses: it checks each card's columns, counts and value ranges that need no mesh; deck_model.hpp
+// builds the mesh and checks what refers to it (node numbers, edges, material numbers).
+//
+// Readings of what the seed leaves open (also in the README's deck section):
+//  * Deck formats: `saac` (default; SAAC/SAAC2: a yield card, card 11, follows each material's
+//    property cards; an all-blank yield card keeps that material elastic), `saac3` (SAAC3/SAAC3X: as
+//    saac with the rate card, card 0, first) and `elastic` (SAAS/SAGA decks: no yield cards). In the
+//    saac formats material number 2 marks gap elements (seed Data 6 note); in elastic decks it is an
+//    ordinary material.
+//  * NUMTC >= 1: that many (r, z, T) cards; -2: one constant-temperature card; 0: none (T = TREF).
+//  * Cards 7 and 8 appear only when IPLLOT = 1. Card 15 (transverse shear) count is NUMST.
+//  * Per load step: the inertia card (when INERT != 0, and only in the first block when INCI = 0),
+//    then NUMPC pressure, NUMSC shear and NUMST transverse-shear cards (only in the first block when
+//    INCF = 0). The values are the increments of that step; a block given once repeats every step.
+//  * BETA and ALPHA (card 6) are in degrees.
+//
+// Extensions (options the seed's input lacks) are lines `$ key = value` before the first card; a
+// line that is only `$` or `$ text` without `=` is a comment. The same keys can be set from the
+// command line (gapfe --set key=value), so legacy decks stay untouched. See DeckOptions.
+#include <array>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "gapfe/assembly/loads.hpp"
+#include "gapfe/io/fixed_format.hpp"
+#include "gapfe/material/elastic.hpp"
+#include "gapfe/mesh/ij_grid.hpp"
+#include "gapfe/mesh/temperature.hpp"
+
+namespace gapfe {
+
+enum class DeckFormat { saac, saac3, elastic };
+
+/// Options a deck sets with `$ key = value` lines or the command line sets with --set key=value.
+struct DeckOptions {
+  DeckFormat format      = DeckFormat::saac;  ///< format = saac | saac3 | elastic
+  std::string element    = "legacy";          ///< element = legacy (the seed's four-CST quad) | quad4
+  std::string solver     = "auto";            ///< solver = auto (fastest built) | eigen | cholmod
+  bool loads_per_radian  = false;             ///< bc_loads = total (default) | per-radian (legacy decks)
+  std::string contact    = "saac";     ///< contact = saac | active-set | augmented-lagrangian (gap issue)
+  double friction        = 0.0;        ///< friction = Coulomb coefficient mu >= 0 (gap issue)
+  std::string slip       = "coulomb";  ///< slip = coulomb | extended (gap issue)
+  double gap_penalty     = 100.0;      ///< gap_penalty = closed-gap stiffness / adjacent stiffness
+  std::string plasticity = "tangent";  ///< plasticity = tangent | return-mapping (plasticity issue)
+
+  /// Set one option from its text form; throws InputError naming the key and the accepted values.
+  void set(const std::string& key, const std::string& value) {
+    const auto one_of = [&](std::initializer_list<const char*> allowed) {
+      std::string list;
+      for (const char* a : allowed) {
+        if (value == a) return value;
+        list += (list.empty() ? "" : ", ") + std::string(a);
+      }
+      throw InputError("option " + key + " = '" + value + "': expected one of " + list);
+    };
+    const auto number = [&](double lo) {
+      char* end      = nullptr;
+      const double v = std::strtod(value.c_str(), &end);
+      if (value.empty() || *end != '\0' || !std::isfinite(v) || v < lo)
+        throw InputError("option " + key + " = '" + value + "': expected a number >= " + std::to_string(lo));
+      return v;
+    };
+    if (key == "format") {
+      const std::string f = one_of({"saac", "saac2", "saac3", "saac3x", "elastic", "saas", "saga"});
+      format              = (f == "saac3" || f == "saac3x")                  ? DeckFormat::saac3
+                            : (f == "elastic" || f == "saas" || f == "saga") ? DeckFormat::elastic
+                                                                             : DeckFormat::saac;
+    } else if (key == "element") {
+      element = one_of({"legacy", "quad4"});
+    } else if (key == "solver") {
+      solver = one_of({"auto", "eigen", "cholmod"});
+    } else if (key == "bc_loads") {
+      loads_per_radian = one_of({"total", "per-radian"}) == "per-radian";
+    } else if (key == "contact") {
+      contact = one_of({"saac", "active-set", "augmented-lagrangian"});
+    } else if (key == "friction") {
+      friction = number(0.0);
+    } else if (key == "slip") {
+      slip = one_of({"coulomb", "extended"});
+    } else if (key == "gap_penalty") {
+      gap_penalty = number(1e-300);
+    } else if (key == "plasticity") {
+      plasticity = one_of({"tangent", "return-mapping"});
+    } else {
+      throw InputError("unknown option '" + key +
+                       "' (known: format, element, solver, bc_loads, contact, friction, slip, gap_penalty, "
+                       "plasticity)");
+    }
+  }
+};
+
+/// Where a card came from, for messages about values that need the mesh to check.
+struct CardRef {
+  std::string card;  ///< "DATA NO. 13 (boundary pressure card 2 of load step 1)"
+  int line = 0;
+  std::string where() const { return card + ", line " + std::to_string(line); }
+};
+
+struct RateCard {  // Data 0 (SAAC3, SAAC3X)
+  double time_step = 0, rate_b = 0, rate_plastic_strain = 0, strain_rate = 0, shear_stress_step = 0;
+};
+
+struct ControlCard {  // Data 2
+  int nnla = 0, numtc = 0, nummat = 0, numpc = 0, numsc = 0, numst = 0;
+  double tref = 0;
+  int inert = 0, nlinc = 0, inci = 0, incf = 0, iplot = 0;
+};
+
+struct MeshControlCard {  // Data 3
+  int max_i = 0, max_j = 0, nseg = 0, nbc = 0, nmtl = 0;
+};
+
+struct BoundaryCard {  // Data 5: nodes in [i1, i2] x [j1, j2]
+  int i1 = 0, i2 = 0, j1 = 0, j2 = 0, code = 0;
+  std::array<double, 3> value{};  ///< XR, XZ, XT
+  CardRef ref;
+};
+
+struct MaterialBlockCard {  // Data 6: cells whose four corners lie in [i1, i2] x [j1, j2]
+  int material = 0, i1 = 0, i2 = 0, j1 = 0, j2 = 0;
+  double beta_deg = 0, alpha_deg = 0;
+  int iang = 0, nang = 0, ijdir = 0;
+  CardRef ref;
+};
+
+struct YieldCard {                // Data 11, in material axes
+  std::array<double, 6> yield{};  ///< tension N, S, T; shear NS, NT, TS [stress]
+  double hardening = 0;           ///< C
+  bool blank       = true;        ///< all-blank card: the material stays elastic
+};
+
+struct DeckMaterial {  // Data 10 (+ 11)
+  int id = 0;
+  ElasticTable table;
+  std::optional<YieldCard> yield;  ///< absent in elastic decks
+  CardRef ref;
+};
+
+struct EdgeCard {              // Data 13-15
+  int node_m = 0, node_n = 0;  ///< 1-based, as on the card
+  double value = 0;
+  CardRef ref;
+};
+
+struct LoadBlock {  // Data 12-15 of one load step
+  std::optional<InertiaLoad> inertia;
+  std::vector<EdgeCard> pressure, shear, transverse_shear;
+};
+
+struct Deck {
+  DeckOptions options;
+  std::optional<RateCard> rate;
+  std::string title;
+  ControlCard control;
+  MeshControlCard mesh;
+  std::vector<Segment> segments;
+  std::vector<CardRef> segment_refs;
+  std::vector<BoundaryCard> boundary;
+  std::vector<MaterialBlockCard> blocks;
+  std::string plot_title;
+  double plot_rmax = 0, plot_zmax = 0;
+  std::vector<TemperaturePoint> temperature_points;
+  std::optional<double> constant_temperature;
+  std::vector<DeckMaterial> materials;
+  std::vector<LoadBlock> blocks_read;  ///< the blocks as read (one per step, or the first only)
+
+  int steps() const { return control.nlinc; }
+  /// Inertia increment of load step s (1-based): its own card, the first block's when INCI = 0.
+  InertiaLoad inertia(int s) const {
+    if (control.inert == 0) return {};
+    const LoadBlock& b = blocks_read[control.inci == 0 ? 0 : s - 1];
+    return b.inertia.value_or(InertiaLoad{});
+  }
+  /// Surface-load cards of load step s (1-based): its own, the first block's when INCF = 0.
+  const LoadBlock& surface(int s) const { return blocks_read[control.incf == 0 ? 0 : s - 1]; }
+  const DeckMaterial* material(int id) const {
+    for (const auto& m : materials)
+      if (m.id == id) return &m;
+    return nullptr;
+  }
+};
+
+/// Limits that keep a hostile deck from exhausting memory; the seed's own limits are lifted.
+struct DeckLimits {
+  long long max_grid_points = 200'000'000;  ///< MAXI x MAXJ
+  int max_load_steps        = 1'000'000;
+};
+
+namespace detail {
+
+class DeckLines {
+ public:
+  explicit DeckLines(std::string_view text) {
+    std::size_t start = 0;
+    while (start < text.size()) {
+      std::size_t end = text.find('\n', start);
+      if (end == std::string_view::npos) end = text.size();
+      lines_.push_back(text.substr(start, end - start));
+      start = end + 1;
+    }
+  }
+  bool done() const { return next_ >= lines_.size(); }
+  int line_number() const { return static_cast<int>(next_) + 1; }
+  std::string_view peek() const { return lines_[next_]; }
+  void skip() { ++next_; }
+  /// The next card image, or an error that names the card the deck still owed.
+  CardImage take(const std::string& card) {
+    if (done())
+      throw InputError(card + ": the deck ends after line " + std::to_string(lines_.size()) +
+                       "; a count on the control cards asks for more cards than the deck has");
+    const std::size_t k = next_++;
+    return CardImage(lines_[k], static_cast<int>(k) + 1, card);
+  }
+  /// After the last card: only blank lines may follow.
+  void expect_end() const {
+    for (std::size_t k = next_; k < lines_.size(); ++k)
+      if (lines_[k].find_first_not_of(" \r") != std::string_view::npos)
+        throw InputError("line " + std::to_string(k + 1) +
+                         ": unexpected card after the last load block; a count on the control cards (NUMPC, "
+                         "NUMSC, NUMST, NLINC, INERT, INCI, INCF, NUMTC, IPLLOT) or the deck format (yield "
+                         "cards: format = saac or elastic) disagrees with the cards");
+  }
+
+ private:
+  std::vector<std::string_view> lines_;
+  std::size_t next_ = 0;
+};
+
+inline std::string numbered(const std::string& data, const std::string& what, int k) {
+  return data + " (" + what + " " + std::to_string(k) + ")";
+}
+
+}  // namespace detail
+
+/// Read a deck held in `text` (the string must outlive nothing: all values are copied). `overrides`
+/// are applied after the deck's own `$` lines (the command line wins). Throws InputError naming the
+/// card, the line, the columns and what was expected.
+inline Deck read_deck(std::string_view text,
+                      const std::vector<std::pair<std::string, std::string>>& overrides = {},
+                      const DeckLimits& limits                                          = {}) {
+  Deck d;
+  detail::DeckLines in(text);
+
+  // ---- extensions: `$ key = value` lines before the first card
+  while (!in.done() && !in.peek().empty() && in.peek().front() == '$') {
+    std::string line(in.peek().substr(1));
+    const int number = in.line_number();
+    in.skip();
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+    const auto eq = line.find('=');
+    if (eq == std::string::npos) continue;  // a comment
+    const auto trim = [](std::string s) {
+      const auto a = s.find_first_not_of(' '), b = s.find_last_not_of(' ');
+      return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
+    };
+    try {
+      d.options.set(trim(line.substr(0, eq)), trim(line.substr(eq + 1)));
+    } catch (const InputError& e) {
+      throw InputError("extension line " + std::to_string(number) + ": " + e.what());
+    }
+  }
+  for (const auto& [key, value] : overrides) d.options.set(key, value);
+  const bool plastic_format = d.options.format != DeckFormat::elastic;
+
+  // ---- Data 0: rate property card (5E12.6), SAAC3 / SAAC3X only
+  if (d.options.format == DeckFormat::saac3) {
+    const CardImage c = in.take("DATA NO. 0 (rate property card)");
+    RateCard r;
+    r.time_step           = c.real(1, 12, 6, "time increment");
+    r.rate_b              = c.real(13, 24, 6, "rate parameter b");
+    r.rate_plastic_strain = c.real(25, 36, 6, "rate parameter eps_p dot");
+    r.strain_rate         = c.real(37, 48, 6, "STRRATE");
+    r.shear_stress_step   = c.real(49, 60, 6, "STRSTEP");
+    if (!(r.time_step > 0)) c.reject(1, 12, "time increment", "must be > 0");
+    d.rate = r;
+  }
+
+  // ---- Data 1: title (20A4)
+  {
+    const CardImage c = in.take("DATA NO. 1 (title card)");
+    d.title           = c.field(1, 80);
+    while (!d.title.empty() && d.title.back() == ' ') d.title.pop_back();
+  }
+
+  // ---- Data 2: control card (6I5, F5.0, 6I5)
+  {
+    const CardImage c = in.take("DATA NO. 2 (control card)");
+    ControlCard& k    = d.control;
+    k.nnla            = c.integer(1, 5, "NNLA");
+    k.numtc           = c.integer(6, 10, "NUMTC");
+    k.nummat          = c.integer(11, 15, "NUMMAT");
+    k.numpc           = c.integer(16, 20, "NUMPC");
+    k.numsc           = c.integer(21, 25, "NUMSC");
+    k.numst           = c.integer(26, 30, "NUMST");
+    k.tref            = c.real(31, 35, 0, "TREF");
+    k.inert           = c.integer(36, 40, "INERT");
+    k.nlinc           = c.integer(41, 45, "NLINC");
+    k.inci            = c.integer(46, 50, "INCI");
+    k.incf            = c.integer(51, 55, "INCF");
+    k.iplot           = c.integer(56, 60, "IPLLOT");
+    if (k.numtc < 0 && k.numtc != -2)
+      c.reject(6, 10, "NUMTC", "must be >= 0, or -2 for a constant temperature");
+    if (k.nummat < 1) c.reject(11, 15, "NUMMAT", "must be >= 1");
+    if (k.numpc < 0) c.reject(16, 20, "NUMPC", "must be >= 0");
+    if (k.numsc < 0) c.reject(21, 25, "NUMSC", "must be >= 0");
+    if (k.numst < 0) c.reject(26, 30, "NUMST", "must be >= 0");
+    if (k.nlinc < 1) c.reject(41, 45, "NLINC", "must be >= 1");
+    if (k.nlinc > limits.max_load_steps) c.reject(41, 45, "NLINC", "exceeds the limit of load steps");
+    if (k.inert < 0) c.reject(36, 40, "INERT", "must be 0 (no inertia card) or positive");
+  }
+
+  // ---- Data 3: mesh generation control (5I5)
+  {
+    const CardImage c  = in.take("DATA NO. 3 (mesh generation control card)");
+    MeshControlCard& k = d.mesh;
+    k.max_i            = c.integer(1, 5, "MAXI");
+    k.max_j            = c.integer(6, 10, "MAXJ");
+    k.nseg             = c.integer(11, 15, "NSEG");
+    k.nbc              = c.integer(16, 20, "NBC");
+    k.nmtl             = c.integer(21, 25, "NMTL");
+    if (k.max_i < 1) c.reject(1, 5, "MAXI", "must be >= 1");
+    if (k.max_j < 1) c.reject(6, 10, "MAXJ", "must be >= 1");
+    if (static_cast<long long>(k.max_i) * k.max_j > limits.max_grid_points)
+      c.reject(1, 10, "MAXI x MAXJ",
+               "the grid exceeds " + std::to_string(limits.max_grid_points) + " points");
+    if (k.nseg < 1) c.reject(11, 15, "NSEG", "must be >= 1");
+    if (k.nbc < 0) c.reject(16, 20, "NBC", "must be >= 0");
+    if (k.nmtl < 1) c.reject(21, 25, "NMTL", "must be >= 1");
+  }
+
+  // ---- Data 4: line segment cards (3(2I3, 2F8.3), I5)
+  for (int s = 1; s <= d.mesh.nseg; ++s) {
+    const CardImage c = in.take(detail::numbered("DATA NO. 4", "line segment card", s));
+    Segment seg;
+    for (int k = 0; k < 3; ++k) {
+      const int o = 22 * k;
+      seg.p[k].i  = c.integer(o + 1, o + 3, "I");
+      seg.p[k].j  = c.integer(o + 4, o + 6, "J");
+      seg.p[k].x  = {c.real(o + 7, o + 14, 3, "R"), c.real(o + 15, o + 22, 3, "Z")};
+    }
+    const int type = c.integer(67, 71, "line segment type");
+    if (type < 0 || type > 6)
+      c.reject(67, 71, "line segment type", "must be 0-6, got " + std::to_string(type));
+    seg.type       = static_cast<SegmentType>(type);
+    const int used = type == 0 ? 1 : type == 3 ? 3 : 2;
+    for (int k = 0; k < used; ++k) {
+      const int o        = 22 * k;
+      const GridPoint& p = seg.p[k];
+      if (p.i < 1 || p.i > d.mesh.max_i)
+        c.reject(o + 1, o + 3, "I",
+                 "must be within 1..MAXI = " + std::to_string(d.mesh.max_i) + ", got " + std::to_string(p.i));
+      if (p.j < 1 || p.j > d.mesh.max_j)
+        c.reject(o + 4, o + 6, "J",
+                 "must be within 1..MAXJ = " + std::to_string(d.mesh.max_j) + ", got " + std::to_string(p.j));
+    }
+    d.segments.push_back(seg);
+    d.segment_refs.push_back({c.card(), c.line()});
+  }
+
+  // ---- Data 5: boundary condition cards (4I5, I10, 3F10.0)
+  for (int b = 1; b <= d.mesh.nbc; ++b) {
+    const CardImage c = in.take(detail::numbered("DATA NO. 5", "boundary condition card", b));
+    BoundaryCard k;
+    k.i1    = c.integer(1, 5, "minimum I");
+    k.i2    = c.integer(6, 10, "maximum I");
+    k.j1    = c.integer(11, 15, "minimum J");
+    k.j2    = c.integer(16, 20, "maximum J");
+    k.code  = c.integer(21, 30, "boundary condition code");
+    k.value = {c.real(31, 40, 0, "XR"), c.real(41, 50, 0, "XZ"), c.real(51, 60, 0, "XT")};
+    if (k.i1 < 1 || k.i2 < k.i1 || k.i2 > d.mesh.max_i)
+      c.reject(1, 10, "I range",
+               "needs 1 <= minimum I <= maximum I <= MAXI = " + std::to_string(d.mesh.max_i));
+    if (k.j1 < 1 || k.j2 < k.j1 || k.j2 > d.mesh.max_j)
+      c.reject(11, 20, "J range",
+               "needs 1 <= minimum J <= maximum J <= MAXJ = " + std::to_string(d.mesh.max_j));
+    if (k.code < 0 || k.code > 7)
+      c.reject(21, 30, "boundary condition code", "must be 0-7 (bit mask 1 = u_r, 2 = u_z, 4 = u_t)");
+    if (d.options.loads_per_radian)
+      for (int comp = 0; comp < 3; ++comp)
+        if (!((k.code >> comp) & 1)) k.value[comp] *= kTwoPi;  // per radian -> total ring force
+    k.ref = {c.card(), c.line()};
+    d.boundary.push_back(k);
+  }
+
+  // ---- Data 6: material block cards (5I5, 2F10.0, 3I5)
+  for (int b = 1; b <= d.mesh.nmtl; ++b) {
+    const CardImage c = in.take(detail::numbered("DATA NO. 6", "material block card", b));
+    MaterialBlockCard k;
+    k.material  = c.integer(1, 5, "material number");
+    k.i1        = c.integer(6, 10, "minimum I");
+    k.i2        = c.integer(11, 15, "maximum I");
+    k.j1        = c.integer(16, 20, "minimum J");
+    k.j2        = c.integer(21, 25, "maximum J");
+    k.beta_deg  = c.real(26, 35, 0, "BETA");
+    k.alpha_deg = c.real(36, 45, 0, "ALPHA");
+    k.iang      = c.integer(46, 50, "IANG");
+    k.nang      = c.integer(51, 55, "NANG");
+    k.ijdir     = c.integer(56, 60, "IJDIR");
+    if (k.material < 1) c.reject(1, 5, "material number", "must be >= 1");
+    if (k.i1 < 1 || k.i2 <= k.i1 || k.i2 > d.mesh.max_i)
+      c.reject(6, 15, "I range",
+               "needs 1 <= minimum I < maximum I <= MAXI = " + std::to_string(d.mesh.max_i) +
+                   " (a block spans at least one cell)");
+    if (k.j1 < 1 || k.j2 <= k.j1 || k.j2 > d.mesh.max_j)
+      c.reject(16, 25, "J range",
+               "needs 1 <= minimum J < maximum J <= MAXJ = " + std::to_string(d.mesh.max_j) +
+                   " (a block spans at least one cell)");
+    if (k.iang != 0 && k.iang != 1) c.reject(46, 50, "IANG", "must be 0 or 1");
+    if (k.iang == 1 && k.nang < 1) c.reject(51, 55, "NANG", "must be >= 1 when IANG = 1");
+    if (k.ijdir < 0 || k.ijdir > 2) c.reject(56, 60, "IJDIR", "must be 0, 1 or 2");
+    k.ref = {c.card(), c.line()};
+    d.blocks.push_back(k);
+  }
+
+  // ---- Data 7, 8: plot title and plot limits, only with IPLLOT = 1
+  if (d.control.iplot == 1) {
+    const CardImage t = in.take("DATA NO. 7 (plot title card)");
+    d.plot_title      = t.field(1, 80);
+    while (!d.plot_title.empty() && d.plot_title.back() == ' ') d.plot_title.pop_back();
+    const CardImage c = in.take("DATA NO. 8 (plot generation information card)");
+    d.plot_rmax       = c.real(1, 10, 0, "RMAX");
+    d.plot_zmax       = c.real(11, 20, 0, "ZMAX");
+  }
+
+  // ---- Data 9: temperature field
+  if (d.control.numtc > 0) {
+    for (int t = 1; t <= d.control.numtc; ++t) {
+      const CardImage c = in.take(detail::numbered("DATA NO. 9", "temperature card", t));
+      d.temperature_points.push_back({c.real(1, 10, 0, "R coordinate"), c.real(11, 20, 0, "Z coordinate"),
+                                      c.real(21, 30, 0, "temperature")});
+    }
+  } else if (d.control.numtc == -2) {
+    const CardImage c      = in.take("DATA NO. 9 (constant temperature card)");
+    d.constant_temperature = c.real(1, 10, 0, "temperature");
+  }
+
+  // ---- Data 10 (+ 11): materials
+  for (int m = 1; m <= d.control.nummat; ++m) {
+    const CardImage c =
+        in.take(detail::numbered("DATA NO. 10a", "material identification card of material", m));
+    DeckMaterial mat;
+    mat.id            = c.integer(1, 5, "material identification number");
+    const int ntemp   = c.integer(6, 10, "number of temperatures");
+    mat.table.density = c.real(11, 20, 0, "mass density");
+    const double tep  = c.real(21, 30, 0, "thermal expansion parameter");
+    mat.table.thermal = tep == 1.0 ? ThermalInput::free_strain : ThermalInput::coefficients;
+    mat.ref           = {c.card(), c.line()};
+    if (mat.id < 1) c.reject(1, 5, "material identification number", "must be >= 1");
+    if (d.material(mat.id))
+      c.reject(1, 5, "material identification number",
+               "material " + std::to_string(mat.id) + " is defined twice");
+    if (ntemp < 1) c.reject(6, 10, "number of temperatures", "must be >= 1");
+    if (mat.table.density < 0) c.reject(11, 20, "mass density", "must be >= 0");
+    for (int t = 1; t <= ntemp; ++t) {
+      const std::string what =
+          "property cards of material " + std::to_string(mat.id) + ", temperature " + std::to_string(t);
+      const CardImage a = in.take("DATA NO. 10b (first " + what + ")");
+      const CardImage b = in.take("DATA NO. 10b (second " + what + ")");
+      ElasticConstants row;
+      row.temperature = a.real(1, 10, 0, "temperature");
+      row.E_N         = a.real(11, 20, 0, "E_N");
+      row.E_S         = a.real(21, 30, 0, "E_S");
+      row.E_T         = a.real(31, 40, 0, "E_T");
+      row.nu_NS       = a.real(41, 50, 0, "nu_NS");
+      row.nu_NT       = a.real(51, 60, 0, "nu_NT");
+      row.nu_ST       = a.real(61, 70, 0, "nu_ST");
+      row.G_NS        = b.real(1, 10, 0, "G_NS");
+      row.G_ST        = b.real(11, 20, 0, "G_ST");
+      row.G_TN        = b.real(21, 30, 0, "G_TN");
+      row.alpha_N     = b.real(31, 40, 0, "alpha_N");
+      row.alpha_S     = b.real(41, 50, 0, "alpha_S");
+      row.alpha_T     = b.real(51, 60, 0, "alpha_T");
+      try {
+        row.validate("");
+      } catch (const InputError& e) {
+        throw InputError(a.where() + " and line " + std::to_string(b.line()) + e.what());
+      }
+      if (!mat.table.rows.empty() && !(row.temperature > mat.table.rows.back().temperature))
+        a.reject(1, 10, "temperature", "the temperatures of a material must increase strictly");
+      mat.table.rows.push_back(row);
+    }
+    if (plastic_format) {
+      const CardImage y =
+          in.take("DATA NO. 11 (yield stress card of material " + std::to_string(mat.id) + ")");
+      YieldCard card;
+      const char* names[] = {"yield stress N",  "yield stress S",  "yield stress T",
+                             "yield stress NS", "yield stress NT", "yield stress TS"};
+      for (int k = 0; k < 6; ++k) {
+        card.yield[k] = y.real(10 * k + 1, 10 * k + 10, 0, names[k]);
+        if (card.yield[k] < 0) y.reject(10 * k + 1, 10 * k + 10, names[k], "must be >= 0");
+      }
+      card.hardening = y.real(61, 70, 0, "hardening parameter C");
+      card.blank     = y.blank(1, 70);
+      if (!card.blank)
+        for (int k = 0; k < 6; ++k)
+          if (!(card.yield[k] > 0))
+            y.reject(10 * k + 1, 10 * k + 10, names[k],
+                     "a yield card that is not blank needs all six yield stresses > 0");
+      mat.yield = card;
+    }
+    d.materials.push_back(std::move(mat));
+  }
+
+  // ---- Data 12-15: load blocks
+  const ControlCard& k = d.control;
+  for (int s = 1; s <= k.nlinc; ++s) {
+    const bool inertia_card = k.inert != 0 && (s == 1 || k.inci != 0);
+    const bool surface      = s == 1 || k.incf != 0;
+    if (!inertia_card && !surface) {
+      if (s > 1 && k.inci == 0 && k.incf == 0) break;  // nothing more to read: every step repeats block 1
+      continue;
+    }
+    LoadBlock block;
+    const std::string step = " of load step " + std::to_string(s);
+    if (inertia_card) {
+      const CardImage c = in.take("DATA NO. 12 (inertia load card" + step + ")");
+      block.inertia =
+          InertiaLoad{c.real(1, 10, 0, "ACELZ"), c.real(11, 20, 0, "ANGVEL"), c.real(21, 30, 0, "ANGACC")};
+    }
+    if (surface) {
+      const auto edges = [&](int count, const char* data, const char* what, std::vector<EdgeCard>& out) {
+        for (int e = 1; e <= count; ++e) {
+          const CardImage c = in.take(std::string(data) + " (" + what + " " + std::to_string(e) + step + ")");
+          EdgeCard card{c.integer(1, 5, "nodal point M"),
+                        c.integer(6, 10, "nodal point N"),
+                        c.real(11, 20, 0, "value"),
+                        {c.card(), c.line()}};
+          if (card.node_m < 1) c.reject(1, 5, "nodal point M", "node numbers start at 1");
+          if (card.node_n < 1) c.reject(6, 10, "nodal point N", "node numbers start at 1");
+          if (card.node_m == card.node_n) c.reject(1, 10, "nodal points M, N", "M and N must differ");
+          out.push_back(card);
+        }
+      };
+      edges(k.numpc, "DATA NO. 13", "boundary pressure card", block.pressure);
+      edges(k.numsc, "DATA NO. 14", "boundary shear card", block.shear);
+      edges(k.numst, "DATA NO. 15", "boundary transverse shear card", block.transverse_shear);
+    }
+    d.blocks_read.push_back(std::move(block));
+  }
+  in.expect_end();
+  return d;
+}
+
+}  // namespace gapfe

@@ -1,0 +1,208 @@
+#pragma once
+// What `gapfe run` and `gapfe mesh` leave in their output directory (the deck issue's contract):
+//  * nodes.csv     step,inc,node,i,j,r,z,u_r,u_z,u_t
+//  * elements.csv  step,inc,element,i,j,material,r,z,s_rr,s_zz,s_tt,s_rz,s_rt,s_zt,eqps (centroids)
+//  * result.pvd    one step_NNNN.vtu per completed step, for ParaView
+//  * mesh.svg, mesh_nodes.csv, mesh_elements.csv, mesh.vtu (gapfe mesh: the grid with its numbers)
+// One header line per CSV, one block of rows per completed step, steps from 1; `inc` is the number
+// of load increments applied so far. Node and element numbers are the deck's (1-based). Stresses in
+// the deck's units, tension positive; s_rt is the theta-r shear, s_zt the z-theta shear. CSV rows are
+// flushed after each step, so the steps before a failure survive it.
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "gapfe/io/deck_scene.hpp"
+#include "gapfe/io/vtu_writer.hpp"
+
+namespace gapfe {
+
+namespace detail {
+
+inline std::ofstream open_output(const std::string& path) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out)
+    throw InputError("cannot write " + path + " (does the output directory exist and is it writable?)");
+  return out;
+}
+
+inline VtuCells grid_cells(const IJGrid& g) {
+  VtuCells cells;
+  for (const auto& c : g.cells) cells.add(c.node.data(), c.corners);
+  return cells;
+}
+
+inline void csv_number(std::string& s, double v) {
+  append_number(s, v);
+  s += ',';
+}
+
+}  // namespace detail
+
+/// Writes the per-step result files of a run into `dir` (which must exist).
+class StepFiles {
+ public:
+  StepFiles(std::string dir, const DeckScene& scene) : dir_(std::move(dir)), scene_(scene) {
+    nodes_ = detail::open_output(dir_ + "/nodes.csv");
+    nodes_ << "step,inc,node,i,j,r,z,u_r,u_z,u_t\n";
+    elements_ = detail::open_output(dir_ + "/elements.csv");
+    elements_ << "step,inc,element,i,j,material,r,z,s_rr,s_zz,s_tt,s_rz,s_rt,s_zt,eqps\n";
+  }
+
+  template <class M>
+  void write(int step, double inc, const LinearStatic<M>& fe) {
+    const IJGrid& g = scene_.grid;
+    const auto& u   = fe.solution().displacement;
+    std::string prefix;
+    detail::append_number(prefix, static_cast<long long>(step)), prefix += ',';
+    detail::csv_number(prefix, inc);
+
+    std::string s;
+    s.reserve(static_cast<std::size_t>(g.node_count()) * 96);
+    for (int n = 0; n < g.node_count(); ++n) {
+      s += prefix;
+      for (const int k : {n + 1, g.node_ij[n][0], g.node_ij[n][1]})
+        detail::append_number(s, static_cast<long long>(k)), s += ',';
+      detail::csv_number(s, g.nodes[n](0)), detail::csv_number(s, g.nodes[n](1));
+      detail::csv_number(s, u(n, 0)), detail::csv_number(s, u(n, 1)), detail::append_number(s, u(n, 2));
+      s += '\n';
+    }
+    nodes_ << s;
+    nodes_.flush();
+
+    // Centroid values come cells first, then triangles: put them in element order.
+    const auto values = fe.centroid_values();
+    std::vector<const PointValues*> by_element(g.cells.size(), nullptr);
+    for (const auto& v : values)
+      by_element[(v.triangle ? scene_.element_of_triangle : scene_.element_of_cell)[v.cell]] = &v;
+    s.clear();
+    std::vector<double> stress(6 * g.cells.size());
+    for (std::size_t e = 0; e < g.cells.size(); ++e) {
+      const PointValues& v = *by_element[e];
+      s += prefix;
+      for (const int k : {static_cast<int>(e) + 1, g.cells[e].i, g.cells[e].j, scene_.material_id[e]})
+        detail::append_number(s, static_cast<long long>(k)), s += ',';
+      detail::csv_number(s, v.r), detail::csv_number(s, v.z);
+      for (const int k : {voigt::rr, voigt::zz, voigt::hoop, voigt::rz, voigt::theta_r, voigt::z_theta})
+        detail::csv_number(s, v.stress(k));
+      s += "0\n";  // eqps: elastic run
+      for (int k = 0; k < 6; ++k) stress[6 * e + k] = v.stress(k);
+    }
+    elements_ << s;
+    elements_.flush();
+    if (!nodes_ || !elements_) throw InputError("error while writing the CSV files in " + dir_);
+
+    char name[32];
+    std::snprintf(name, sizeof name, "step_%04d.vtu", step);
+    std::vector<VtuField> point{{"displacement", 3, {}}, {"reaction", 3, {}}};
+    for (int n = 0; n < g.node_count(); ++n)
+      for (int c = 0; c < 3; ++c)
+        point[0].values.push_back(u(n, c)), point[1].values.push_back(fe.solution().reaction(n, c));
+    std::vector<VtuField> cell{
+        {"stress", 6, std::move(stress)}, {"material", 1, {}, true}, {"element", 1, {}, true}};
+    for (std::size_t e = 0; e < g.cells.size(); ++e)
+      cell[1].values.push_back(scene_.material_id[e]), cell[2].values.push_back(static_cast<double>(e + 1));
+    write_vtu(dir_ + "/" + name, g.nodes, detail::grid_cells(g), point, cell);
+    steps_.emplace_back(inc, name);
+    write_pvd(dir_ + "/result.pvd", steps_);
+  }
+
+ private:
+  std::string dir_;
+  const DeckScene& scene_;
+  std::ofstream nodes_, elements_;
+  std::vector<std::pair<double, std::string>> steps_;
+};
+
+/// `gapfe mesh`: mesh.svg (the grid with node and element numbers, like the seed's plot option),
+/// mesh_nodes.csv, mesh_elements.csv and mesh.vtu in `dir`.
+inline void write_mesh_files(const std::string& dir, const Deck& d, const DeckScene& s) {
+  const IJGrid& g = s.grid;
+  {
+    std::string t = "node,i,j,r,z,placed\n";
+    for (int n = 0; n < g.node_count(); ++n) {
+      for (const int k : {n + 1, g.node_ij[n][0], g.node_ij[n][1]})
+        detail::append_number(t, static_cast<long long>(k)), t += ',';
+      detail::csv_number(t, g.nodes[n](0)), detail::csv_number(t, g.nodes[n](1));
+      t += g.placed[n] ? "1\n" : "0\n";
+    }
+    detail::write_file_atomically(dir + "/mesh_nodes.csv", t);
+  }
+  {
+    std::string t = "element,i,j,material,ijdir,n1,n2,n3,n4\n";
+    for (std::size_t e = 0; e < g.cells.size(); ++e) {
+      const GridCell& c = g.cells[e];
+      for (const int k : {static_cast<int>(e) + 1, c.i, c.j, s.material_id[e], s.ijdir[e]})
+        detail::append_number(t, static_cast<long long>(k)), t += ',';
+      for (int k = 0; k < 4; ++k) {
+        if (k < c.corners) detail::append_number(t, static_cast<long long>(c.node[k] + 1));
+        t += k < 3 ? ',' : '\n';
+      }
+    }
+    detail::write_file_atomically(dir + "/mesh_elements.csv", t);
+  }
+  {
+    std::vector<VtuField> cell{{"material", 1, {}, true}, {"element", 1, {}, true}};
+    for (std::size_t e = 0; e < g.cells.size(); ++e)
+      cell[0].values.push_back(s.material_id[e]), cell[1].values.push_back(static_cast<double>(e + 1));
+    VtuField placed{"placed_by_card", 1, {}, true};
+    for (int n = 0; n < g.node_count(); ++n) placed.values.push_back(g.placed[n]);
+    write_vtu(dir + "/mesh.vtu", g.nodes, detail::grid_cells(g), {placed}, cell);
+  }
+
+  // ---- SVG: r to the right, z up; numbers only while they stay legible
+  Vec2 lo = g.nodes.front(), hi = g.nodes.front();
+  for (const auto& x : g.nodes) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+  const double extent = std::max((hi - lo).maxCoeff(), 1e-300);
+  const double width = 1000.0, margin = 40.0, scale = (width - 2 * margin) / extent;
+  const double height = (hi(1) - lo(1)) * scale + 2 * margin + 30;
+  const auto px       = [&](const Vec2& x) {
+    return std::array<double, 2>{margin + (x(0) - lo(0)) * scale, height - margin - (x(1) - lo(1)) * scale};
+  };
+  const bool labels = g.cells.size() <= 2500;
+  const double font =
+      labels ? std::clamp(0.25 * scale * extent / std::sqrt(static_cast<double>(g.cells.size()) + 1.0), 4.0,
+                          14.0)
+             : 0;
+  static constexpr const char* kFill[] = {"#dbe8f6", "#f6e3c9", "#d8f0d2", "#eed8f0", "#f3f0c8", "#d5eeee"};
+  std::string t;
+  const auto num = [&](double v) { detail::append_number(t, std::round(v * 100) / 100); };
+  t += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"";
+  num(width), t += "\" height=\"", num(height), t += "\" font-family=\"sans-serif\">\n";
+  t += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"10\" y=\"20\" font-size=\"14\">";
+  for (const char c : d.title)
+    t += c == '<' ? std::string("&lt;") : c == '&' ? std::string("&amp;") : std::string(1, c);
+  t += " (" + std::to_string(g.node_count()) + " nodes, " + std::to_string(g.cells.size()) +
+       " elements; node numbers black, element numbers blue; r to the right, z up)</text>\n";
+  for (std::size_t e = 0; e < g.cells.size(); ++e) {
+    const GridCell& c = g.cells[e];
+    t += "<polygon points=\"";
+    Vec2 centre = Vec2::Zero();
+    for (int k = 0; k < c.corners; ++k) {
+      const auto p = px(g.nodes[c.node[k]]);
+      centre += g.nodes[c.node[k]] / c.corners;
+      num(p[0]), t += ',', num(p[1]), t += ' ';
+    }
+    t += "\" fill=\"" + std::string(kFill[(std::max(s.material_id[e], 1) - 1) % 6]) +
+         "\" stroke=\"#333\" stroke-width=\"0.6\"/>\n";
+    if (labels) {
+      const auto p = px(centre);
+      t += "<text x=\"", num(p[0]), t += "\" y=\"", num(p[1] + font / 3), t += "\" font-size=\"", num(font),
+          t += "\" fill=\"#1f4fbf\" text-anchor=\"middle\">" + std::to_string(e + 1) + "</text>\n";
+    }
+  }
+  if (labels)
+    for (int n = 0; n < g.node_count(); ++n) {
+      const auto p = px(g.nodes[n]);
+      t += "<circle cx=\"", num(p[0]), t += "\" cy=\"", num(p[1]), t += "\" r=\"1.5\"/>";
+      t += "<text x=\"", num(p[0] + 2), t += "\" y=\"", num(p[1] - 2), t += "\" font-size=\"",
+          num(0.8 * font), t += "\">" + std::to_string(n + 1) + "</text>\n";
+    }
+  t += "</svg>\n";
+  detail::write_file_atomically(dir + "/mesh.svg", t);
+}
+
+}  // namespace gapfe

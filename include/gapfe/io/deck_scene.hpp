@@ -1,0 +1,265 @@
+#pragma once
+// From a read Deck to what an analysis needs: the I-J grid and its mesh with material tags, the
+// boundary conditions on nodes, the temperature field, the edge loads checked against the mesh, the
+// load-step totals, and which model features the deck requires (so the runner picks the smallest
+// variant). Everything that refers to the mesh is checked here and reported with its card and line.
+//
+// Readings (README deck section): a BC card applies to the grid points in [I1, I2] x [J1, J2]; a
+// material block to the cells whose corners all lie in [I1, I2] x [J1, J2] (later blocks win); a BC
+// load is a total ring force; each step adds the BC values, its inertia increments and its surface
+// load increments to the totals of the steps before (angular velocities add, so the centrifugal
+// load goes with the square of their sum); the temperature field acts from the first step on.
+#include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "gapfe/io/deck.hpp"
+#include "gapfe/mesh/ij_grid.hpp"
+#include "gapfe/mesh/temperature.hpp"
+
+namespace gapfe {
+
+/// What a deck needs beyond SAAS (2 DOF, no gaps, elastic), each with the card that asks for it.
+struct DeckNeeds {
+  std::vector<std::string> theta;       ///< reasons for the 3-DOF kinematics
+  std::vector<std::string> gaps;        ///< material-2 blocks (saac formats)
+  std::vector<std::string> plasticity;  ///< non-blank yield cards
+  bool needs_theta() const { return !theta.empty(); }
+};
+
+/// Loads in force after a load step (totals of the increments so far).
+struct StepTotals {
+  std::vector<NodalCondition> conditions;
+  InertiaLoad inertia;
+  std::vector<EdgeLoad> edge_loads;
+};
+
+struct DeckScene {
+  IJGrid grid;
+  Mesh<4> mesh;                            ///< quads as cells, 3-corner cells as triangles, tags set
+  std::vector<int> material_id;            ///< per grid cell (numbering order): deck material number
+  std::vector<int> ijdir;                  ///< per grid cell: IJDIR of its block (gap direction)
+  std::vector<Orthotropic> materials;      ///< in deck order; CellTag::material indexes this
+  std::vector<NodalCondition> conditions;  ///< one step's BC values (0-based nodes), later cards last
+  VecX temperature;                        ///< nodal [deg]; empty: TREF everywhere
+  double reference_temperature = 0;
+  DeckNeeds needs;
+
+  /// Element number (0-based, grid numbering) of a mesh cell or triangle.
+  std::vector<int> element_of_cell, element_of_triangle;
+};
+
+namespace detail {
+
+inline std::string number_text(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
+inline std::string ij_text(int i, int j) {
+  return "(I = " + std::to_string(i) + ", J = " + std::to_string(j) + ")";
+}
+
+/// Per-step edge loads keyed by (M, N) so that repeated cards merge; values accumulate.
+inline void add_edges(std::map<std::pair<int, int>, EdgeLoad>& acc, const std::vector<EdgeCard>& cards,
+                      int kind, double scale) {
+  for (const auto& c : cards) {
+    EdgeLoad& l = acc[{c.node_m - 1, c.node_n - 1}];
+    l.node_m = c.node_m - 1, l.node_n = c.node_n - 1;
+    (kind == 0 ? l.pressure : kind == 1 ? l.shear : l.transverse_shear) += scale * c.value;
+  }
+}
+
+}  // namespace detail
+
+/// Build the scene. `Solver` solves the mesh generator's Laplace system.
+template <class Solver = EigenLdlt>
+DeckScene build_scene(const Deck& d) {
+  DeckScene s;
+  try {
+    s.grid = generate_ij_grid<Solver>(d.mesh.max_i, d.mesh.max_j, d.segments);
+  } catch (const InputError& e) {
+    // The generator numbers segment cards from 1 in deck order: add their lines.
+    std::string msg       = e.what();
+    const std::string tag = "line segment card ";
+    if (const auto at = msg.find(tag); at != std::string::npos) {
+      const int k = std::atoi(msg.c_str() + at + tag.size());
+      if (k >= 1 && k <= static_cast<int>(d.segment_refs.size()))
+        throw InputError("DATA NO. 4 (" + msg.substr(at) + "), line " +
+                         std::to_string(d.segment_refs[k - 1].line));
+    }
+    throw InputError("DATA NO. 3-4 (mesh generation): " + msg);
+  }
+  const IJGrid& g = s.grid;
+  s.mesh          = g.to_mesh();
+  const int nn    = g.node_count();
+
+  // ---- every node must belong to an element
+  {
+    std::vector<char> used(static_cast<std::size_t>(nn), 0);
+    for (const auto& c : g.cells)
+      for (int k = 0; k < c.corners; ++k) used[c.node[k]] = 1;
+    for (int n = 0; n < nn; ++n)
+      if (!used[n])
+        throw InputError("mesh: node " + std::to_string(n + 1) + " " +
+                         detail::ij_text(g.node_ij[n][0], g.node_ij[n][1]) +
+                         " belongs to no element; check the line segment cards of its row");
+  }
+
+  // ---- materials
+  const bool saac = d.options.format != DeckFormat::elastic;
+  for (const auto& m : d.materials) {
+    s.materials.push_back(Orthotropic{{}, m.table});
+    if (m.yield && !m.yield->blank)
+      s.needs.plasticity.push_back("material " + std::to_string(m.id) + " has a yield card (" +
+                                   m.ref.where() + ")");
+  }
+
+  // ---- material blocks: cells whose corners all lie in the block's nodal rectangle
+  std::vector<int> cell_at(static_cast<std::size_t>(g.max_i) * g.max_j, -1);
+  for (std::size_t e = 0; e < g.cells.size(); ++e)
+    cell_at[static_cast<std::size_t>(g.cells[e].j - 1) * g.max_i + g.cells[e].i - 1] = static_cast<int>(e);
+  const std::size_t ne = g.cells.size();
+  s.material_id.assign(ne, 0);
+  s.ijdir.assign(ne, 0);
+  std::vector<CellTag> tags(ne);
+  for (const auto& b : d.blocks) {
+    const DeckMaterial* mat = d.material(b.material);
+    if (!mat) {
+      std::string ids;
+      for (const auto& m : d.materials) ids += (ids.empty() ? "" : ", ") + std::to_string(m.id);
+      throw InputError(b.ref.where() + ", columns 1-5 (material number): material " +
+                       std::to_string(b.material) + " is not defined by a material card (defined: " + ids +
+                       ")");
+    }
+    const int index = static_cast<int>(mat - d.materials.data());
+    int selected    = 0;
+    for (int j = b.j1; j < b.j2; ++j)
+      for (int i = b.i1; i < b.i2; ++i) {
+        const int e = cell_at[static_cast<std::size_t>(j - 1) * g.max_i + i - 1];
+        if (e < 0) continue;
+        ++selected;
+        const double deg = kTwoPi / 360.0;
+        tags[e] = {index, helical_frame(b.beta_deg * deg, b.alpha_deg * deg, b.iang, b.nang, i - b.i1)};
+        s.material_id[e] = b.material;
+        s.ijdir[e]       = b.ijdir;
+      }
+    if (selected == 0)
+      throw InputError(b.ref.where() + ": the block I " + std::to_string(b.i1) + "-" + std::to_string(b.i2) +
+                       ", J " + std::to_string(b.j1) + "-" + std::to_string(b.j2) +
+                       " contains no element of the mesh");
+    if (saac && b.material == 2) s.needs.gaps.push_back("material 2 (gap elements) in " + b.ref.where());
+    if (b.alpha_deg != 0)
+      s.needs.theta.push_back("ALPHA = " + detail::number_text(b.alpha_deg) + " in " + b.ref.where());
+  }
+  s.element_of_cell.resize(s.mesh.cells.size());
+  s.element_of_triangle.resize(s.mesh.triangles.size());
+  s.mesh.cell_tags.resize(s.mesh.cells.size());
+  s.mesh.triangle_tags.resize(s.mesh.triangles.size());
+  for (std::size_t e = 0; e < ne; ++e) {
+    const GridCell& c = g.cells[e];
+    if (s.material_id[e] == 0)
+      throw InputError("element " + std::to_string(e + 1) + " " + detail::ij_text(c.i, c.j) +
+                       " is in no material block (DATA NO. 6)");
+    if (c.corners == 4) {
+      s.mesh.cell_tags[c.group_index] = tags[e], s.element_of_cell[c.group_index] = static_cast<int>(e);
+    } else {
+      s.mesh.triangle_tags[c.group_index]  = tags[e],
+      s.element_of_triangle[c.group_index] = static_cast<int>(e);
+    }
+  }
+
+  // ---- boundary conditions on the grid points of each card's rectangle
+  for (const auto& b : d.boundary) {
+    int found = 0;
+    for (int j = b.j1; j <= b.j2; ++j)
+      for (int i = b.i1; i <= b.i2; ++i)
+        if (const int n = g.node(i, j); n >= 0) s.conditions.push_back({n, b.code, b.value}), ++found;
+    if (found == 0)
+      throw InputError(b.ref.where() + ": no grid point lies in I " + std::to_string(b.i1) + "-" +
+                       std::to_string(b.i2) + ", J " + std::to_string(b.j1) + "-" + std::to_string(b.j2));
+    if (b.value[2] != 0)
+      s.needs.theta.push_back(std::string("a theta ") + ((b.code & 4) ? "displacement" : "load") + " in " +
+                              b.ref.where());
+  }
+
+  // ---- temperature: applied from the first step on
+  s.reference_temperature = d.control.tref;
+  if (!d.temperature_points.empty())
+    s.temperature = nodal_temperatures(s.mesh, d.temperature_points);
+  else if (d.constant_temperature)
+    s.temperature = VecX::Constant(nn, *d.constant_temperature);
+
+  // ---- surface loads: node numbers and edges checked per card (element on the left going M -> N)
+  std::vector<int> first(static_cast<std::size_t>(nn) + 1, 0), cells_of;  // node -> cells, CSR
+  for (const auto& c : g.cells)
+    for (int k = 0; k < c.corners; ++k) ++first[c.node[k] + 1];
+  for (int n = 0; n < nn; ++n) first[n + 1] += first[n];
+  cells_of.resize(static_cast<std::size_t>(first[nn]));
+  {
+    std::vector<int> fill(first.begin(), first.end() - 1);
+    for (std::size_t e = 0; e < ne; ++e)
+      for (int k = 0; k < g.cells[e].corners; ++k) cells_of[fill[g.cells[e].node[k]]++] = static_cast<int>(e);
+  }
+  const auto has_edge = [&](int m, int n) {  // 0-based; true when some cell runs m -> n counterclockwise
+    for (int q = first[m]; q < first[m + 1]; ++q) {
+      const GridCell& c = g.cells[cells_of[q]];
+      for (int k = 0; k < c.corners; ++k)
+        if (c.node[k] == m && c.node[(k + 1) % c.corners] == n) return true;
+    }
+    return false;
+  };
+  for (const auto& block : d.blocks_read) {
+    for (const auto* cards : {&block.pressure, &block.shear, &block.transverse_shear})
+      for (const auto& c : *cards) {
+        for (const int n : {c.node_m, c.node_n})
+          if (n > nn)
+            throw InputError(c.ref.where() + ", columns " + (n == c.node_m ? "1-5" : "6-10") + ": node " +
+                             std::to_string(n) + " does not exist (the mesh has " + std::to_string(nn) +
+                             " nodes)");
+        if (!has_edge(c.node_m - 1, c.node_n - 1)) {
+          if (has_edge(c.node_n - 1, c.node_m - 1))
+            throw InputError(c.ref.where() + ": the element is on the right going from node " +
+                             std::to_string(c.node_m) + " to node " + std::to_string(c.node_n) +
+                             "; it must be on the left (swap M and N)");
+          throw InputError(c.ref.where() + ": nodes " + std::to_string(c.node_m) + " and " +
+                           std::to_string(c.node_n) + " are not the ends of an element edge");
+        }
+        if (cards == &block.transverse_shear && c.value != 0)
+          s.needs.theta.push_back("transverse shear in " + c.ref.where());
+      }
+    if (block.inertia && block.inertia->angular_acceleration != 0)
+      s.needs.theta.push_back("angular acceleration ANGACC in the inertia card of a load block");
+  }
+  return s;
+}
+
+/// Loads in force after step `step` (1-based): the sum of the increments of steps 1..step.
+inline StepTotals step_totals(const Deck& d, const DeckScene& s, int step) {
+  StepTotals t;
+  t.conditions = s.conditions;
+  for (auto& c : t.conditions)
+    for (double& v : c.value) v *= step;
+  std::map<std::pair<int, int>, EdgeLoad> edges;
+  // A block given once (INCI = 0, INCF = 0) repeats: its total is `step` times the increment.
+  const int inertia_blocks = d.control.inci == 0 ? 1 : step, surface_blocks = d.control.incf == 0 ? 1 : step;
+  const double inertia_scale = d.control.inci == 0 ? step : 1, surface_scale = d.control.incf == 0 ? step : 1;
+  for (int k = 1; k <= inertia_blocks; ++k) {
+    const InertiaLoad in = d.inertia(k);
+    t.inertia.axial_acceleration += inertia_scale * in.axial_acceleration;
+    t.inertia.angular_velocity += inertia_scale * in.angular_velocity;
+    t.inertia.angular_acceleration += inertia_scale * in.angular_acceleration;
+  }
+  for (int k = 1; k <= surface_blocks; ++k) {
+    const LoadBlock& b = d.surface(k);
+    detail::add_edges(edges, b.pressure, 0, surface_scale);
+    detail::add_edges(edges, b.shear, 1, surface_scale);
+    detail::add_edges(edges, b.transverse_shear, 2, surface_scale);
+  }
+  for (const auto& [key, load] : edges) t.edge_loads.push_back(load);
+  return t;
+}
+
+}  // namespace gapfe

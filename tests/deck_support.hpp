@@ -1,0 +1,114 @@
+#pragma once
+// Building card images column by column in tests (the seed's decks are column-exact).
+#include <string>
+#include <vector>
+
+namespace gapfe::test {
+
+/// One card image; each field is right-justified in its columns [first, last] (1-based).
+class Card {
+ public:
+  Card& f(int first, int last, const std::string& text) {
+    const int width = last - first + 1;
+    if (static_cast<int>(line_.size()) < last) line_.resize(static_cast<std::size_t>(last), ' ');
+    const std::string t = text.size() >= static_cast<std::size_t>(width)
+                              ? text.substr(0, width)
+                              : std::string(width - text.size(), ' ') + text;
+    line_.replace(static_cast<std::size_t>(first - 1), static_cast<std::size_t>(width), t);
+    return *this;
+  }
+  Card& i(int first, int last, int v) { return f(first, last, std::to_string(v)); }
+  std::string str() const { return line_; }
+
+ private:
+  std::string line_;
+};
+
+/// Data 4: two points and a type (3(2I3, 2F8.3), I5).
+inline std::string segment(int i1, int j1, const char* r1, const char* z1, int i2, int j2, const char* r2,
+                           const char* z2, int type = 1) {
+  return Card()
+      .i(1, 3, i1)
+      .i(4, 6, j1)
+      .f(7, 14, r1)
+      .f(15, 22, z1)
+      .i(23, 25, i2)
+      .i(26, 28, j2)
+      .f(29, 36, r2)
+      .f(37, 44, z2)
+      .i(67, 71, type)
+      .str();
+}
+
+/// A small valid elastic deck: a tube 1 < r < 2, 0 < z < 0.25 on a 5 x 3 grid (4 x 2 cells), u_z = 0 on
+/// both ends, pressure 100 on the bore. Line indices: 0 `$`, 1 title, 2 control, 3 mesh control,
+/// 4-7 segments, 8-9 BC, 10 block, 11 material id, 12-13 properties, 14-15 pressure cards.
+/// Written with implied decimals where the test reads them ("    1000" in F8.3, "   70" in F5.0).
+inline std::string tube_deck() {
+  std::vector<std::string> l = {
+      "$ format = elastic",
+      "TUBE",
+      Card().i(1, 5, 1).i(11, 15, 1).i(16, 20, 2).f(31, 35, "70").i(41, 45, 1).str(),
+      Card().i(1, 5, 5).i(6, 10, 3).i(11, 15, 4).i(16, 20, 2).i(21, 25, 1).str(),
+      segment(1, 1, "1000", "0", 5, 1, "2.0", "0."),
+      segment(5, 1, "2.0", "0.", 5, 3, "2.0", "0.250"),
+      segment(5, 3, "2.0", "0.250", 1, 3, "1.0", "0.250"),
+      segment(1, 3, "1.0", "0.250", 1, 1, "1.0", "0."),
+      Card().i(1, 5, 1).i(6, 10, 5).i(11, 15, 1).i(16, 20, 1).i(21, 30, 2).str(),
+      Card().i(1, 5, 1).i(6, 10, 5).i(11, 15, 3).i(16, 20, 3).i(21, 30, 2).str(),
+      Card()
+          .i(1, 5, 1)
+          .i(6, 10, 1)
+          .i(11, 15, 5)
+          .i(16, 20, 1)
+          .i(21, 25, 3)
+          .f(26, 35, "90.")
+          .i(46, 50, 1)
+          .i(51, 55, 2)
+          .i(56, 60, 1)
+          .str(),
+      Card().i(1, 5, 1).i(6, 10, 1).f(11, 20, "7.85e-9").str(),
+      Card()
+          .f(1, 10, "0.")
+          .f(11, 20, "200000.")
+          .f(21, 30, "200000.")
+          .f(31, 40, "200000.")
+          .f(41, 50, ".3")
+          .f(51, 60, ".3")
+          .f(61, 70, ".3")
+          .str(),
+      Card()
+          .f(1, 10, "80000.")
+          .f(11, 20, "80000.")
+          .f(21, 30, "80000.")
+          .f(31, 40, "1.2e-5")
+          .f(41, 50, "1.2e-5")
+          .f(51, 60, "1.2e-5")
+          .str(),
+      Card().i(1, 5, 6).i(6, 10, 1).f(11, 20, "100.").str(),
+      Card().i(1, 5, 11).i(6, 10, 6).f(11, 20, "100.").str(),
+  };
+  std::string s;
+  for (const auto& x : l) s += x + "\n";
+  return s;
+}
+
+inline std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    const std::size_t end = text.find('\n', start);
+    out.push_back(text.substr(start, end - start));
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+  return out;
+}
+
+inline std::string join(const std::vector<std::string>& lines) {
+  std::string s;
+  for (const auto& x : lines) s += x + "\n";
+  return s;
+}
+
+}  // namespace gapfe::test

@@ -1,0 +1,244 @@
+// Decks run end to end through the `gapfe` command: the thick-tube example deck against the library
+// API and the Lame closed form, the same deck in the smallest and a richer variant, load-step ramps,
+// the constant-temperature card and the per-radian load option.
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <unistd.h>
+
+#include <doctest/doctest.h>
+
+#include "gapfe/gapfe.hpp"
+#include "gapfe/io/deck_scene.hpp"
+
+#include "deck_support.hpp"
+#include "gapfe_cli.hpp"
+#include "support.hpp"
+
+using namespace gapfe;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Rows of a CSV file as maps column name -> value.
+std::vector<std::map<std::string, double>> read_csv(const fs::path& path) {
+  std::ifstream in(path);
+  REQUIRE(in);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> names;
+  std::stringstream h(line);
+  for (std::string n; std::getline(h, n, ',');) names.push_back(n);
+  std::vector<std::map<std::string, double>> rows;
+  while (std::getline(in, line)) {
+    std::stringstream s(line);
+    std::map<std::string, double> row;
+    std::string v;
+    for (const auto& n : names) {
+      std::getline(s, v, ',');
+      row[n] = std::stod(v);
+    }
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("gapfe_run_test_" + std::to_string(::getpid())) / name;
+  fs::create_directories(dir);
+  return dir;
+}
+
+/// Run `gapfe run` on a deck file; returns the output directory.
+fs::path run_deck_file(const fs::path& deck, const std::string& name, std::vector<std::string> extra = {}) {
+  const fs::path out            = scratch(name);
+  std::vector<std::string> args = {"run", deck.string(), "--out", out.string(), "--quiet"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  std::ostringstream o, e;
+  const int code = gapfe::cli::main(args, o, e);
+  CAPTURE(e.str());
+  REQUIRE(code == 0);
+  return out;
+}
+
+fs::path write_deck(const std::string& text, const std::string& name) {
+  const fs::path p = scratch("decks") / (name + ".deck");
+  std::ofstream(p) << text;
+  return p;
+}
+
+const fs::path kExamples = fs::path(GAPFE_SOURCE_DIR) / "examples" / "decks";
+
+}  // namespace
+
+TEST_CASE("Thick-tube example deck: equals the library-API solution to 1e-12 and Lame within 0.5%") {
+  const fs::path out = run_deck_file(kExamples / "thick_tube.deck", "thick_tube");
+  const auto nodes   = read_csv(out / "nodes.csv");
+  REQUIRE(nodes.size() == 27);
+
+  // The same problem through the API: a = 100, b = 200, h = 10, 8 x 2 cells, u_z = 0 on both ends,
+  // pressure 100 on the bore, the card's constants (G from the card, not from E and nu).
+  using M = Saas;
+  Problem<M> p;
+  p.mesh = rectangle_mesh<4>(100, 200, 0, 10, 8, 2);
+  ElasticConstants c{0,         200000,    200000,    200000, 0.3,    0.3,   0.3,
+                     76923.077, 76923.077, 76923.077, 1.2e-5, 1.2e-5, 1.2e-5};
+  p.materials = {Orthotropic::constant(c, 7.85e-9)};
+  test::fix_plane(p.conditions, p.mesh, 0.0, 2, test::zero3);
+  test::fix_plane(p.conditions, p.mesh, 10.0, 2, test::zero3);
+  p.edge_loads = test::bore_pressure(p.mesh, 8, 2, 100.0);
+  LinearStatic<M> fe(p);
+  const auto& u      = fe.solve().displacement;
+  const double scale = u.cwiseAbs().maxCoeff();
+  const test::Lame lame{100, 200, 100, 200000, 0.3};
+  double api = 0, closed = 0;
+  for (const auto& row : nodes) {
+    const int n = static_cast<int>(row.at("node")) - 1;
+    CHECK(row.at("r") == doctest::Approx(p.mesh.nodes[n](0)).epsilon(1e-13));
+    CHECK(row.at("z") == doctest::Approx(p.mesh.nodes[n](1)).epsilon(1e-13));
+    api    = std::max({api, std::abs(row.at("u_r") - u(n, 0)), std::abs(row.at("u_z") - u(n, 1))});
+    closed = std::max(closed, test::rel(row.at("u_r"), lame.displacement(row.at("r"))));
+    CHECK(row.at("u_t") == 0.0);
+  }
+  MESSAGE("deck vs API: " << api / scale << " (relative to max |u|); deck vs Lame u_r: " << closed);
+  CHECK(api / scale < 1e-12);
+  CHECK(closed < 5e-3);
+
+  // Hoop stress at the element centroids, also within 0.5% of Lame.
+  const auto elements = read_csv(out / "elements.csv");
+  REQUIRE(elements.size() == 16);
+  for (const auto& row : elements) CHECK(test::rel(row.at("s_tt"), lame.hoop_stress(row.at("r"))) < 5e-3);
+  CHECK(fs::exists(out / "result.pvd"));
+  CHECK(fs::exists(out / "step_0001.vtu"));
+}
+
+TEST_CASE("A deck in the smallest (saas) and a richer (saga) variant gives the same displacements to 1e-10") {
+  for (const char* element : {"legacy", "quad4"}) {
+    CAPTURE(element);
+    const auto small = read_csv(
+        run_deck_file(kExamples / "thick_tube.deck", std::string("saas_") + element, {"--element", element}) /
+        "nodes.csv");
+    const auto rich = read_csv(run_deck_file(kExamples / "thick_tube.deck", std::string("saga_") + element,
+                                             {"--element", element, "--variant", "saga"}) /
+                               "nodes.csv");
+    REQUIRE(small.size() == rich.size());
+    double scale = 0, diff = 0;
+    for (std::size_t k = 0; k < small.size(); ++k)
+      for (const char* c : {"u_r", "u_z", "u_t"}) {
+        scale = std::max(scale, std::abs(small[k].at(c)));
+        diff  = std::max(diff, std::abs(small[k].at(c) - rich[k].at(c)));
+      }
+    CHECK(diff <= 1e-10 * scale);
+  }
+}
+
+TEST_CASE("The runner picks the smallest variant and says why; a forced smaller variant is refused") {
+  std::ostringstream out, err;
+  REQUIRE(gapfe::cli::main({"info", (kExamples / "helical_sleeve.deck").string()}, out, err) == 0);
+  CHECK(out.str().find("variant: saga (3 DOF per node: ALPHA") != std::string::npos);
+  std::ostringstream out2, err2;
+  REQUIRE(gapfe::cli::main({"info", (kExamples / "thick_tube.deck").string()}, out2, err2) == 0);
+  CHECK(out2.str().find("variant: saas") != std::string::npos);
+  std::ostringstream out3, err3;
+  CHECK(gapfe::cli::main({"run", (kExamples / "helical_sleeve.deck").string(), "--out",
+                          scratch("refuse").string(), "--variant", "saas"},
+                         out3, err3) == gapfe::cli::input);
+  CHECK(err3.str().find("--variant saas cannot represent this deck") != std::string::npos);
+  // Gap decks mesh (and say what they need) but do not run yet.
+  std::ostringstream out4, err4;
+  CHECK(gapfe::cli::main(
+            {"mesh", (kExamples / "gap_body.deck").string(), "--out", scratch("gap_mesh").string()}, out4,
+            err4) == 0);
+  CHECK(fs::exists(scratch("gap_mesh") / "mesh.svg"));
+  CHECK(out4.str().find("gaps: material 2") != std::string::npos);
+}
+
+TEST_CASE("Load steps: a block given once (INCF = 0) ramps uniformly; per-step blocks add up") {
+  using gapfe::test::Card;
+  auto lines = gapfe::test::lines_of(gapfe::test::tube_deck());
+  // NLINC = 4, INCF = 0: the pressure cards of block 1 repeat in every step.
+  lines[2] = Card().i(1, 5, 1).i(11, 15, 1).i(16, 20, 2).f(31, 35, "70").i(41, 45, 4).str();
+  const auto ramp =
+      read_csv(run_deck_file(write_deck(gapfe::test::join(lines), "ramp"), "ramp") / "nodes.csv");
+  const auto one = read_csv(run_deck_file(write_deck(gapfe::test::tube_deck(), "one"), "one") / "nodes.csv");
+  REQUIRE(ramp.size() == 4 * one.size());
+  for (std::size_t k = 0; k < ramp.size(); ++k) {
+    const auto& base = one[k % one.size()];
+    const double s   = ramp[k].at("step");
+    CHECK(ramp[k].at("inc") == s);
+    CHECK(ramp[k].at("u_r") == doctest::Approx(s * base.at("u_r")).epsilon(1e-12));
+  }
+  // INCF = 1, NLINC = 2: step 2 gives its own cards (pressure 50): totals 100, then 150.
+  lines[2] = Card().i(1, 5, 1).i(11, 15, 1).i(16, 20, 2).f(31, 35, "70").i(41, 45, 2).i(51, 55, 1).str();
+  lines.push_back(Card().i(1, 5, 6).i(6, 10, 1).f(11, 20, "50.").str());
+  lines.push_back(Card().i(1, 5, 11).i(6, 10, 6).f(11, 20, "50.").str());
+  const auto blocks =
+      read_csv(run_deck_file(write_deck(gapfe::test::join(lines), "blocks"), "blocks") / "nodes.csv");
+  REQUIRE(blocks.size() == 2 * one.size());
+  for (std::size_t k = 0; k < one.size(); ++k) {
+    CHECK(blocks[k].at("u_r") == doctest::Approx(one[k].at("u_r")).epsilon(1e-12));
+    CHECK(blocks[one.size() + k].at("u_r") == doctest::Approx(1.5 * one[k].at("u_r")).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("NUMTC = -2: a constant temperature expands a free tube by alpha dT r") {
+  using gapfe::test::Card;
+  auto lines = gapfe::test::lines_of(gapfe::test::tube_deck());
+  // TREF 20, T 120, no pressure, u_z = 0 only at J = 1: free expansion u_r = alpha dT r, u_z = alpha dT z.
+  lines[2] = Card().i(1, 5, 1).i(6, 10, -2).i(11, 15, 1).f(31, 35, "20.").i(41, 45, 1).str();
+  lines[3] = Card().i(1, 5, 5).i(6, 10, 3).i(11, 15, 4).i(16, 20, 1).i(21, 25, 1).str();
+  lines.erase(lines.begin() + 14, lines.end());  // no pressure cards
+  lines.erase(lines.begin() + 9);                // one BC card
+  lines.insert(lines.begin() + 10, Card().f(1, 10, "120.").str());
+  const auto rows =
+      read_csv(run_deck_file(write_deck(gapfe::test::join(lines), "thermal"), "thermal") / "nodes.csv");
+  const double strain = 1.2e-5 * 100.0;
+  for (const auto& row : rows) {
+    CHECK(row.at("u_r") == doctest::Approx(strain * row.at("r")).epsilon(1e-9));
+    CHECK(std::abs(row.at("u_z") - strain * row.at("z")) < 1e-9 * strain);
+  }
+}
+
+TEST_CASE("bc_loads = per-radian multiplies BC-card loads by 2 pi; prescribed values are unchanged") {
+  using gapfe::test::Card;
+  auto lines = gapfe::test::lines_of(gapfe::test::tube_deck());
+  // Replace the pressure by a BC-card radial load on the bore nodes (I = 1): XR = 10 per node.
+  lines[2] = Card().i(1, 5, 1).i(11, 15, 1).f(31, 35, "70").i(41, 45, 1).str();
+  lines[3] = Card().i(1, 5, 5).i(6, 10, 3).i(11, 15, 4).i(16, 20, 3).i(21, 25, 1).str();
+  lines.erase(lines.begin() + 14, lines.end());
+  lines.insert(lines.begin() + 10,
+               Card().i(1, 5, 1).i(6, 10, 1).i(11, 15, 1).i(16, 20, 3).i(21, 30, 2).f(31, 40, "10.").str());
+  const std::string total = gapfe::test::join(lines);
+  const auto a            = read_csv(run_deck_file(write_deck(total, "total"), "total") / "nodes.csv");
+  const auto b            = read_csv(
+                 run_deck_file(write_deck(total, "radian"), "radian", {"--set", "bc_loads=per-radian"}) / "nodes.csv");
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    CHECK(b[k].at("u_r") == doctest::Approx(kTwoPi * a[k].at("u_r")).epsilon(1e-12));
+    CHECK(b[k].at("u_z") == doctest::Approx(kTwoPi * a[k].at("u_z")).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("Deck needs: theta loads, transverse shear, angular acceleration and ALPHA each ask for 3 DOF") {
+  using gapfe::test::Card;
+  const auto needs = [](const std::string& text) { return build_scene(read_deck(text)).needs; };
+  auto lines       = gapfe::test::lines_of(gapfe::test::tube_deck());
+  CHECK_FALSE(needs(gapfe::test::join(lines)).needs_theta());
+  auto alpha = lines;
+  alpha[10]  = Card().i(1, 5, 1).i(6, 10, 1).i(11, 15, 5).i(16, 20, 1).i(21, 25, 3).f(36, 45, "15.").str();
+  CHECK(needs(gapfe::test::join(alpha)).theta.front().find("ALPHA") != std::string::npos);
+  auto theta = lines;
+  theta[8]   = Card().i(1, 5, 1).i(6, 10, 5).i(11, 15, 1).i(16, 20, 1).i(21, 30, 6).f(51, 60, "1.").str();
+  CHECK(needs(gapfe::test::join(theta)).theta.front().find("theta displacement") != std::string::npos);
+  auto fixed = lines;  // u_theta = 0 prescribed is not a theta load
+  fixed[8]   = Card().i(1, 5, 1).i(6, 10, 5).i(11, 15, 1).i(16, 20, 1).i(21, 30, 6).str();
+  CHECK_FALSE(needs(gapfe::test::join(fixed)).needs_theta());
+  auto shear = lines;  // NUMST = 1 with a transverse shear card
+  shear[2]   = Card().i(1, 5, 1).i(11, 15, 1).i(16, 20, 2).i(26, 30, 1).f(31, 35, "70").i(41, 45, 1).str();
+  shear.push_back(Card().i(1, 5, 6).i(6, 10, 1).f(11, 20, "5.").str());
+  CHECK(needs(gapfe::test::join(shear)).theta.front().find("transverse shear") != std::string::npos);
+  auto spin = lines;  // INERT = 1: inertia card before the pressure cards, ANGACC != 0
+  spin[2]   = Card().i(1, 5, 1).i(11, 15, 1).i(16, 20, 2).f(31, 35, "70").i(36, 40, 1).i(41, 45, 1).str();
+  spin.insert(spin.begin() + 14, Card().f(21, 30, "3.").str());
+  CHECK(needs(gapfe::test::join(spin)).theta.front().find("ANGACC") != std::string::npos);
+}
