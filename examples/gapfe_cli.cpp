@@ -94,12 +94,6 @@ double since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
-#ifdef GAPFE_HAS_CHOLMOD
-using FastSolver = CholmodLlt;
-#else
-using FastSolver = EigenLdlt;
-#endif
-
 /// The model variant the deck needs, and why.
 std::string pick_variant(const DeckNeeds& needs, const std::string& forced, std::string& why) {
   if (needs.needs_theta()) {
@@ -185,7 +179,7 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) 
   const Deck d           = read_deck(text, a.options);
   const double t_read    = since(t0);
   t0                     = Clock::now();
-  const DeckScene s      = build_scene<FastSolver>(d);
+  const DeckScene s      = build_scene(d);
   const double t_mesh    = since(t0);
   describe(log, d, s);
 

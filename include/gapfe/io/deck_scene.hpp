@@ -74,12 +74,11 @@ inline void add_edges(std::map<std::pair<int, int>, EdgeLoad>& acc, const std::v
 
 }  // namespace detail
 
-/// Build the scene. `Solver` solves the mesh generator's Laplace system.
-template <class Solver = EigenLdlt>
-DeckScene build_scene(const Deck& d) {
+/// Build the scene (mesh, tags, conditions, temperatures, checked loads) of a read deck.
+inline DeckScene build_scene(const Deck& d) {
   DeckScene s;
   try {
-    s.grid = generate_ij_grid<Solver>(d.mesh.max_i, d.mesh.max_j, d.segments);
+    s.grid = generate_ij_grid(d.mesh.max_i, d.mesh.max_j, d.segments);
   } catch (const InputError& e) {
     // The generator numbers segment cards from 1 in deck order: add their lines.
     std::string msg       = e.what();

@@ -7,8 +7,8 @@
 // evenly spaced in index, and circular arcs (3: through three points; 4: by its ends and centre)
 // with points evenly spaced in angle. Row J then spans IMIN(J) <= I <= IMAX(J), the smallest and
 // largest I placed in that row. Points no card placed solve the discrete Laplace equation on the
-// index grid (each the mean of its existing neighbours among the four), as one sparse SPD system:
-// a direct solve instead of the seed's relaxation sweeps.
+// index grid (each the mean of its existing neighbours among the four), solved by multigrid-
+// preconditioned conjugate gradients (grid_laplace.hpp) instead of the seed's relaxation sweeps.
 //
 // Numbering (users' load cards refer to it): nodes J ascending, then I ascending within a row, so a
 // full NI x NJ grid has node (I, J) = (J - 1) NI + I (1-based). Element (I, J) is the cell with
@@ -24,12 +24,9 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Sparse>
-
-#include "gapfe/core/concepts.hpp"
 #include "gapfe/core/error.hpp"
+#include "gapfe/mesh/grid_laplace.hpp"
 #include "gapfe/mesh/mesh.hpp"
-#include "gapfe/solver/eigen_ldlt.hpp"
 
 namespace gapfe {
 
@@ -139,9 +136,7 @@ inline double ccw_sweep(double from, double to) {  // in [0, 2 pi)
 /// Build the grid. `max_i`, `max_j`: MAXI, MAXJ (Data 3). Throws InputError naming the card (1-based
 /// in `segments`) or the element for indices out of range, malformed segments, grid points without
 /// neighbours and cells of zero or negative area. `Solver` solves the Laplace system.
-template <class Solver = EigenLdlt>
-requires LinearSolver<Solver> IJGrid generate_ij_grid(int max_i, int max_j,
-                                                      const std::vector<Segment>& segments) {
+inline IJGrid generate_ij_grid(int max_i, int max_j, const std::vector<Segment>& segments) {
   if (max_i < 1 || max_j < 1)
     throw InputError("mesh: MAXI and MAXJ must be >= 1, got " + std::to_string(max_i) + " and " +
                      std::to_string(max_j));
@@ -235,46 +230,44 @@ requires LinearSolver<Solver> IJGrid generate_ij_grid(int max_i, int max_j,
     }
   if (g.nodes.empty()) throw InputError("mesh: the line segment cards place no points");
 
-  // ---- interior points: sum over existing neighbours (x_p - x_q) = 0, fixed neighbours moved right
-  std::vector<int> unknown(g.nodes.size(), -1);
-  int nu = 0;
-  for (std::size_t n = 0; n < g.nodes.size(); ++n)
-    if (!g.placed[n]) unknown[n] = nu++;
-  if (nu > 0) {
-    std::vector<Eigen::Triplet<double, int>> entries;
-    entries.reserve(static_cast<std::size_t>(nu) * 3);
-    Eigen::Matrix<double, Eigen::Dynamic, 2> rhs = Eigen::Matrix<double, Eigen::Dynamic, 2>::Zero(nu, 2);
+  // ---- interior points: the discrete Laplace equation on the index lattice (grid_laplace.hpp)
+  if (std::find(g.placed.begin(), g.placed.end(), 0) != g.placed.end()) {
+    std::vector<char> state(points, detail::GridLaplace::absent);
+    std::vector<Vec2> rhs(points, Vec2::Zero());
     for (std::size_t n = 0; n < g.nodes.size(); ++n) {
-      const int row = unknown[n];
-      if (row < 0) continue;
       const auto [i, j] = g.node_ij[n];
-      int degree        = 0;
-      for (const auto [oi, oj] : {std::array{-1, 0}, std::array{1, 0}, std::array{0, -1}, std::array{0, 1}}) {
-        const int q = g.node(i + oi, j + oj);
-        if (q < 0) continue;
-        ++degree;
-        if (unknown[q] < 0)
-          rhs.row(row) += g.nodes[q].transpose();
-        else if (unknown[q] < row)
-          entries.emplace_back(row, unknown[q], -1.0);  // lower triangle
+      state[at(i, j)]   = g.placed[n] ? detail::GridLaplace::fixed : detail::GridLaplace::unknown;
+    }
+    for (std::size_t n = 0; n < g.nodes.size(); ++n) {
+      if (g.placed[n]) continue;
+      const auto [i, j] = g.node_ij[n];
+      for (const auto& [oi, oj] : {std::array{-1, 0}, std::array{1, 0}, std::array{0, -1}, std::array{0, 1}})
+        if (const int q = g.node(i + oi, j + oj); q >= 0 && g.placed[q]) rhs[at(i, j)] += g.nodes[q];
+    }
+    // Initial guess: linear in I between the nearest placed points of the row (exact for straight
+    // top and bottom boundaries, and close for gentle curves), which saves most CG iterations.
+    std::vector<Vec2> guess(points, Vec2::Zero());
+    for (int j = 1; j <= max_j; ++j) {
+      int left = 0;
+      for (int i = g.row_min[j - 1]; i <= g.row_max[j - 1]; ++i) {
+        if (g.placed[g.node(i, j)]) {
+          if (left > 0 && i > left + 1)
+            for (int k = left + 1; k < i; ++k)
+              guess[at(k, j)] = x[at(left, j)] + (x[at(i, j)] - x[at(left, j)]) * (k - left) / (i - left);
+          left = i;
+        }
       }
-      if (degree == 0)
-        throw InputError("mesh: grid point (" + std::to_string(i) + ", " + std::to_string(j) +
-                         ") has no neighbour to interpolate from");
-      entries.emplace_back(row, row, static_cast<double>(degree));
     }
-    SpMat a(nu, nu);
-    a.setFromTriplets(entries.begin(), entries.end());
-    Solver solver;
-    solver.analyze(a);
-    if (!solver.factorize(a))
-      throw InputError("mesh: the interior-point equations are singular (" + solver.failure() + ")");
-    for (int c = 0; c < 2; ++c) {
-      const VecX sol = solver.solve(rhs.col(c));
-      for (std::size_t n = 0; n < g.nodes.size(); ++n)
-        if (unknown[n] >= 0) g.nodes[n](c) = sol(unknown[n]);
-    }
+    detail::GridLaplace laplace(max_i, max_j, state);
+    const std::vector<Vec2> filled = laplace.solve(rhs, guess);
+    for (std::size_t n = 0; n < g.nodes.size(); ++n)
+      if (!g.placed[n]) g.nodes[n] = filled[at(g.node_ij[n][0], g.node_ij[n][1])];
   }
+  for (std::size_t n = 0; n < g.nodes.size(); ++n)
+    if (!g.nodes[n].allFinite())
+      throw InputError("mesh: grid point " + std::to_string(g.node_ij[n][0]) + ", " +
+                       std::to_string(g.node_ij[n][1]) +
+                       " has a non-finite position (coordinates too large?)");
 
   // ---- cells in numbering order; a cell needs three or four existing corners
   double total_area     = 0;
