@@ -1,8 +1,11 @@
-#!/usr/bin/env python3
-"""Write card decks (BRL-CR-670 Appendix A) column-exact, for the examples and the benchmarks.
+#!/ usr / bin / env python3
+""
+        "Write card decks (BRL-CR-670 Appendix A) column-exact, for the examples and the benchmarks.
 
-    python3 bench/deckgen.py tube --ni 301 --nj 167 > tube.deck     # thick tube, 2*ni*nj DOFs
-    python3 bench/deckgen.py examples                               # rewrites examples/decks/*.deck
+        python3 bench /
+        deckgen.py tube-- ni 301 --nj 167 >
+    tube.deck #thick tube,
+    2 * ni *nj DOFs python3 bench / deckgen.py examples #rewrites examples / decks/*.deck
 
 Each card helper returns one 80-column line; the field widths are the seed's formats.
 """
@@ -88,19 +91,25 @@ def edge(m, n, value):
     return i(m, 5) + i(n, 5) + f(value, 10)
 
 
-def tube_deck(ni, nj, a=100.0, b=200.0, h=None, p=100.0, extension=("format = elastic",)):
+def tube_deck(ni, nj, a=100.0, b=200.0, h=None, p=100.0, extension=("format = elastic",), nodal=False):
     """Thick tube a <= r <= b, 0 <= z <= h, plane strain (u_z = 0 on both ends), internal pressure p.
-    Nodes (ni x nj grid): node(I, J) = (J - 1) ni + I."""
+    Nodes (ni x nj grid): node(I, J) = (J - 1) ni + I. Pressure cards (I5 node numbers) reach only node
+    99999; with nodal=True the pressure is given as its consistent ring forces on BC cards instead."""
     h = h if h is not None else (b - a) * (nj - 1) / (ni - 1)
     node = lambda I, J: (J - 1) * ni + I
+    force = p * 2 * math.pi * a * h / (nj - 1)  # total ring force per bore node (half at the ends)
     lines = [f"$ {e}" for e in extension]
     lines += [f"THICK TUBE {a:g} < r < {b:g}, internal pressure {p:g}, plane strain ({ni} x {nj} grid)",
-              control(numpc=nj - 1), mesh_control(ni, nj, 4, 2, 1),
+              control(numpc=0 if nodal else nj - 1), mesh_control(ni, nj, 4, 5 if nodal else 2, 1),
               segment([(1, 1, a, 0.0), (ni, 1, b, 0.0)], 1), segment([(ni, 1, b, 0.0), (ni, nj, b, h)], 1),
               segment([(ni, nj, b, h), (1, nj, a, h)], 1), segment([(1, nj, a, h), (1, 1, a, 0.0)], 1),
-              bc(1, ni, 1, 1, 2), bc(1, ni, nj, nj, 2), block(1, 1, ni, 1, nj)]
+              bc(1, ni, 1, 1, 2), bc(1, ni, nj, nj, 2)]
+    if nodal:
+        lines += [bc(1, 1, 2, nj - 1, 0, force), bc(1, 1, 1, 1, 2, force / 2), bc(1, 1, nj, nj, 2, force / 2)]
+    lines += [block(1, 1, ni, 1, nj)]
     lines += material(1, [isotropic(200000.0, 0.3, 1.2e-5)], density=7.85e-9, elastic_format=True)
-    lines += [edge(node(1, J + 1), node(1, J), p) for J in range(1, nj)]
+    if not nodal:
+        lines += [edge(node(1, J + 1), node(1, J), p) for J in range(1, nj)]
     return "\n".join(lines) + "\n"
 
 
@@ -152,10 +161,11 @@ def main():
     t = sub.add_parser("tube")
     t.add_argument("--ni", type=int, required=True)
     t.add_argument("--nj", type=int, required=True)
+    t.add_argument("--nodal", action="store_true", help="pressure as BC-card ring forces (for > 99999 nodes)")
     sub.add_parser("examples")
     args = ap.parse_args()
     if args.what == "tube":
-        print(tube_deck(args.ni, args.nj), end="")
+        print(tube_deck(args.ni, args.nj, nodal=args.nodal), end="")
     else:
         out = pathlib.Path(__file__).resolve().parent.parent / "examples" / "decks"
         out.mkdir(exist_ok=True)

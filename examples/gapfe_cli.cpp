@@ -129,44 +129,43 @@ void describe(std::ostream& out, const Deck& d, const DeckScene& s) {
   out << "\n";
 }
 
+/// Wall-clock seconds of a run's phases after meshing (read and mesh are timed in execute()).
+struct RunTimes {
+  double assemble = 0, factorize = 0, solve = 0, write = 0;
+};
+
 template <class Kin, class Elem, class Solver>
-void run_variant(const Deck& d, const DeckScene& s, const std::string& dir, std::ostream& out,
-                 std::ostream& err, bool progress, bool quiet, double& write_time) {
+void run_variant(const Deck& d, const DeckScene& s, const std::string& dir, std::ostream& err, bool progress,
+                 RunTimes& times) {
   using M = Model<Kin, Elem, Orthotropic, Solver>;
   StepFiles files(dir, s);
-  SolveTimings total;
-  int equations = 0;
   run_deck<M>(d, s, [&](int step, double inc, const LinearStatic<M>& fe) {
     const auto& t = fe.timings();
-    total.assemble += t.assemble, total.factorize += t.factorize, total.solve += t.solve + t.reactions;
-    equations        = fe.dofs().free_count;
-    const auto start = Clock::now();
-    files.write(step, inc, fe);
-    write_time += since(start);
+    times.assemble += t.assemble, times.factorize += t.factorize, times.solve += t.solve + t.reactions;
     if (!std::isfinite(fe.solution().residual) || !fe.solution().displacement.allFinite())
       throw SolveError("load step " + std::to_string(step) + ": the solution is not finite");
+    const auto start = Clock::now();
+    files.write(step, inc, fe);
+    times.write += since(start);
     if (progress) err << "\rstep " << step << "/" << d.steps() << std::flush;
   });
   if (progress) err << "\r" << std::string(32, ' ') << "\r" << std::flush;
-  if (!quiet)
-    out << "  " << equations << " equations; assemble " << total.assemble << " s, factorize "
-        << total.factorize << " s, solve " << total.solve << " s\n";
 }
 
 template <class Solver>
 void run_with_solver(const std::string& variant, const Deck& d, const DeckScene& s, const std::string& dir,
-                     std::ostream& out, std::ostream& err, bool progress, bool quiet, double& write_time) {
+                     std::ostream& err, bool progress, RunTimes& times) {
   const bool quad4 = d.options.element == "quad4";
   if (variant == "saga") {
     if (quad4)
-      run_variant<Axisym3, Quad4, Solver>(d, s, dir, out, err, progress, quiet, write_time);
+      run_variant<Axisym3, Quad4, Solver>(d, s, dir, err, progress, times);
     else
-      run_variant<Axisym3, LegacyQuad, Solver>(d, s, dir, out, err, progress, quiet, write_time);
+      run_variant<Axisym3, LegacyQuad, Solver>(d, s, dir, err, progress, times);
   } else {
     if (quad4)
-      run_variant<Axisym2, Quad4, Solver>(d, s, dir, out, err, progress, quiet, write_time);
+      run_variant<Axisym2, Quad4, Solver>(d, s, dir, err, progress, times);
     else
-      run_variant<Axisym2, LegacyQuad, Solver>(d, s, dir, out, err, progress, quiet, write_time);
+      run_variant<Axisym2, LegacyQuad, Solver>(d, s, dir, err, progress, times);
   }
 }
 
@@ -215,21 +214,23 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) 
   if (solver == "cholmod")
     throw InputError("solver = cholmod: this gapfe was built without CHOLMOD (SuiteSparse)");
 #endif
-  double t_write = 0;
-  t0             = Clock::now();
+  RunTimes times;
+  t0 = Clock::now();
 #ifdef GAPFE_HAS_CHOLMOD
   if (solver == "cholmod") {
     log << "solver: " << CholmodLlt::kName << "\n";
-    run_with_solver<CholmodLlt>(variant, d, s, a.out, log, err, progress, a.quiet, t_write);
+    run_with_solver<CholmodLlt>(variant, d, s, a.out, err, progress, times);
   } else
 #endif
   {
     log << "solver: " << EigenLdlt::kName << "\n";
-    run_with_solver<EigenLdlt>(variant, d, s, a.out, log, err, progress, a.quiet, t_write);
+    run_with_solver<EigenLdlt>(variant, d, s, a.out, err, progress, times);
   }
-  const double t_run = since(t0);
-  log << "time: read " << t_read << " s, mesh " << t_mesh << " s, analysis " << t_run - t_write
-      << " s, write " << t_write << " s\n"
+  // setup: the Problem, DOF map, sparsity pattern, symbolic analysis and stress recovery.
+  const double setup = since(t0) - times.assemble - times.factorize - times.solve - times.write;
+  log << "time [s]: read " << t_read << ", mesh " << t_mesh << ", setup " << setup << ", assemble "
+      << times.assemble << ", factorize " << times.factorize << ", solve " << times.solve << ", write "
+      << times.write << "\n"
       << "wrote " << a.out << "/nodes.csv, elements.csv, result.pvd\n";
   return ok;
 }
