@@ -234,6 +234,27 @@ inline std::string numbered(const std::string& data, const std::string& what, in
   return data + " (" + what + " " + std::to_string(k) + ")";
 }
 
+/// Minimum I, maximum I, minimum J, maximum J: four I5 fields from column `first` (Data 5 and 6),
+/// within 1..MAXI and 1..MAXJ. A material block must span at least one cell (`spans_cell`: min < max);
+/// a BC rectangle may be a line or a point (min <= max).
+inline void read_index_rectangle(const CardImage& c, int first, const MeshControlCard& m, bool spans_cell,
+                                 int& i1, int& i2, int& j1, int& j2) {
+  i1                     = c.integer(first, first + 4, "minimum I");
+  i2                     = c.integer(first + 5, first + 9, "maximum I");
+  j1                     = c.integer(first + 10, first + 14, "minimum J");
+  j2                     = c.integer(first + 15, first + 19, "maximum J");
+  const char* order      = spans_cell ? " < " : " <= ";
+  const std::string cell = spans_cell ? " (a block spans at least one cell)" : "";
+  if (i1 < 1 || i2 < i1 + spans_cell || i2 > m.max_i)
+    c.reject(first, first + 9, "I range",
+             std::string("needs 1 <= minimum I") + order + "maximum I <= MAXI = " + std::to_string(m.max_i) +
+                 cell);
+  if (j1 < 1 || j2 < j1 + spans_cell || j2 > m.max_j)
+    c.reject(first + 10, first + 19, "J range",
+             std::string("needs 1 <= minimum J") + order + "maximum J <= MAXJ = " + std::to_string(m.max_j) +
+                 cell);
+}
+
 }  // namespace detail
 
 /// Read a deck held in `text` (the string must outlive nothing: all values are copied). `overrides`
@@ -365,18 +386,9 @@ inline Deck read_deck(std::string_view text,
   for (int b = 1; b <= d.mesh.nbc; ++b) {
     const CardImage c = in.take(detail::numbered("DATA NO. 5", "boundary condition card", b));
     BoundaryCard k;
-    k.i1    = c.integer(1, 5, "minimum I");
-    k.i2    = c.integer(6, 10, "maximum I");
-    k.j1    = c.integer(11, 15, "minimum J");
-    k.j2    = c.integer(16, 20, "maximum J");
+    detail::read_index_rectangle(c, 1, d.mesh, false, k.i1, k.i2, k.j1, k.j2);
     k.code  = c.integer(21, 30, "boundary condition code");
     k.value = {c.real(31, 40, 0, "XR"), c.real(41, 50, 0, "XZ"), c.real(51, 60, 0, "XT")};
-    if (k.i1 < 1 || k.i2 < k.i1 || k.i2 > d.mesh.max_i)
-      c.reject(1, 10, "I range",
-               "needs 1 <= minimum I <= maximum I <= MAXI = " + std::to_string(d.mesh.max_i));
-    if (k.j1 < 1 || k.j2 < k.j1 || k.j2 > d.mesh.max_j)
-      c.reject(11, 20, "J range",
-               "needs 1 <= minimum J <= maximum J <= MAXJ = " + std::to_string(d.mesh.max_j));
     if (k.code < 0 || k.code > 7)
       c.reject(21, 30, "boundary condition code", "must be 0-7 (bit mask 1 = u_r, 2 = u_z, 4 = u_t)");
     if (d.options.loads_per_radian)
@@ -390,25 +402,14 @@ inline Deck read_deck(std::string_view text,
   for (int b = 1; b <= d.mesh.nmtl; ++b) {
     const CardImage c = in.take(detail::numbered("DATA NO. 6", "material block card", b));
     MaterialBlockCard k;
-    k.material  = c.integer(1, 5, "material number");
-    k.i1        = c.integer(6, 10, "minimum I");
-    k.i2        = c.integer(11, 15, "maximum I");
-    k.j1        = c.integer(16, 20, "minimum J");
-    k.j2        = c.integer(21, 25, "maximum J");
+    k.material = c.integer(1, 5, "material number");
+    detail::read_index_rectangle(c, 6, d.mesh, true, k.i1, k.i2, k.j1, k.j2);
     k.beta_deg  = c.real(26, 35, 0, "BETA");
     k.alpha_deg = c.real(36, 45, 0, "ALPHA");
     k.iang      = c.integer(46, 50, "IANG");
     k.nang      = c.integer(51, 55, "NANG");
     k.ijdir     = c.integer(56, 60, "IJDIR");
     if (k.material < 1) c.reject(1, 5, "material number", "must be >= 1");
-    if (k.i1 < 1 || k.i2 <= k.i1 || k.i2 > d.mesh.max_i)
-      c.reject(6, 15, "I range",
-               "needs 1 <= minimum I < maximum I <= MAXI = " + std::to_string(d.mesh.max_i) +
-                   " (a block spans at least one cell)");
-    if (k.j1 < 1 || k.j2 <= k.j1 || k.j2 > d.mesh.max_j)
-      c.reject(16, 25, "J range",
-               "needs 1 <= minimum J < maximum J <= MAXJ = " + std::to_string(d.mesh.max_j) +
-                   " (a block spans at least one cell)");
     if (k.iang != 0 && k.iang != 1) c.reject(46, 50, "IANG", "must be 0 or 1");
     if (k.iang == 1 && k.nang < 1) c.reject(51, 55, "NANG", "must be >= 1 when IANG = 1");
     if (k.ijdir < 0 || k.ijdir > 2) c.reject(56, 60, "IJDIR", "must be 0, 1 or 2");
