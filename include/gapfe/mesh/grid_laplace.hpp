@@ -65,22 +65,26 @@ class GridLaplace {
     for (std::size_t k = 0; k < n; ++k) r[k] -= q[k];
     if (b_norm.maxCoeff() > 0) {
       precondition(r, z);
-      p        = z;
-      Vec2 rz  = dots(r, z);
-      int iter = 0;
+      p           = z;
+      Vec2 rz     = dots(r, z);
+      int iter    = 0;
+      Vec2 r_norm = norms(r);
       for (;; ++iter) {
-        const Vec2 res = norms(r).cwiseQuotient(b_norm.cwiseMax(1e-300));
+        const Vec2 res = r_norm.cwiseQuotient(b_norm.cwiseMax(1e-300));
         if (res.maxCoeff() <= tolerance) break;
         if (iter == max_iterations) {
           if (res.maxCoeff() <= 1e-10) break;  // stagnation at round-off: good enough for coordinates
           throw SolveError("mesh: the Laplace fill did not converge (relative residual " +
                            std::to_string(res.maxCoeff()) + ")");
         }
-        apply(L, p, q);
-        const Vec2 pq    = dots(p, q);
+        const Vec2 pq    = apply(L, p, q);
         const Vec2 alpha = (pq.array() > 0).select(rz.cwiseQuotient(pq.cwiseMax(1e-300)), 0.0);
-        for (std::size_t k = 0; k < n; ++k)
+        Vec2 rr          = Vec2::Zero();
+        for (std::size_t k = 0; k < n; ++k) {
           x[k] += alpha.cwiseProduct(p[k]), r[k] -= alpha.cwiseProduct(q[k]);
+          rr += r[k].cwiseProduct(r[k]);
+        }
+        r_norm = rr.cwiseSqrt();
         precondition(r, z);
         const Vec2 rz_new = dots(r, z);
         const Vec2 beta   = (rz.array() > 0).select(rz_new.cwiseQuotient(rz.cwiseMax(1e-300)), 0.0);
@@ -136,37 +140,55 @@ class GridLaplace {
     return L;
   }
 
-  /// y = A x over the unknowns of a level (0 elsewhere); x must be 0 off the unknowns.
-  static void apply(const Level& L, const std::vector<Vec2>& xv, std::vector<Vec2>& yv) {
+  /// y = b - A x over the unknowns of a level (0 elsewhere; without b: y = A x); returns x . y per
+  /// component. x and b must be 0 off the unknowns. One pass for the product and its dot product.
+  static Vec2 apply(const Level& L, const std::vector<Vec2>& xv, std::vector<Vec2>& yv,
+                    const std::vector<Vec2>* bv = nullptr) {
     const std::size_t s = static_cast<std::size_t>(L.stride), n = L.state.size();
     const double* x = xv.data()->data();
+    const double* b = bv ? bv->data()->data() : nullptr;
     double* y       = yv.data()->data();
     const double *d = L.diag.data(), *m = L.mask.data();
+    double dot[2] = {0, 0};
     for (std::size_t k = s; k + s < n; ++k)
       for (int c = 0; c < 2; ++c) {
         const std::size_t a = 2 * k + c;
-        y[a]                = m[k] * (d[k] * x[a] - x[a - 2] - x[a + 2] - x[a - 2 * s] - x[a + 2 * s]);
+        const double ax     = m[k] * (d[k] * x[a] - x[a - 2] - x[a + 2] - x[a - 2 * s] - x[a + 2 * s]);
+        y[a]                = b ? b[a] - ax : ax;
+        dot[c] += x[a] * y[a];
       }
+    return {dot[0], dot[1]};
   }
 
   /// One red-black Gauss-Seidel sweep on A e = f: points with i + j even, then odd (forward), or odd
   /// then even (backward), so that forward-then-backward is symmetric. Points of one colour do not
   /// depend on each other, so each half-sweep pipelines; e stays 0 off the unknowns.
   static void gauss_seidel(Level& L, bool forward) {
-    const std::size_t s = static_cast<std::size_t>(L.stride);
-    double* e           = L.e.data()->data();
-    const double* f     = L.f.data()->data();
-    const double* w     = L.inv_diag.data();
-    for (int half = 0; half < 2; ++half) {
-      const int colour = forward ? half : 1 - half;
-      for (int j = 0; j < L.nj; ++j) {
-        const std::size_t row = L.at(0, j);
-        for (int i = (colour + j) % 2; i < L.ni; i += 2) {
-          const std::size_t k = row + static_cast<std::size_t>(i), a = 2 * k;
-          const double wk = w[k];
-          e[a]            = wk * (f[a] + e[a - 2] + e[a + 2] + e[a - 2 * s] + e[a + 2 * s]);
-          e[a + 1]        = wk * (f[a + 1] + e[a - 1] + e[a + 3] + e[a + 1 - 2 * s] + e[a + 1 + 2 * s]);
-        }
+    const std::size_t s  = static_cast<std::size_t>(L.stride);
+    double* e            = L.e.data()->data();
+    const double* f      = L.f.data()->data();
+    const double* w      = L.inv_diag.data();
+    const auto relax_row = [&](int j, int colour) {
+      const std::size_t row = L.at(0, j);
+      for (int i = (colour + j) % 2; i < L.ni; i += 2) {
+        const std::size_t k = row + static_cast<std::size_t>(i), a = 2 * k;
+        const double wk = w[k];
+        e[a]            = wk * (f[a] + e[a - 2] + e[a + 2] + e[a - 2 * s] + e[a + 2 * s]);
+        e[a + 1]        = wk * (f[a + 1] + e[a - 1] + e[a + 3] + e[a + 1 - 2 * s] + e[a + 1 + 2 * s]);
+      }
+    };
+    // Both colours in one pass over memory: the second colour trails the first by one row, which is
+    // the same as a whole first-colour half-sweep followed by a whole second-colour one (a point of
+    // the second colour in row j needs the first colour in rows j - 1, j and j + 1).
+    if (forward) {
+      for (int j = 0; j <= L.nj; ++j) {
+        if (j < L.nj) relax_row(j, 0);
+        if (j > 0) relax_row(j - 1, 1);
+      }
+    } else {
+      for (int j = L.nj - 1; j >= -1; --j) {
+        if (j >= 0) relax_row(j, 1);
+        if (j < L.nj - 1) relax_row(j + 1, 0);
       }
     }
   }
@@ -193,8 +215,7 @@ class GridLaplace {
     }
     std::fill(L.e.begin(), L.e.end(), Vec2::Zero());
     for (int sweep = 0; sweep < kSweeps; ++sweep) gauss_seidel(L, true);
-    apply(L, L.e, L.res);
-    for (std::size_t k = 0; k < L.res.size(); ++k) L.res[k] = L.f[k] - L.res[k];  // 0 off the unknowns
+    apply(L, L.e, L.res, &L.f);  // res = f - A e, 0 off the unknowns
     Level& C = levels_[l + 1];
     for (int J = 0; J < C.nj; ++J)
       for (int I = 0; I < C.ni; ++I) {
@@ -213,11 +234,13 @@ class GridLaplace {
     for (int sweep = 0; sweep < kSweeps; ++sweep) gauss_seidel(L, false);
   }
 
-  void precondition(const std::vector<Vec2>& r, std::vector<Vec2>& z) {
+  /// z = V-cycle(r). r and z are swapped in and out of the level's buffers instead of copied.
+  void precondition(std::vector<Vec2>& r, std::vector<Vec2>& z) {
     Level& L = levels_.front();
-    L.f      = r;
+    std::swap(L.f, r);
     v_cycle(0);
-    z = L.e;
+    std::swap(L.f, r);
+    std::swap(L.e, z);
   }
 
   void build_coarsest() {
