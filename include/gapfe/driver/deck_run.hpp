@@ -23,6 +23,18 @@ inline void fix_theta(std::vector<NodalCondition>& conditions, int nodes) {
   conditions = std::move(all);
 }
 
+/// Put the loads in force after `step` into `p`: the totals of the increments so far (and, in a 3-DOF
+/// variant of a deck that needs no u_theta, the u_theta = 0 conditions).
+template <class M>
+void set_step_loads(Problem<M>& p, const Deck& d, const DeckScene& s, int step) {
+  StepTotals t = step_totals(d, s, step);
+  p.conditions = std::move(t.conditions);
+  if constexpr (M::kDofsPerNode == 3)
+    if (!s.needs.needs_theta()) fix_theta(p.conditions, s.mesh.node_count());
+  p.inertia    = t.inertia;
+  p.edge_loads = std::move(t.edge_loads);
+}
+
 /// The Problem of a scene under the loads in force after `step`.
 template <class M>
 Problem<M> deck_problem(const Deck& d, const DeckScene& s, int step) {
@@ -34,12 +46,7 @@ Problem<M> deck_problem(const Deck& d, const DeckScene& s, int step) {
     m.table = law.table;
     p.materials.push_back(m);
   }
-  StepTotals t = step_totals(d, s, step);
-  p.conditions = std::move(t.conditions);
-  if constexpr (M::kDofsPerNode == 3)
-    if (!s.needs.needs_theta()) fix_theta(p.conditions, s.mesh.node_count());
-  p.inertia               = t.inertia;
-  p.edge_loads            = std::move(t.edge_loads);
+  set_step_loads(p, d, s, step);
   p.temperature           = s.temperature;
   p.reference_temperature = s.reference_temperature;
   return p;
@@ -51,14 +58,7 @@ template <class M, class OnStep>
 void run_deck(const Deck& d, const DeckScene& s, OnStep&& on_step) {
   LinearStatic<M> fe(deck_problem<M>(d, s, 1));
   for (int step = 1; step <= d.steps(); ++step) {
-    if (step > 1) {
-      StepTotals t            = step_totals(d, s, step);
-      fe.problem().conditions = std::move(t.conditions);
-      if constexpr (M::kDofsPerNode == 3)
-        if (!s.needs.needs_theta()) fix_theta(fe.problem().conditions, s.mesh.node_count());
-      fe.problem().inertia    = t.inertia;
-      fe.problem().edge_loads = std::move(t.edge_loads);
-    }
+    if (step > 1) set_step_loads(fe.problem(), d, s, step);
     fe.solve(/*same_stiffness=*/step > 1);
     on_step(step, static_cast<double>(step), static_cast<const LinearStatic<M>&>(fe));
   }

@@ -35,6 +35,14 @@ inline VtuCells grid_cells(const IJGrid& g) {
   return cells;
 }
 
+/// Cell arrays every VTU of a deck carries: the deck's material number and the element number.
+inline std::vector<VtuField> element_ids(const DeckScene& s) {
+  std::vector<VtuField> f{{"material", 1, {}, true}, {"element", 1, {}, true}};
+  for (std::size_t e = 0; e < s.grid.cells.size(); ++e)
+    f[0].values.push_back(s.material_id[e]), f[1].values.push_back(static_cast<double>(e + 1));
+  return f;
+}
+
 inline void csv_number(std::string& s, double v) {
   append_number(s, v);
   s += ',';
@@ -101,10 +109,8 @@ class StepFiles {
     for (int n = 0; n < g.node_count(); ++n)
       for (int c = 0; c < 3; ++c)
         point[0].values.push_back(u(n, c)), point[1].values.push_back(fe.solution().reaction(n, c));
-    std::vector<VtuField> cell{
-        {"stress", 6, std::move(stress)}, {"material", 1, {}, true}, {"element", 1, {}, true}};
-    for (std::size_t e = 0; e < g.cells.size(); ++e)
-      cell[1].values.push_back(scene_.material_id[e]), cell[2].values.push_back(static_cast<double>(e + 1));
+    std::vector<VtuField> cell = detail::element_ids(scene_);
+    cell.insert(cell.begin(), VtuField{"stress", 6, std::move(stress)});
     write_vtu(dir_ + "/" + name, g.nodes, detail::grid_cells(g), point, cell);
     steps_.emplace_back(inc, name);
     write_pvd(dir_ + "/result.pvd", steps_);
@@ -145,12 +151,9 @@ inline void write_mesh_files(const std::string& dir, const Deck& d, const DeckSc
     detail::write_file_atomically(dir + "/mesh_elements.csv", t);
   }
   {
-    std::vector<VtuField> cell{{"material", 1, {}, true}, {"element", 1, {}, true}};
-    for (std::size_t e = 0; e < g.cells.size(); ++e)
-      cell[0].values.push_back(s.material_id[e]), cell[1].values.push_back(static_cast<double>(e + 1));
     VtuField placed{"placed_by_card", 1, {}, true};
     for (int n = 0; n < g.node_count(); ++n) placed.values.push_back(g.placed[n]);
-    write_vtu(dir + "/mesh.vtu", g.nodes, detail::grid_cells(g), {placed}, cell);
+    write_vtu(dir + "/mesh.vtu", g.nodes, detail::grid_cells(g), {placed}, detail::element_ids(s));
   }
 
   // ---- SVG: r to the right, z up; numbers only while they stay legible
