@@ -1,6 +1,9 @@
 #pragma once
 // gapfe: header-only C++20 finite elements for axisymmetric structures. Umbrella header: everything
 // except solver/cholmod.hpp (CHOLMOD is GPL and opt-in).
+#include "gapfe/contact/gap_pairs.hpp"
+#include "gapfe/contact/policies.hpp"
+#include "gapfe/driver/contact_static.hpp"
 #include "gapfe/driver/deck_run.hpp"
 #include "gapfe/driver/linear_static.hpp"
 #include "gapfe/io/deck.hpp"

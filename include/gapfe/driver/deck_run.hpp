@@ -3,8 +3,11 @@
 // step applies the totals of the increments so far (deck_scene.hpp). Materials and temperatures are
 // fixed from the first step on, so the stiffness is factorized once and each later step costs an
 // assembly of the right-hand side and two triangular solves.
+#include <algorithm>
+#include <cmath>
 #include <string>
 
+#include "gapfe/driver/contact_static.hpp"
 #include "gapfe/driver/linear_static.hpp"
 #include "gapfe/io/deck_scene.hpp"
 
@@ -23,16 +26,21 @@ inline void fix_theta(std::vector<NodalCondition>& conditions, int nodes) {
   conditions = std::move(all);
 }
 
-/// Put the loads in force after `step` into `p`: the totals of the increments so far (and, in a 3-DOF
-/// variant of a deck that needs no u_theta, the u_theta = 0 conditions).
+/// Put load totals into `p` (and, in a 3-DOF variant of a deck that needs no u_theta, the u_theta = 0
+/// conditions).
 template <class M>
-void set_step_loads(Problem<M>& p, const Deck& d, const DeckScene& s, int step) {
-  StepTotals t = step_totals(d, s, step);
+void set_loads(Problem<M>& p, StepTotals t, const DeckScene& s) {
   p.conditions = std::move(t.conditions);
   if constexpr (M::kDofsPerNode == 3)
     if (!s.needs.needs_theta()) fix_theta(p.conditions, s.mesh.node_count());
   p.inertia    = t.inertia;
   p.edge_loads = std::move(t.edge_loads);
+}
+
+/// Put the loads in force after `step` into `p`: the totals of the increments so far.
+template <class M>
+void set_step_loads(Problem<M>& p, const Deck& d, const DeckScene& s, int step) {
+  set_loads(p, step_totals(d, s, step), s);
 }
 
 /// The Problem of a scene under the loads in force after `step`.
@@ -62,6 +70,30 @@ void run_deck(const Deck& d, const DeckScene& s, OnStep&& on_step) {
     fe.solve(/*same_stiffness=*/step > 1);
     on_step(step, static_cast<double>(step), static_cast<const LinearStatic<M>&>(fe));
   }
+}
+
+/// Run every load step of a deck with gap elements under contact policy P. The load factor t runs from
+/// 0 to the number of steps; within step k it moves the totals linearly from those of step k - 1 to
+/// those of step k. `on_increment(step, inc, const ContactStatic<M, P>&)` sees every accepted increment,
+/// inc = t (fractional where a step was split).
+template <class M, ContactPolicy P, class OnIncrement>
+void run_deck_contact(const Deck& d, const DeckScene& s, double penalty_factor, OnIncrement&& on_increment) {
+  ContactOptions options;
+  options.penalty_factor = penalty_factor;
+  if (s.gap_material >= 0) options.gap_materials.push_back(s.gap_material);
+  ContactStatic<M, P> fe(deck_problem<M>(d, s, 1), s.gaps.pairs, options);
+  StepTotals before, after;
+  int cached                                           = -1;  // the step whose end totals are in `after`
+  const typename ContactStatic<M, P>::LoadsAt loads_at = [&](Problem<M>& p, double t) {
+    const int step = std::clamp(static_cast<int>(std::ceil(t - 1e-12)), 1, d.steps());
+    if (step != cached) before = step_totals(d, s, step - 1), after = step_totals(d, s, step), cached = step;
+    set_loads(p, interpolate(before, after, t - (step - 1)), s);
+  };
+  int step                                               = 1;
+  const typename ContactStatic<M, P>::OnIncrement report = [&](double t, const ContactStatic<M, P>& c) {
+    on_increment(step, t, c);
+  };
+  for (; step <= d.steps(); ++step) fe.advance(step, loads_at, report);
 }
 
 }  // namespace gapfe

@@ -3,11 +3,14 @@
 // sparsity pattern, the per-element scatter offsets and the solver's symbolic analysis are built
 // once in the constructor; solve() re-assembles values and right-hand side (loads, temperatures and
 // material constants may change between calls; which DOFs are prescribed and the mesh may not).
+// Node links (assembly/node_links.hpp), declared at construction so that the pattern holds their
+// couplings, add two-node springs whose values may change between solves: what contact policies use.
 //
 // Conventions: full ring (types.hpp). Reactions are total ring forces at prescribed DOFs.
 #include <algorithm>
 #include <chrono>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <unordered_map>
@@ -16,6 +19,7 @@
 #include "gapfe/assembly/dof_map.hpp"
 #include "gapfe/assembly/edge_loads.hpp"
 #include "gapfe/assembly/element_kernel.hpp"
+#include "gapfe/assembly/node_links.hpp"
 #include "gapfe/assembly/quad4_batch.hpp"
 #include "gapfe/assembly/sparsity.hpp"
 #include "gapfe/mesh/mesh.hpp"
@@ -60,15 +64,24 @@ class LinearStatic {
   /// Quad4 with 2 DOF assembles through the vectorized batch kernel (same result, BENCHMARKS.md).
   static constexpr bool kBatchedQuad4 = std::is_same_v<Elem, Quad4> && kNd == 2;
 
-  explicit LinearStatic(Problem<M> problem) : p_(std::move(problem)) {
+  /// `links`: node pairs (a, b) that may carry node links; their values start at zero (link_values()).
+  explicit LinearStatic(Problem<M> problem, Connectivity<2> links = {})
+      : p_(std::move(problem)), links_(std::move(links)), link_values_(links_.size()) {
     validate();
+    for (const auto& l : links_)
+      if (l[0] < 0 || l[1] < 0 || l[0] >= p_.mesh.node_count() || l[1] >= p_.mesh.node_count() ||
+          l[0] == l[1])
+        throw InputError("node link (" + std::to_string(l[0] + 1) + ", " + std::to_string(l[1] + 1) +
+                         "): needs two different nodes of the mesh");
     dofs_ = DofMap<kNd>::build(p_.mesh, p_.conditions);
     SparsityBuilder<kNd> sb(p_.mesh.node_count(), dofs_.equation, dofs_.free_count);
     sb.add(p_.mesh.cells);
     if constexpr (kTri) sb.add(p_.mesh.triangles);
+    sb.add(links_);
     k_            = sb.build();
     cell_offsets_ = scatter_offsets<kNd>(k_, dofs_.equation, p_.mesh.cells);
     if constexpr (kTri) tri_offsets_ = scatter_offsets<kNd>(k_, dofs_.equation, p_.mesh.triangles);
+    link_offsets_ = scatter_offsets<kNd>(k_, dofs_.equation, links_);
     if (dofs_.free_count > 0) solver_->analyze(k_);  // all prescribed: a pure recovery, nothing to factorize
   }
 
@@ -79,37 +92,61 @@ class LinearStatic {
   const SpMat& stiffness() const { return k_; }  ///< lower triangle, free DOFs
   const Solution& solution() const { return sol_; }
   const SolveTimings& timings() const { return time_; }
+  const Connectivity<2>& links() const { return links_; }
+  /// Values of the node links, parallel to links(); change them, then solve() or resolve_links().
+  std::vector<NodeLink>& link_values() { return link_values_; }
+  const std::vector<NodeLink>& link_values() const { return link_values_; }
+  /// Number of numeric factorizations so far (contact policies report it; the pattern's symbolic
+  /// analysis is done once, in the constructor).
+  int factorizations() const { return factorization_count_; }
 
   /// Assemble, factorize, solve, recover reactions. Throws SolveError when the stiffness is singular
   /// (say, a missing constraint) and InputError for loads that do not fit the mesh or the kinematics.
   /// `same_stiffness`: the caller changed only loads and prescribed values since the last solve (not
-  /// materials or temperatures), so the last factorization is reused (load steps of a linear run).
+  /// materials or temperatures) and kept the link stiffnesses, so the last factorization is reused.
   const Solution& solve(bool same_stiffness = false) {
-    using clock        = std::chrono::steady_clock;
-    const auto seconds = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
+    using clock = std::chrono::steady_clock;
     validate_loads();
     refresh_condition_values();
     auto t0 = clock::now();
     assemble();
-    auto t1 = clock::now();
-    if (dofs_.free_count > 0 && !(same_stiffness && factorized_) && !(factorized_ = solver_->factorize(k_))) {
-      std::string where;
-      if (const int eq = solver_->failed_equation(); eq >= 0) where = " near " + describe_equation(eq);
-      throw SolveError(solver_->failure() + where +
-                       ": check that the constraints remove every rigid-body motion (axial translation; in "
-                       "3-DOF also rotation about the axis) and that no element is degenerate");
+    if (!links_.empty()) {  // keep the element-only system for resolve_links()
+      k_elements_.assign(k_.valuePtr(), k_.valuePtr() + k_.nonZeros());
+      rhs_elements_ = rhs_;
+      add_links();
     }
-    auto t2        = clock::now();
-    const VecX u_f = dofs_.free_count > 0 ? solver_->solve(rhs_) : VecX();
-    auto t3        = clock::now();
-    if (!u_f.allFinite()) throw SolveError("the solution has non-finite values (singular stiffness?)");
-    u_ = dofs_.prescribed;
-    for (std::size_t d = 0; d < dofs_.equation.size(); ++d)
-      if (dofs_.equation[d] >= 0) u_(static_cast<Eigen::Index>(d)) = u_f(dofs_.equation[d]);
-    reactions();
-    auto t4 = clock::now();
-    time_   = {seconds(t0, t1), seconds(t1, t2), seconds(t2, t3), seconds(t3, t4)};
-    return sol_;
+    return finish(!(same_stiffness && factorized_), clock::now() - t0);
+  }
+
+  /// Solve again after changing only link_values() since the last solve(): loads, materials and
+  /// conditions are as they were, so the element system is reused and, when `same_link_stiffness`,
+  /// the factorization too (one back-substitution: an augmented-Lagrangian update, a split step).
+  const Solution& resolve_links(bool same_link_stiffness) {
+    if (k_elements_.size() != static_cast<std::size_t>(k_.nonZeros()))
+      throw std::logic_error("resolve_links() needs node links and a solve() before it");
+    const auto t0 = std::chrono::steady_clock::now();
+    std::copy(k_elements_.begin(), k_elements_.end(), k_.valuePtr());
+    rhs_ = rhs_elements_;
+    add_links();
+    return finish(!(same_link_stiffness && factorized_), std::chrono::steady_clock::now() - t0);
+  }
+
+  /// The kNd x kNd diagonal block of every node (zero-padded to 3 x 3), summed over the cells whose tag
+  /// passes `keep`, prescribed DOFs included: the "adjacent structure's stiffness" a penalty is scaled by.
+  template <class Keep>
+  std::vector<Mat33> nodal_stiffness(Keep&& keep) const {
+    std::vector<Mat33> out(static_cast<std::size_t>(p_.mesh.node_count()), Mat33::Zero());
+    cache_valid_ = false;
+    for_each_cell([&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t,
+                                                const std::array<int, NPC>& cell, const CellTag& tag) {
+      if (!keep(tag)) return;
+      typename ElementKernel<Kin, E>::Matrix k;
+      typename ElementKernel<Kin, E>::Vector f;
+      element_system<E>(cell, tag, k, f);
+      for (int a = 0; a < static_cast<int>(NPC); ++a)
+        out[cell[a]].template topLeftCorner<kNd, kNd>() += k.template block<kNd, kNd>(a * kNd, a * kNd);
+    });
+    return out;
   }
 
   /// Assemble stiffness values and right-hand side only (what solve() does first); for benchmarks and
@@ -128,6 +165,52 @@ class LinearStatic {
   std::vector<PointValues> centroid_values() const { return recover(true); }
 
  private:
+  /// Factorize (when asked), solve, recover reactions; `assembly` is the time already spent assembling.
+  template <class Duration>
+  const Solution& finish(bool refactor, Duration assembly) {
+    using clock        = std::chrono::steady_clock;
+    const auto seconds = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
+    auto t1            = clock::now();
+    if (dofs_.free_count > 0 && refactor) {
+      ++factorization_count_;
+      if (!(factorized_ = solver_->factorize(k_))) {
+        std::string where;
+        if (const int eq = solver_->failed_equation(); eq >= 0) where = " near " + describe_equation(eq);
+        throw SolveError(solver_->failure() + where +
+                         ": check that the constraints remove every rigid-body motion (axial translation; in "
+                         "3-DOF also rotation about the axis) and that no element is degenerate");
+      }
+    }
+    auto t2        = clock::now();
+    const VecX u_f = dofs_.free_count > 0 ? solver_->solve(rhs_) : VecX();
+    auto t3        = clock::now();
+    if (!u_f.allFinite()) throw SolveError("the solution has non-finite values (singular stiffness?)");
+    u_ = dofs_.prescribed;
+    for (std::size_t d = 0; d < dofs_.equation.size(); ++d)
+      if (dofs_.equation[d] >= 0) u_(static_cast<Eigen::Index>(d)) = u_f(dofs_.equation[d]);
+    reactions();
+    auto t4 = clock::now();
+    time_   = {std::chrono::duration<double>(assembly).count(), seconds(t1, t2), seconds(t2, t3),
+               seconds(t3, t4)};
+    return sol_;
+  }
+
+  /// Node links into the stiffness values and the right-hand side (after the element assembly).
+  void add_links() {
+    constexpr int n = 2 * kNd;
+    double* values  = k_.valuePtr();
+    for (std::size_t l = 0; l < links_.size(); ++l) {
+      const NodeLink& link = link_values_[l];
+      if (link.zero()) continue;
+      const Mat<n, n> k = link.template element_stiffness<kNd>();
+      const int* off    = link_offsets_.data() + l * (n * (n + 1) / 2);
+      for (int i = 0, c = 0; i < n; ++i)
+        for (int j = i; j < n; ++j, ++c)
+          if (off[c] >= 0) values[off[c]] += k(i, j);
+      add_element_rhs(links_[l], link.template element_load<kNd>(), [&](int i, int j) { return k(i, j); });
+    }
+  }
+
   // ---------------------------------------------------------------- element evaluation
   template <class E>
   struct Group;  // connectivity, tags and offsets of one element type
@@ -349,6 +432,16 @@ class LinearStatic {
       for (int a = 0; a < E::kNodes; ++a)
         for (int c = 0; c < kNd; ++c) internal(dofs_.dof(cell[a], c)) += fe(a * kNd + c);
     });
+    for (std::size_t l = 0; l < links_.size(); ++l) {  // internal force of a link: K u_e - f_e
+      const NodeLink& link = link_values_[l];
+      if (link.zero()) continue;
+      Vec<2 * kNd> ue;
+      for (int a = 0; a < 2; ++a)
+        for (int c = 0; c < kNd; ++c) ue(a * kNd + c) = u_(dofs_.dof(links_[l][a], c));
+      const Vec<2 * kNd> fe = link.template element_stiffness<kNd>() * ue - link.template element_load<kNd>();
+      for (int a = 0; a < 2; ++a)
+        for (int c = 0; c < kNd; ++c) internal(dofs_.dof(links_[l][a], c)) += fe(a * kNd + c);
+    }
     const int nn = p_.mesh.node_count();
     sol_.displacement.setZero(nn, 3);
     sol_.reaction.setZero(nn, 3);
@@ -513,6 +606,12 @@ class LinearStatic {
   SpMat k_;
   VecX rhs_, external_, u_;
   std::vector<int> cell_offsets_, tri_offsets_;
+  Connectivity<2> links_;
+  std::vector<NodeLink> link_values_;
+  std::vector<int> link_offsets_;
+  std::vector<double> k_elements_;  // element-only stiffness values (scenes with links)
+  VecX rhs_elements_;               // element-only right-hand side (scenes with links)
+  int factorization_count_        = 0;
   std::unique_ptr<Solver> solver_ = std::make_unique<Solver>();  // solvers are not movable
   bool factorized_                = false;                       // solver_ holds a factorization of k_
   Solution sol_;

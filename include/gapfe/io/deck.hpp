@@ -44,7 +44,8 @@ struct DeckOptions {
   std::string contact    = "saac";     ///< contact = saac | active-set | augmented-lagrangian (gap issue)
   double friction        = 0.0;        ///< friction = Coulomb coefficient mu >= 0 (gap issue)
   std::string slip       = "coulomb";  ///< slip = coulomb | extended (gap issue)
-  double gap_penalty     = 100.0;      ///< gap_penalty = closed-gap stiffness / adjacent stiffness
+  double gap_penalty     = 0.0;  ///< gap_penalty = closed-gap / adjacent stiffness (0: the policy's default)
+  int gap_direction      = 0;    ///< gap_direction = 0 (IJDIR per block, SAAC2) | 1 | 2 (SAAC's one LGAP)
   std::string plasticity = "tangent";  ///< plasticity = tangent | return-mapping (plasticity issue)
 
   /// Set one option from its text form; throws InputError naming the key and the accepted values.
@@ -76,19 +77,21 @@ struct DeckOptions {
     } else if (key == "bc_loads") {
       loads_per_radian = one_of({"total", "per-radian"}) == "per-radian";
     } else if (key == "contact") {
-      contact = one_of({"saac", "active-set", "augmented-lagrangian"});
+      contact = one_of({"saac", "active-set", "augmented-lagrangian", "none"});
     } else if (key == "friction") {
       friction = number(0.0);
     } else if (key == "slip") {
       slip = one_of({"coulomb", "extended"});
     } else if (key == "gap_penalty") {
-      gap_penalty = number(1e-300);
+      gap_penalty = number(0.0);
+    } else if (key == "gap_direction") {
+      gap_direction = std::stoi(one_of({"0", "1", "2"}));
     } else if (key == "plasticity") {
       plasticity = one_of({"tangent", "return-mapping"});
     } else {
       throw InputError("unknown option '" + key +
                        "' (known: format, element, solver, bc_loads, contact, friction, slip, gap_penalty, "
-                       "plasticity)");
+                       "gap_direction, plasticity)");
     }
   }
 };

@@ -9,11 +9,14 @@
 // load is a total ring force; each step adds the BC values, its inertia increments and its surface
 // load increments to the totals of the steps before (angular velocities add, so the centrifugal
 // load goes with the square of their sum); the temperature field acts from the first step on.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <string>
 #include <vector>
 
+#include "gapfe/contact/gap_pairs.hpp"
 #include "gapfe/io/deck.hpp"
 #include "gapfe/mesh/ij_grid.hpp"
 #include "gapfe/mesh/temperature.hpp"
@@ -45,6 +48,8 @@ struct DeckScene {
   VecX temperature;                        ///< nodal [deg]; empty: TREF everywhere
   double reference_temperature = 0;
   DeckNeeds needs;
+  GapLayout gaps;         ///< pairs of the material-2 elements (saac formats), soft corners
+  int gap_material = -1;  ///< index of deck material 2 in `materials` (gap elements), -1 without gaps
 
   /// Element number (0-based, grid numbering) of a mesh cell or triangle.
   std::vector<int> element_of_cell, element_of_triangle;
@@ -153,6 +158,12 @@ inline DeckScene build_scene(const Deck& d) {
     if (b.alpha_deg != 0)
       s.needs.theta.push_back("ALPHA = " + detail::number_text(b.alpha_deg) + " in " + b.ref.where());
   }
+  if (!s.needs.gaps.empty()) {  // gap elements: node pairs from the grid (contact/gap_pairs.hpp)
+    std::vector<char> is_gap(ne, 0);
+    for (std::size_t e = 0; e < ne; ++e) is_gap[e] = s.material_id[e] == 2;
+    s.gap_material = static_cast<int>(d.material(2) - d.materials.data());
+    s.gaps         = grid_gap_pairs(g, is_gap, s.ijdir, d.options.gap_direction);
+  }
   s.element_of_cell.resize(s.mesh.cells.size());
   s.element_of_triangle.resize(s.mesh.triangles.size());
   s.mesh.cell_tags.resize(s.mesh.cells.size());
@@ -233,6 +244,35 @@ inline DeckScene build_scene(const Deck& d) {
       s.needs.theta.push_back("angular acceleration ANGACC in the inertia card of a load block");
   }
   return s;
+}
+
+/// Loads a fraction `f` of the way from totals `a` to totals `b`: every load linear in f. Angular
+/// velocities enter squared (centrifugal load), so omega^2 is what is interpolated. `a` and `b` are two
+/// steps of one deck, so their conditions list the same nodes with the same codes.
+inline StepTotals interpolate(const StepTotals& a, const StepTotals& b, double f) {
+  StepTotals t = b;
+  for (std::size_t k = 0; k < t.conditions.size(); ++k)
+    for (int c = 0; c < 3; ++c)
+      t.conditions[k].value[c] =
+          a.conditions[k].value[c] + f * (b.conditions[k].value[c] - a.conditions[k].value[c]);
+  const auto lerp = [f](double x, double y) { return x + f * (y - x); };
+  const double wa = a.inertia.angular_velocity, wb = b.inertia.angular_velocity;
+  t.inertia.axial_acceleration   = lerp(a.inertia.axial_acceleration, b.inertia.axial_acceleration);
+  t.inertia.angular_acceleration = lerp(a.inertia.angular_acceleration, b.inertia.angular_acceleration);
+  t.inertia.angular_velocity =
+      std::copysign(std::sqrt(std::max(lerp(wa * wa, wb * wb), 0.0)), wb != 0 ? wb : wa);
+  std::map<std::pair<int, int>, EdgeLoad> edges;
+  for (const auto& l : b.edge_loads) edges[{l.node_m, l.node_n}] = l;
+  for (auto& [key, l] : edges) l.pressure *= f, l.shear *= f, l.transverse_shear *= f;
+  for (const auto& l : a.edge_loads) {
+    EdgeLoad& e = edges[{l.node_m, l.node_n}];
+    e.node_m = l.node_m, e.node_n = l.node_n;
+    e.pressure += (1 - f) * l.pressure, e.shear += (1 - f) * l.shear,
+        e.transverse_shear += (1 - f) * l.transverse_shear;
+  }
+  t.edge_loads.clear();
+  for (const auto& [key, l] : edges) t.edge_loads.push_back(l);
+  return t;
 }
 
 /// Loads in force after step `step` (1-based): the sum of the increments of steps 1..step.

@@ -1,0 +1,119 @@
+#pragma once
+// Gap elements and their node pairs (seed section 2.2-2.3, Eq. 1-7; THEORY.md 5.1).
+//
+// A gap element is a cell of soft material (material 2 in a deck) between two bodies. Its principal gap
+// direction (the seed's LGAP in SAAC, IJDIR per material block in SAAC2) says which corners face each
+// other across the gap. With the corners in the seed's order IX1..IX4 = (I, J), (I+1, J), (I+1, J+1),
+// (I, J+1):
+//   1: the gap runs along J and closes along I; pairs IX1 -> IX2 and IX4 -> IX3, mean-line ends
+//      A = (IX1 + IX4) / 2 and B = (IX2 + IX3) / 2 (Eq. 1-2);
+//   2: the gap runs along I and closes along J; pairs IX1 -> IX4 and IX2 -> IX3, A = (IX1 + IX2) / 2,
+//      B = (IX4 + IX3) / 2;
+//   0: none: the element keeps its soft stiffness throughout (SAAC2's corner elements).
+// The gap angle is beta = atan2(R_B - R_A, Z_B - Z_A) (Eq. 3, with atan2 for the quadrant), so the
+// closure direction N = (sin beta, cos beta) in (r, z) is the unit vector from A to B, T = (-cos beta,
+// sin beta) runs along the gap and S = e_theta (Eq. 5). A pair's gap is g = N . (x_b - x_a) + N . (u_b -
+// u_a) [length]: positive open, zero touching, negative overlapping. Beta stays at its initial value
+// (small displacements; the seed updates positions along N only, which is the same thing).
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "gapfe/core/error.hpp"
+#include "gapfe/core/types.hpp"
+#include "gapfe/mesh/ij_grid.hpp"
+
+namespace gapfe {
+
+struct GapPair {
+  int element = 0;                    ///< the gap element's number (0-based; a deck's element numbering)
+  int pair    = 0;                    ///< 0: the pair of the seed's contact state 2, 1: of state 3
+  int node_a = 0, node_b = 0;         ///< face A -> face B (0-based mesh nodes)
+  Vec2 normal        = Vec2::Zero();  ///< N = (sin beta, cos beta), closure direction from A to B
+  double initial_gap = 0;             ///< g0 = N . (x_b - x_a) [length], >= 0
+
+  /// Gap under the nodal displacements u_a, u_b (r, z components) [length].
+  double gap(const Vec2& u_a, const Vec2& u_b) const { return initial_gap + normal.dot(u_b - u_a); }
+  /// The gap angle beta of Eq. 3 [rad].
+  double beta() const { return std::atan2(normal(0), normal(1)); }
+};
+
+/// The two pairs of a gap element with corners `ix` in the seed's order and direction 1 or 2.
+inline std::array<GapPair, 2> gap_element_pairs(int element, const std::array<int, 4>& ix, int direction,
+                                                const std::vector<Vec2>& nodes) {
+  const std::string where = "gap element " + std::to_string(element + 1);
+  if (direction != 1 && direction != 2)
+    throw InputError(where + ": gap direction must be 1 (closure along I) or 2 (along J), got " +
+                     std::to_string(direction));
+  // (a, b) of each pair: face A is the IX1 side.
+  const std::array<std::array<int, 2>, 2> p = direction == 1
+                                                  ? std::array<std::array<int, 2>, 2>{{{0, 1}, {3, 2}}}
+                                                  : std::array<std::array<int, 2>, 2>{{{0, 3}, {1, 2}}};
+  const Vec2 a                              = 0.5 * (nodes[ix[p[0][0]]] + nodes[ix[p[1][0]]]);
+  const Vec2 b                              = 0.5 * (nodes[ix[p[0][1]]] + nodes[ix[p[1][1]]]);
+  const double length                       = (b - a).norm();
+  double size                               = 0;
+  for (int k = 0; k < 4; ++k) size = std::max(size, (nodes[ix[k]] - nodes[ix[(k + 1) % 4]]).norm());
+  if (!(length > 1e-14 * size))
+    throw InputError(where + ": the mean line from face A to face B has zero length, so the gap angle " +
+                     "(seed Eq. 3) is undefined");
+  const Vec2 normal = (b - a) / length;
+  std::array<GapPair, 2> out;
+  for (int k = 0; k < 2; ++k) {
+    GapPair& g = out[k];
+    g.element = element, g.pair = k, g.node_a = ix[p[k][0]], g.node_b = ix[p[k][1]], g.normal = normal;
+    g.initial_gap = normal.dot(nodes[g.node_b] - nodes[g.node_a]);
+    if (g.initial_gap < 0)
+      throw InputError(where + ": nodes " + std::to_string(g.node_a + 1) + " and " +
+                       std::to_string(g.node_b + 1) + " overlap by " + std::to_string(-g.initial_gap) +
+                       " along the closure direction; a gap must start open or touching");
+  }
+  return out;
+}
+
+/// The gap elements of an I-J grid and their pairs.
+struct GapLayout {
+  std::vector<GapPair> pairs;
+  std::vector<int> soft;       ///< gap elements without pairs (corners, IJDIR 0, triangles), 0-based
+  std::vector<int> direction;  ///< per grid cell: the direction used (0 for soft and structural cells)
+};
+
+/// Pairs of the grid cells with `is_gap`, each closing along `direction[cell]` (SAAC2's IJDIR), or along
+/// `global_direction` for all when it is 1 or 2 (SAAC's single LGAP). A gap cell with gap neighbours
+/// across both an I face and a J face is a corner (seed Figure 10) and stays soft, as do IJDIR = 0 and
+/// 3-corner cells.
+inline GapLayout grid_gap_pairs(const IJGrid& grid, const std::vector<char>& is_gap,
+                                const std::vector<int>& direction, int global_direction = 0) {
+  GapLayout out;
+  out.direction.assign(grid.cells.size(), 0);
+  std::vector<int> cell_at(static_cast<std::size_t>(grid.max_i) * grid.max_j, -1);
+  const auto at = [&](int i, int j) -> int {
+    if (i < 1 || j < 1 || i > grid.max_i || j > grid.max_j) return -1;
+    return cell_at[static_cast<std::size_t>(j - 1) * grid.max_i + (i - 1)];
+  };
+  for (std::size_t e = 0; e < grid.cells.size(); ++e)
+    if (is_gap[e])
+      cell_at[static_cast<std::size_t>(grid.cells[e].j - 1) * grid.max_i + (grid.cells[e].i - 1)] =
+          static_cast<int>(e);
+  for (std::size_t e = 0; e < grid.cells.size(); ++e) {
+    if (!is_gap[e]) continue;
+    const GridCell& c = grid.cells[e];
+    const int dir     = global_direction != 0 ? global_direction : direction[e];
+    const bool corner = global_direction == 0 && (at(c.i - 1, c.j) >= 0 || at(c.i + 1, c.j) >= 0) &&
+                        (at(c.i, c.j - 1) >= 0 || at(c.i, c.j + 1) >= 0);
+    if (dir == 0 || corner || c.corners != 4) {
+      out.soft.push_back(static_cast<int>(e));
+      continue;
+    }
+    // The seed's IX order by grid position, whatever the orientation of the mesh cell.
+    const std::array<int, 4> ix{grid.node(c.i, c.j), grid.node(c.i + 1, c.j), grid.node(c.i + 1, c.j + 1),
+                                grid.node(c.i, c.j + 1)};
+    for (const GapPair& p : gap_element_pairs(static_cast<int>(e), ix, dir, grid.nodes))
+      out.pairs.push_back(p);
+    out.direction[e] = dir;
+  }
+  return out;
+}
+
+}  // namespace gapfe

@@ -1,0 +1,193 @@
+#pragma once
+// Contact policies: how a load step treats the gap pairs (THEORY.md 5.3-5.5). A policy is a type with
+// a name, whether it acts on the pairs at all, its default penalty factor, and a step function that
+// drives a Stepper (driver/contact_static.hpp) from the accepted load factor to the step's end:
+//
+//   NoContact            gap elements keep their soft stiffness; no links, so a scene pays nothing.
+//   Saac                 the seed (section 2.2): solve the step, split it once at the smallest closure
+//                        factor, declare every overlapping pair closed, apply the rest; reopen pairs in
+//                        tension at the end of the step. Penalty 100 x the adjacent stiffness.
+//   ActiveSet            re-solve until no open pair overlaps and no closed pair pulls, splitting the
+//                        step at every status change, so closure loads are exact to round-off; the
+//                        closed pairs are penalty springs (constraint error ~ 1 / penalty factor).
+//   AugmentedLagrangian  ActiveSet with Uzawa multiplier updates at every solve, to a penetration
+//                        tolerance, with the moderate penalty 100 (capped at 1e6): exact without
+//                        ill-conditioning.
+//
+// A closed pair pushes its nodes apart along N with  P = lambda - k (g - g_ref)  [force, total ring,
+// compressive positive]: Saac has lambda = 0 and g_ref = the gap when the pair was declared closed (the
+// seed's penalty acts on displacement increments from then on, which freezes any gap or overlap left at
+// closure); the exact policies have g_ref = 0 (total gap form), and lambda is the Uzawa multiplier.
+#include <algorithm>
+#include <concepts>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "gapfe/core/error.hpp"
+
+namespace gapfe {
+
+namespace detail {
+
+/// What a policy may ask of the driver: the contract behind the ContactPolicy concept (declared only).
+struct StepperArchetype {
+  double load_factor() const;
+  int pair_count() const;
+  bool closed(int pair) const;
+  double gap(int pair) const;          ///< at the accepted state [length]
+  double force(int pair) const;        ///< at the accepted state [force]
+  double trial_gap(int pair) const;    ///< after the last solve
+  double trial_force(int pair) const;  ///< after the last solve
+  double gap_tolerance() const;        ///< below -this an open pair overlaps [length]
+  double force_tolerance(int pair) const;
+  void solve_at(double load_factor);
+  void settle_multipliers();
+  void close(int pair, double reference_gap);
+  void open(int pair);
+  void accept(double load_factor);
+  void count_split();
+  [[noreturn]] void fail(const std::string& why) const;
+};
+
+}  // namespace detail
+
+template <class P>
+concept ContactPolicy = requires {
+  { P::kName } -> std::convertible_to<std::string_view>;
+  { P::kContact } -> std::convertible_to<bool>;
+  { P::kDefaultPenalty } -> std::convertible_to<double>;
+  { P::kMaxPenalty } -> std::convertible_to<double>;
+}
+&&requires(detail::StepperArchetype& s, double t) {
+  P::step(s, t);
+};
+
+struct NoContact {
+  static constexpr std::string_view kName = "none";
+  static constexpr bool kContact          = false;
+  static constexpr double kDefaultPenalty = 0;
+  static constexpr double kMaxPenalty     = 0;
+  template <class S>
+  static void step(S& s, double t_end) {
+    s.solve_at(t_end);
+    s.accept(t_end);
+  }
+};
+
+struct Saac {
+  static constexpr std::string_view kName = "saac";
+  static constexpr bool kContact          = true;
+  static constexpr double kDefaultPenalty = 100;    // "about two orders of magnitude" (seed 2.2)
+  static constexpr double kMaxPenalty     = 1e300;  // the user's choice, however ill-conditioned
+  template <class S>
+  static void step(S& s, double t_end) {
+    const double t0 = s.load_factor();
+    s.solve_at(t_end);
+    // Closure factor of every overlapping open pair: f = g_start / (g_start - g_end) (THEORY.md 5.4).
+    std::vector<int> overlapping;
+    double f = 1;
+    for (int p = 0; p < s.pair_count(); ++p)
+      if (!s.closed(p) && s.trial_gap(p) < -s.gap_tolerance()) {
+        overlapping.push_back(p);
+        const double g0 = std::max(s.gap(p), 0.0), g1 = s.trial_gap(p);
+        f = std::min(f, g0 / (g0 - g1));
+      }
+    if (!overlapping.empty()) {
+      s.count_split();
+      const double t_split = t0 + f * (t_end - t0);
+      if (f > 0) {  // the step again at the reduced load (same stiffness), accepted as an increment
+        s.solve_at(t_split);
+        s.accept(t_split);
+      }
+      // The one-split assumption: every pair that overlapped at the full step closes now, at its gap
+      // of the reduced step (which the penalty then freezes).
+      for (const int p : overlapping) s.close(p, f > 0 ? s.trial_gap(p) : s.gap(p));
+      s.solve_at(t_end);  // the rest of the step, no further test
+    }
+    s.accept(t_end);
+    for (int p = 0; p < s.pair_count(); ++p)  // unloading: tension reopens for the next step
+      if (s.closed(p) && s.force(p) < -s.force_tolerance(p)) s.open(p);
+  }
+};
+
+namespace detail {
+
+/// ActiveSet and AugmentedLagrangian: event-driven. Solve to the step's end with the current statuses;
+/// if a pair would change status, interpolate (the response is linear while statuses hold) to the first
+/// change, accept that point, flip every pair changing there, and continue from it.
+template <bool kMultipliers, class S>
+void event_step(S& s, double t_end, int max_events) {
+  const auto solve = [&](double t) {
+    s.solve_at(t);
+    if constexpr (kMultipliers) s.settle_multipliers();
+  };
+  for (int event = 0; event <= max_events; ++event) {
+    const double t0 = s.load_factor();
+    solve(t_end);
+    double first = 2;
+    std::vector<std::pair<double, int>> change;  // (fraction of the interval, pair)
+    for (int p = 0; p < s.pair_count(); ++p) {
+      double f = 2;
+      if (!s.closed(p) && s.trial_gap(p) < -s.gap_tolerance()) {
+        const double g0 = std::max(s.gap(p), 0.0), g1 = s.trial_gap(p);
+        f = g0 / (g0 - g1);
+      } else if (s.closed(p) && s.trial_force(p) < -s.force_tolerance(p)) {
+        const double p0 = std::max(s.force(p), 0.0), p1 = s.trial_force(p);
+        f = p0 / (p0 - p1);
+      }
+      if (f <= 1) change.emplace_back(f, p), first = std::min(first, f);
+    }
+    if (change.empty()) {
+      s.accept(t_end);
+      return;
+    }
+    s.count_split();
+    const double t_event = t0 + first * (t_end - t0);
+    if (first > 0) {
+      solve(t_event);
+      s.accept(t_event);
+    }
+    // Pairs whose change falls within 1e-9 of the first go together (a uniform gap closes at once).
+    for (const auto& [f, p] : change)
+      if (f <= first + 1e-9) {
+        if (s.closed(p))
+          s.open(p);
+        else
+          s.close(p, 0.0);
+      }
+  }
+  s.fail("the contact status did not settle after " + std::to_string(max_events) +
+         " changes in the step to load factor " + std::to_string(t_end));
+}
+
+}  // namespace detail
+
+struct ActiveSet {
+  static constexpr std::string_view kName = "active-set";
+  static constexpr bool kContact          = true;
+  static constexpr double kDefaultPenalty = 1e4;  // constraint error ~1e-4 of the adjacent deformation
+  static constexpr double kMaxPenalty     = 1e300;
+  template <class S>
+  static void step(S& s, double t_end) {
+    detail::event_step<false>(s, t_end, 20 + 4 * s.pair_count());
+  }
+};
+
+struct AugmentedLagrangian {
+  static constexpr std::string_view kName = "augmented-lagrangian";
+  static constexpr bool kContact          = true;
+  static constexpr double kDefaultPenalty = 100;
+  // The multipliers make the constraint exact, so the penalty is only a convergence rate: above 1e6 it
+  // gains nothing and costs digits (the penalty sweep test: residuals grow ~kappa, LDL^T fails at 1e12).
+  static constexpr double kMaxPenalty = 1e6;
+  template <class S>
+  static void step(S& s, double t_end) {
+    detail::event_step<true>(s, t_end, 20 + 4 * s.pair_count());
+  }
+};
+
+static_assert(ContactPolicy<NoContact> && ContactPolicy<Saac> && ContactPolicy<ActiveSet> &&
+              ContactPolicy<AugmentedLagrangian>);
+
+}  // namespace gapfe
