@@ -1,11 +1,9 @@
-#!/ usr / bin / env python3
-""
-        "Write card decks (BRL-CR-670 Appendix A) column-exact, for the examples and the benchmarks.
+#!/usr/bin/env python3
+"""Write card decks (BRL-CR-670 Appendix A) column-exact, for the examples and the benchmarks.
 
-        python3 bench /
-        deckgen.py tube-- ni 301 --nj 167 >
-    tube.deck #thick tube,
-    2 * ni *nj DOFs python3 bench / deckgen.py examples #rewrites examples / decks/*.deck
+    python3 bench/deckgen.py tube --ni 301 --nj 167 > tube.deck    # thick tube, 2 ni nj DOFs
+    python3 bench/deckgen.py two-tubes --n 40 --nz 80 > tubes.deck  # two tubes across a radial gap
+    python3 bench/deckgen.py examples                               # rewrites examples/decks/*.deck
 
 Each card helper returns one 80-column line; the field widths are the seed's formats.
 """
@@ -41,7 +39,7 @@ def segment(points, kind):
     for k in range(3):
         if k < len(points):
             pi, pj, r, z = points[k]
-            line += i(pi, 3) + i(pj, 3) + f(r, 8, 3) + f(z, 8, 3)
+            line += i(pi, 3) + i(pj, 3) + f(r, 8) + f(z, 8)  # explicit point: any decimals fit
         else:
             line += " " * 22
     return line + i(kind, 5)
@@ -132,26 +130,66 @@ def helical_sleeve_deck():
     return "\n".join(lines) + "\n"
 
 
-def gap_body_deck():
-    """Two concentric tubes, inner 50 < r < 60 and outer 60.1 < r < 80, with a layer of gap elements
-    (material 2, IJDIR = 1: closure along I) across the 0.1 radial gap; internal pressure, plane strain.
-    A SAAC deck (yield cards, blank = elastic); `gapfe mesh` until gap elements land."""
-    ni, nj = 8, 5
-    h = 20.0
+def two_tubes_deck(n=40, nz=80, a=1.0, b=1.5, gap=5e-4, c=2.0, h=None, p=100.0, steps=10, contact="saac",
+                   extension=()):
+    """Two tubes across a radial gap (THEORY.md V5, plane strain): inner a..b and outer b + gap..c, n x nz
+    cells each, one column of gap elements (material 2, IJDIR = 1) between them, bore pressure ramped to
+    p in `steps` equal steps (INCF = 0). E = 200000, nu = 0.3; the gap material is 1e-9 as stiff.
+    Grid: I = 1..2n + 2 across, J = 1..nz + 1 up; h defaults to square cells of the inner tube."""
+    h = h if h is not None else (b - a) * nz / n
+    ni, nj = 2 * n + 2, nz + 1
     node = lambda I, J: (J - 1) * ni + I
-    rs = [50.0, 55.0, 60.0, 60.1, 65.0, 70.0, 75.0, 80.0]
-    lines = ["$ Two tubes across a 0.1 radial gap: material 1 inner tube, 2 gap elements, 3 outer tube",
-             "TWO TUBES ACROSS A 0.1 RADIAL GAP, INTERNAL PRESSURE 100",
-             control(nummat=3, numpc=nj - 1, nlinc=10), mesh_control(ni, nj, 2 + 2 * (ni - 1), 2, 3)]
-    lines += [segment([(I, 1, rs[I - 1], 0.0), (I + 1, 1, rs[I], 0.0)], 1) for I in range(1, ni)]
-    lines += [segment([(I, nj, rs[I - 1], h), (I + 1, nj, rs[I], h)], 1) for I in range(1, ni)]
-    lines += [segment([(1, 1, rs[0], 0.0), (1, nj, rs[0], h)], 1), segment([(ni, 1, rs[-1], 0.0), (ni, nj, rs[-1], h)], 1)]
-    lines += [bc(1, ni, 1, 1, 2), bc(1, ni, nj, nj, 2), block(1, 1, 3, 1, nj), block(2, 3, 4, 1, nj, ijdir=1),
-              block(3, 4, ni, 1, nj)]
+    lines = [f"$ contact = {contact}"] + [f"$ {e}" for e in extension]
+    lines += [f"TWO TUBES {a:g}-{b:g} AND {b + gap:g}-{c:g}, GAP {gap:g}, PRESSURE {p:g} IN {steps} STEPS",
+              control(nummat=2, numpc=nz, nlinc=steps, incf=0), mesh_control(ni, nj, 8, 1, 3),
+              segment([(1, 1, a, 0.0), (n + 1, 1, b, 0.0)], 1), segment([(n + 2, 1, b + gap, 0.0), (ni, 1, c, 0.0)], 1),
+              segment([(1, nj, a, h), (n + 1, nj, b, h)], 1), segment([(n + 2, nj, b + gap, h), (ni, nj, c, h)], 1),
+              segment([(1, 1, a, 0.0), (1, nj, a, h)], 1), segment([(n + 1, 1, b, 0.0), (n + 1, nj, b, h)], 1),
+              segment([(n + 2, 1, b + gap, 0.0), (n + 2, nj, b + gap, h)], 1), segment([(ni, 1, c, 0.0), (ni, nj, c, h)], 1),
+              bc(1, ni, 1, nj, 2), block(1, 1, n + 1, 1, nj), block(2, n + 1, n + 2, 1, nj, ijdir=1),
+              block(1, n + 2, ni, 1, nj)]
     lines += material(1, [isotropic(200000.0, 0.3)])
-    lines += material(2, [isotropic(1.0, 0.0)])
-    lines += material(3, [isotropic(200000.0, 0.3)])
-    lines += [edge(node(1, J + 1), node(1, J), 10.0) for J in range(1, nj)]
+    lines += material(2, [isotropic(200000.0e-9, 0.0)])
+    lines += [edge(node(1, J + 1), node(1, J), p / steps) for J in range(1, nj)]
+    return "\n".join(lines) + "\n"
+
+
+def projectile_deck(steps=10, g_load=20000.0):
+    """A projectile (mm, t, s, N, MPa): a steel cup (base 0 < z < 20, wall 30 < r < 40 up to z = 120)
+    holding a separate filler insert (r < 29.9, 20.1 < z < 120; E = 3000, nu = 0.4, like a cast
+    explosive) across a radial gap of 0.1 (gap elements closing along I) and an axial gap of 0.1 (closing
+    along J), with the corner gap element where they meet. Setback: axial acceleration g_load x g, and
+    the base pressure that drives it (total mass x acceleration / base area), both ramped in `steps`.
+    The insert falls onto the base first, then bulges under its own weight and closes the radial gap
+    from the bottom up. u_z = 0 at one node (the loads balance, so its reaction is ~0)."""
+    r_in = [0.0, 5.0, 10.0, 15.0, 20.0, 25.0, 29.9]
+    rs = r_in + [30.0, 35.0, 40.0]
+    zs = [0.0, 10.0, 20.0, 20.1] + [20.0 + 10.0 * k for k in range(1, 11)]
+    ni, nj = len(rs), len(zs)
+    node = lambda I, J: (J - 1) * ni + I
+    steel, filler = 7.85e-9, 1.8e-9
+    accel = g_load * 9810.0  # mm/s^2
+    mass = steel * math.pi * (40.0 ** 2 * 20.0 + (40.0 ** 2 - 30.0 ** 2) * 100.0) + filler * math.pi * 29.9 ** 2 * 99.9
+    p_base = mass * accel / (math.pi * 40.0 ** 2)
+    segs = []
+    for J, z in enumerate(zs, start=1):
+        segs += [segment([(1, J, 0.0, z), (7, J, 29.9, z)], 1), segment([(7, J, 29.9, z), (8, J, 30.0, z)], 1),
+                 segment([(8, J, 30.0, z), (10, J, 40.0, z)], 1)]
+    lines = ["$ contact = augmented-lagrangian",
+             "$ Projectile: 1 steel cup, 2 gap elements (IJDIR 2 under the insert, 1 beside it), 3 filler insert",
+             f"PROJECTILE CUP AND FILLER, SETBACK {g_load:g} G, BASE PRESSURE {p_base:.1f}",
+             control(nummat=3, numpc=ni - 1, inert=1, nlinc=steps, inci=0, incf=0),
+             mesh_control(ni, nj, len(segs), 1, 5)] + segs
+    lines += [bc(ni, ni, nj, nj, 2),
+              block(1, 1, ni, 1, 3), block(1, 8, ni, 3, nj),      # steel base and wall
+              block(2, 1, 8, 3, 4, ijdir=2),                      # axial gap row (and the corner)
+              block(2, 7, 8, 4, nj, ijdir=1),                     # radial gap column
+              block(3, 1, 7, 4, nj)]                              # filler
+    lines += material(1, [isotropic(200000.0, 0.3)], density=steel)
+    lines += material(2, [isotropic(0.3, 0.0)])
+    lines += material(3, [isotropic(3000.0, 0.4)], density=filler)
+    lines += [f(accel / steps, 10) + f(0.0, 10) + f(0.0, 10)]
+    lines += [edge(node(I, 1), node(I + 1, 1), p_base / steps) for I in range(1, ni)]
     return "\n".join(lines) + "\n"
 
 
@@ -162,16 +200,25 @@ def main():
     t.add_argument("--ni", type=int, required=True)
     t.add_argument("--nj", type=int, required=True)
     t.add_argument("--nodal", action="store_true", help="pressure as BC-card ring forces (for > 99999 nodes)")
+    tt = sub.add_parser("two-tubes")
+    tt.add_argument("--n", type=int, default=40)
+    tt.add_argument("--nz", type=int, default=80)
+    tt.add_argument("--steps", type=int, default=10)
+    tt.add_argument("--contact", default="saac")
     sub.add_parser("examples")
     args = ap.parse_args()
     if args.what == "tube":
         print(tube_deck(args.ni, args.nj, nodal=args.nodal), end="")
+    elif args.what == "two-tubes":
+        print(two_tubes_deck(args.n, args.nz, steps=args.steps, contact=args.contact), end="")
     else:
         out = pathlib.Path(__file__).resolve().parent.parent / "examples" / "decks"
         out.mkdir(exist_ok=True)
         (out / "thick_tube.deck").write_text(tube_deck(9, 3, h=10.0))
         (out / "helical_sleeve.deck").write_text(helical_sleeve_deck())
-        (out / "gap_body.deck").write_text(gap_body_deck())
+        (out / "two_tubes.deck").write_text(two_tubes_deck(n=20, nz=2, a=50.0, b=75.0, gap=0.02, c=100.0,
+                                                           steps=20, contact="active-set"))
+        (out / "projectile.deck").write_text(projectile_deck())
 
 
 if __name__ == "__main__":

@@ -129,15 +129,47 @@ void describe(std::ostream& out, const Deck& d, const DeckScene& s) {
   out << "\n";
 }
 
-/// Wall-clock seconds of a run's phases after meshing (read and mesh are timed in execute()).
+/// Wall-clock seconds of a run's phases after meshing (read and mesh are timed in execute()), and the
+/// contact work of a gap deck.
 struct RunTimes {
   double assemble = 0, factorize = 0, solve = 0, write = 0;
+  ContactCounters contact;
+  int increments = 0, closed = 0, pairs = 0;
+  double penalty = 0;
 };
+
+template <class M, ContactPolicy P>
+void run_contact(const Deck& d, const DeckScene& s, const std::string& dir, std::ostream& err, bool progress,
+                 RunTimes& times) {
+  StepFiles files(dir, s);
+  GapFile gaps(dir, s);
+  run_deck_contact<M, P>(d, s, d.options.gap_penalty, [&](int step, double inc, const ContactStatic<M, P>& c) {
+    const auto& t = c.fe().timings();
+    times.assemble += t.assemble, times.factorize += t.factorize, times.solve += t.solve + t.reactions;
+    if (!std::isfinite(c.fe().solution().residual) || !c.fe().solution().displacement.allFinite())
+      throw SolveError("load step " + std::to_string(step) + ": the solution is not finite");
+    const auto start = Clock::now();
+    files.write(step, inc, c.fe(), gaps.write(step, inc, c));
+    times.write += since(start);
+    times.contact = c.counters(), ++times.increments, times.penalty = c.penalty_factor();
+    times.pairs = static_cast<int>(c.pairs().size()), times.closed = 0;
+    for (const auto& st : c.states()) times.closed += st.closed;
+    if (progress) err << "\rstep " << step << "/" << d.steps() << std::flush;
+  });
+  if (progress) err << "\r" << std::string(32, ' ') << "\r" << std::flush;
+}
 
 template <class Kin, class Elem, class Solver>
 void run_variant(const Deck& d, const DeckScene& s, const std::string& dir, std::ostream& err, bool progress,
                  RunTimes& times) {
   using M = Model<Kin, Elem, Orthotropic, Solver>;
+  if (!s.needs.gaps.empty()) {  // the contact policy of the deck (extension or --contact)
+    const std::string& c = d.options.contact;
+    if (c == "saac") return run_contact<M, Saac>(d, s, dir, err, progress, times);
+    if (c == "active-set") return run_contact<M, ActiveSet>(d, s, dir, err, progress, times);
+    if (c == "augmented-lagrangian") return run_contact<M, AugmentedLagrangian>(d, s, dir, err, progress, times);
+    return run_contact<M, NoContact>(d, s, dir, err, progress, times);
+  }
   StepFiles files(dir, s);
   run_deck<M>(d, s, [&](int step, double inc, const LinearStatic<M>& fe) {
     const auto& t = fe.timings();
@@ -185,8 +217,14 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) 
   std::string why;
   const std::string variant = pick_variant(s.needs, a.variant, why);
   log << "variant: " << variant << " (" << why << ")\n";
-  if (!s.needs.gaps.empty())
-    log << "  gaps: " << s.needs.gaps.front() << (s.needs.gaps.size() > 1 ? " and more" : "") << "\n";
+  if (!s.needs.gaps.empty()) {
+    log << "  gaps: " << s.needs.gaps.front() << (s.needs.gaps.size() > 1 ? " and more" : "") << "; "
+        << s.gaps.pairs.size() << " node pairs, " << s.gaps.soft.size()
+        << " gap element(s) soft throughout (corners, IJDIR 0)\n"
+        << "  contact: " << d.options.contact
+        << (d.options.gap_direction ? "; one gap direction for all (SAAC's LGAP = " + std::to_string(d.options.gap_direction) + ")" : "")
+        << "\n";
+  }
   if (!s.needs.plasticity.empty()) log << "  plasticity: " << s.needs.plasticity.front() << "\n";
 
   if (a.command == "info") return ok;
@@ -196,11 +234,6 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) 
     log << "wrote " << a.out << "/mesh.svg, mesh_nodes.csv, mesh_elements.csv, mesh.vtu\n";
     return ok;
   }
-  if (!s.needs.gaps.empty())
-    throw InputError(
-        "this deck has gap elements (" + s.needs.gaps.front() +
-        "); gap elements are not in this version of gapfe yet: `gapfe mesh` shows the mesh, or read "
-        "the deck with --format elastic to treat material 2 as an ordinary material");
   if (!s.needs.plasticity.empty())
     throw InputError(
         "this deck asks for plasticity (" + s.needs.plasticity.front() +
@@ -230,8 +263,14 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) 
   const double setup = since(t0) - times.assemble - times.factorize - times.solve - times.write;
   log << "time [s]: read " << t_read << ", mesh " << t_mesh << ", setup " << setup << ", assemble "
       << times.assemble << ", factorize " << times.factorize << ", solve " << times.solve << ", write "
-      << times.write << "\n"
-      << "wrote " << a.out << "/nodes.csv, elements.csv, result.pvd\n";
+      << times.write << "\n";
+  if (!s.needs.gaps.empty())
+    log << "contact: " << times.increments << " increments (" << times.contact.splits << " split points), "
+        << times.contact.solves << " linear solves, " << times.contact.factorizations << " factorizations, "
+        << times.contact.multiplier_updates << " multiplier updates; penalty " << times.penalty
+        << " x adjacent; " << times.closed << " of " << times.pairs << " pairs closed at the end\n";
+  log << "wrote " << a.out << "/nodes.csv, elements.csv" << (s.needs.gaps.empty() ? "" : ", gaps.csv")
+      << ", result.pvd\n";
   return ok;
 }
 

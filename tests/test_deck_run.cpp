@@ -145,13 +145,55 @@ TEST_CASE("The runner picks the smallest variant and says why; a forced smaller 
                           scratch("refuse").string(), "--variant", "saas"},
                          out3, err3) == gapfe::cli::input);
   CHECK(err3.str().find("--variant saas cannot represent this deck") != std::string::npos);
-  // Gap decks mesh (and say what they need) but do not run yet.
+  // Gap decks say what they need: pairs, the soft corner, the policy.
   std::ostringstream out4, err4;
   CHECK(gapfe::cli::main(
-            {"mesh", (kExamples / "gap_body.deck").string(), "--out", scratch("gap_mesh").string()}, out4,
+            {"mesh", (kExamples / "projectile.deck").string(), "--out", scratch("gap_mesh").string()}, out4,
             err4) == 0);
   CHECK(fs::exists(scratch("gap_mesh") / "mesh.svg"));
   CHECK(out4.str().find("gaps: material 2") != std::string::npos);
+  CHECK(out4.str().find("32 node pairs, 1 gap element(s) soft throughout") != std::string::npos);
+}
+
+TEST_CASE("Two-tube gap deck: closure pressure from gaps.csv; SAAC (one LGAP) equals SAAC2 (IJDIR per block)") {
+  // examples/decks/two_tubes.deck: a = 50, b = 75, gap 0.02, c = 100, E = 200000, nu = 0.3, plane strain,
+  // bore pressure 100 in 20 steps. Closure (THEORY.md V5, plane strain): 36.63.
+  const double a = 50, b = 75, delta = 0.02, E = 200000, nu = 0.3;
+  const double pc = delta * E * (b * b - a * a) / (2 * a * a * b * (1 - nu * nu));
+  for (const char* policy : {"saac", "active-set", "augmented-lagrangian"}) {
+    CAPTURE(policy);
+    const fs::path out  = run_deck_file(kExamples / "two_tubes.deck", std::string("tubes_") + policy,
+                                        {"--contact", policy});
+    std::ifstream in(out / "gaps.csv");
+    std::string header, line;
+    std::getline(in, header);
+    CHECK(header == "step,inc,element,pair,status,gap,f_n,f_t");
+    // The closure load: the last increment with every pair open, just before the first closed row.
+    double last_open = 0, closed_at = -1;
+    while (std::getline(in, line) && closed_at < 0) {
+      std::stringstream s(line);
+      std::vector<std::string> f;
+      for (std::string v; std::getline(s, v, ',');) f.push_back(v);
+      REQUIRE(f.size() == 8);
+      if (f[4] == "closed")
+        closed_at = last_open;
+      else
+        last_open = std::stod(f[1]);
+    }
+    const double p_closure = closed_at / 20 * 100;
+    CHECK(std::abs(p_closure - pc) / pc < 5e-3);  // 20 legacy elements across each tube
+    if (std::string(policy) == "active-set") {
+      const fs::path saac = run_deck_file(kExamples / "two_tubes.deck", "tubes_lgap",
+                                          {"--contact", policy, "--set", "gap_direction=1"});
+      const auto per_block = read_csv(out / "nodes.csv"), global = read_csv(saac / "nodes.csv");
+      REQUIRE(per_block.size() == global.size());
+      double worst = 0, largest = 0;
+      for (std::size_t k = 0; k < global.size(); ++k)
+        worst = std::max(worst, std::abs(per_block[k].at("u_r") - global[k].at("u_r"))),
+        largest = std::max(largest, std::abs(global[k].at("u_r")));
+      CHECK(worst <= 1e-12 * largest);
+    }
+  }
 }
 
 TEST_CASE("Load steps: a block given once (INCF = 0) ramps uniformly; per-step blocks add up") {

@@ -2,7 +2,9 @@
 // What `gapfe run` and `gapfe mesh` leave in their output directory (the deck issue's contract):
 //  * nodes.csv     step,inc,node,i,j,r,z,u_r,u_z,u_t
 //  * elements.csv  step,inc,element,i,j,material,r,z,s_rr,s_zz,s_tt,s_rz,s_rt,s_zt,eqps (centroids)
-//  * result.pvd    one step_NNNN.vtu per completed step, for ParaView
+//  * gaps.csv      step,inc,element,pair,status,gap,f_n,f_t per gap node pair (decks with gap elements)
+//  * result.pvd    one step_NNNN.vtu per completed step (step_NNNN_split_K.vtu at the points where a
+//                  contact policy split the step), for ParaView
 //  * mesh.svg, mesh_nodes.csv, mesh_elements.csv, mesh.vtu (gapfe mesh: the grid with its numbers)
 // One header line per CSV, one block of rows per completed step, steps from 1; `inc` is the number
 // of load increments applied so far. Node and element numbers are the deck's (1-based). Stresses in
@@ -15,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "gapfe/driver/contact_static.hpp"
 #include "gapfe/io/deck_scene.hpp"
 #include "gapfe/io/vtu_writer.hpp"
 
@@ -60,8 +63,9 @@ class StepFiles {
     elements_ << "step,inc,element,i,j,material,r,z,s_rr,s_zz,s_tt,s_rz,s_rt,s_zt,eqps\n";
   }
 
+  /// One increment; `extra_cells` are more VTU cell arrays (the gap fields of GapFile).
   template <class M>
-  void write(int step, double inc, const LinearStatic<M>& fe) {
+  void write(int step, double inc, const LinearStatic<M>& fe, std::vector<VtuField> extra_cells = {}) {
     const IJGrid& g = scene_.grid;
     const auto& u   = fe.solution().displacement;
     std::string prefix;
@@ -103,14 +107,19 @@ class StepFiles {
     elements_.flush();
     if (!nodes_ || !elements_) throw InputError("error while writing the CSV files in " + dir_);
 
-    char name[32];
-    std::snprintf(name, sizeof name, "step_%04d.vtu", step);
+    char name[48];
+    split_ = step == last_step_ ? split_ + 1 : 0, last_step_ = step;
+    if (inc < step - 1e-12)  // a split point of a contact step; the step's own file comes last
+      std::snprintf(name, sizeof name, "step_%04d_split_%d.vtu", step, split_ + 1);
+    else
+      std::snprintf(name, sizeof name, "step_%04d.vtu", step);
     std::vector<VtuField> point{{"displacement", 3, {}}, {"reaction", 3, {}}};
     for (int n = 0; n < g.node_count(); ++n)
       for (int c = 0; c < 3; ++c)
         point[0].values.push_back(u(n, c)), point[1].values.push_back(fe.solution().reaction(n, c));
     std::vector<VtuField> cell = detail::element_ids(scene_);
     cell.insert(cell.begin(), VtuField{"stress", 6, std::move(stress)});
+    for (auto& f : extra_cells) cell.push_back(std::move(f));
     write_vtu(dir_ + "/" + name, g.nodes, detail::grid_cells(g), point, cell);
     steps_.emplace_back(inc, name);
     write_pvd(dir_ + "/result.pvd", steps_);
@@ -121,6 +130,48 @@ class StepFiles {
   const DeckScene& scene_;
   std::ofstream nodes_, elements_;
   std::vector<std::pair<double, std::string>> steps_;
+  int last_step_ = 0, split_ = 0;
+};
+
+/// gaps.csv: one row per gap node pair per increment; status open | closed, gap [length] (negative:
+/// overlap), f_n the normal force (total ring force, compressive positive), f_t the tangential force
+/// (0: frictionless). Element numbers are the deck's, pair 1 | 2 the seed's contact states 2 | 3.
+class GapFile {
+ public:
+  GapFile(const std::string& dir, const DeckScene& scene) : scene_(scene) {
+    out_ = detail::open_output(dir + "/gaps.csv");
+    out_ << "step,inc,element,pair,status,gap,f_n,f_t\n";
+  }
+  /// Writes the rows and returns the VTU cell arrays: gap_state (0 structural, -1 a gap element that
+  /// stays soft, else the seed's contact state 1-4) and gap_size (smallest pair gap, 0 elsewhere).
+  template <class C>
+  std::vector<VtuField> write(int step, double inc, const C& contact) {
+    const std::size_t ne = scene_.grid.cells.size();
+    VtuField state{"gap_state", 1, std::vector<double>(ne, 0.0), true}, size{"gap_size", 1, std::vector<double>(ne, 0.0)};
+    for (const int e : scene_.gaps.soft) state.values[static_cast<std::size_t>(e)] = -1;
+    std::string s;
+    for (std::size_t q = 0; q < contact.pairs().size(); ++q) {
+      const GapPair& p     = contact.pairs()[q];
+      const PairState& st  = contact.states()[q];
+      const std::size_t e  = static_cast<std::size_t>(p.element);
+      detail::append_number(s, static_cast<long long>(step)), s += ',';
+      detail::csv_number(s, inc);
+      detail::append_number(s, static_cast<long long>(p.element + 1)), s += ',';
+      detail::append_number(s, static_cast<long long>(p.pair + 1)), s += st.closed ? ",closed," : ",open,";
+      detail::csv_number(s, st.gap), detail::csv_number(s, st.normal_force), s += "0\n";
+      if (state.values[e] == 0) state.values[e] = 1, size.values[e] = st.gap;
+      size.values[e] = std::min(size.values[e], st.gap);
+      if (st.closed) state.values[e] += p.pair == 0 ? 1 : 2;  // 1 none, 2 first, 3 second, 4 both
+    }
+    out_ << s;
+    out_.flush();
+    if (!out_) throw InputError("error while writing gaps.csv");
+    return {std::move(state), std::move(size)};
+  }
+
+ private:
+  const DeckScene& scene_;
+  std::ofstream out_;
 };
 
 /// `gapfe mesh`: mesh.svg (the grid with node and element numbers, like the seed's plot option),
