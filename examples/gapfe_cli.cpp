@@ -143,19 +143,20 @@ void run_contact(const Deck& d, const DeckScene& s, const std::string& dir, std:
                  RunTimes& times) {
   StepFiles files(dir, s);
   GapFile gaps(dir, s);
-  run_deck_contact<M, P>(d, s, d.options.gap_penalty, [&](int step, double inc, const ContactStatic<M, P>& c) {
-    const auto& t = c.fe().timings();
-    times.assemble += t.assemble, times.factorize += t.factorize, times.solve += t.solve + t.reactions;
-    if (!std::isfinite(c.fe().solution().residual) || !c.fe().solution().displacement.allFinite())
-      throw SolveError("load step " + std::to_string(step) + ": the solution is not finite");
-    const auto start = Clock::now();
-    files.write(step, inc, c.fe(), gaps.write(step, inc, c));
-    times.write += since(start);
-    times.contact = c.counters(), ++times.increments, times.penalty = c.penalty_factor();
-    times.pairs = static_cast<int>(c.pairs().size()), times.closed = 0;
-    for (const auto& st : c.states()) times.closed += st.closed;
-    if (progress) err << "\rstep " << step << "/" << d.steps() << std::flush;
-  });
+  run_deck_contact<M, P>(
+      d, s, d.options.gap_penalty, [&](int step, double inc, const ContactStatic<M, P>& c) {
+        const auto& t = c.fe().timings();
+        times.assemble += t.assemble, times.factorize += t.factorize, times.solve += t.solve + t.reactions;
+        if (!std::isfinite(c.fe().solution().residual) || !c.fe().solution().displacement.allFinite())
+          throw SolveError("load step " + std::to_string(step) + ": the solution is not finite");
+        const auto start = Clock::now();
+        files.write(step, inc, c.fe(), gaps.write(step, inc, c));
+        times.write += since(start);
+        times.contact = c.counters(), ++times.increments, times.penalty = c.penalty_factor();
+        times.pairs = static_cast<int>(c.pairs().size()), times.closed = 0;
+        for (const auto& st : c.states()) times.closed += st.closed;
+        if (progress) err << "\rstep " << step << "/" << d.steps() << std::flush;
+      });
   if (progress) err << "\r" << std::string(32, ' ') << "\r" << std::flush;
 }
 
@@ -167,7 +168,8 @@ void run_variant(const Deck& d, const DeckScene& s, const std::string& dir, std:
     const std::string& c = d.options.contact;
     if (c == "saac") return run_contact<M, Saac>(d, s, dir, err, progress, times);
     if (c == "active-set") return run_contact<M, ActiveSet>(d, s, dir, err, progress, times);
-    if (c == "augmented-lagrangian") return run_contact<M, AugmentedLagrangian>(d, s, dir, err, progress, times);
+    if (c == "augmented-lagrangian")
+      return run_contact<M, AugmentedLagrangian>(d, s, dir, err, progress, times);
     return run_contact<M, NoContact>(d, s, dir, err, progress, times);
   }
   StepFiles files(dir, s);
@@ -222,7 +224,9 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) 
         << s.gaps.pairs.size() << " node pairs, " << s.gaps.soft.size()
         << " gap element(s) soft throughout (corners, IJDIR 0)\n"
         << "  contact: " << d.options.contact
-        << (d.options.gap_direction ? "; one gap direction for all (SAAC's LGAP = " + std::to_string(d.options.gap_direction) + ")" : "")
+        << (d.options.gap_direction ? "; one gap direction for all (SAAC's LGAP = " +
+                                          std::to_string(d.options.gap_direction) + ")"
+                                    : "")
         << "\n";
   }
   if (!s.needs.plasticity.empty()) log << "  plasticity: " << s.needs.plasticity.front() << "\n";

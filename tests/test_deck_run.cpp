@@ -155,15 +155,16 @@ TEST_CASE("The runner picks the smallest variant and says why; a forced smaller 
   CHECK(out4.str().find("32 node pairs, 1 gap element(s) soft throughout") != std::string::npos);
 }
 
-TEST_CASE("Two-tube gap deck: closure pressure from gaps.csv; SAAC (one LGAP) equals SAAC2 (IJDIR per block)") {
+TEST_CASE(
+    "Two-tube gap deck: closure pressure from gaps.csv; SAAC (one LGAP) equals SAAC2 (IJDIR per block)") {
   // examples/decks/two_tubes.deck: a = 50, b = 75, gap 0.02, c = 100, E = 200000, nu = 0.3, plane strain,
   // bore pressure 100 in 20 steps. Closure (THEORY.md V5, plane strain): 36.63.
   const double a = 50, b = 75, delta = 0.02, E = 200000, nu = 0.3;
   const double pc = delta * E * (b * b - a * a) / (2 * a * a * b * (1 - nu * nu));
   for (const char* policy : {"saac", "active-set", "augmented-lagrangian"}) {
     CAPTURE(policy);
-    const fs::path out  = run_deck_file(kExamples / "two_tubes.deck", std::string("tubes_") + policy,
-                                        {"--contact", policy});
+    const fs::path out =
+        run_deck_file(kExamples / "two_tubes.deck", std::string("tubes_") + policy, {"--contact", policy});
     std::ifstream in(out / "gaps.csv");
     std::string header, line;
     std::getline(in, header);
@@ -183,13 +184,13 @@ TEST_CASE("Two-tube gap deck: closure pressure from gaps.csv; SAAC (one LGAP) eq
     const double p_closure = closed_at / 20 * 100;
     CHECK(std::abs(p_closure - pc) / pc < 5e-3);  // 20 legacy elements across each tube
     if (std::string(policy) == "active-set") {
-      const fs::path saac = run_deck_file(kExamples / "two_tubes.deck", "tubes_lgap",
-                                          {"--contact", policy, "--set", "gap_direction=1"});
+      const fs::path saac  = run_deck_file(kExamples / "two_tubes.deck", "tubes_lgap",
+                                           {"--contact", policy, "--set", "gap_direction=1"});
       const auto per_block = read_csv(out / "nodes.csv"), global = read_csv(saac / "nodes.csv");
       REQUIRE(per_block.size() == global.size());
       double worst = 0, largest = 0;
       for (std::size_t k = 0; k < global.size(); ++k)
-        worst = std::max(worst, std::abs(per_block[k].at("u_r") - global[k].at("u_r"))),
+        worst   = std::max(worst, std::abs(per_block[k].at("u_r") - global[k].at("u_r"))),
         largest = std::max(largest, std::abs(global[k].at("u_r")));
       CHECK(worst <= 1e-12 * largest);
     }

@@ -147,13 +147,14 @@ class GapFile {
   template <class C>
   std::vector<VtuField> write(int step, double inc, const C& contact) {
     const std::size_t ne = scene_.grid.cells.size();
-    VtuField state{"gap_state", 1, std::vector<double>(ne, 0.0), true}, size{"gap_size", 1, std::vector<double>(ne, 0.0)};
+    VtuField state{"gap_state", 1, std::vector<double>(ne, 0.0), true},
+        size{"gap_size", 1, std::vector<double>(ne, 0.0)};
     for (const int e : scene_.gaps.soft) state.values[static_cast<std::size_t>(e)] = -1;
     std::string s;
     for (std::size_t q = 0; q < contact.pairs().size(); ++q) {
-      const GapPair& p     = contact.pairs()[q];
-      const PairState& st  = contact.states()[q];
-      const std::size_t e  = static_cast<std::size_t>(p.element);
+      const GapPair& p    = contact.pairs()[q];
+      const PairState& st = contact.states()[q];
+      const std::size_t e = static_cast<std::size_t>(p.element);
       detail::append_number(s, static_cast<long long>(step)), s += ',';
       detail::csv_number(s, inc);
       detail::append_number(s, static_cast<long long>(p.element + 1)), s += ',';
