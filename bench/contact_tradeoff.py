@@ -49,9 +49,13 @@ def main():
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--element", default="quad4")
     ap.add_argument("--out", default=".")
+    ap.add_argument("--from-csv", help="plot an earlier contact_tradeoff.csv instead of running")
     a = ap.parse_args()
-    work = pathlib.Path(tempfile.mkdtemp(prefix="gapfe_tradeoff_"))
     table = []
+    if a.from_csv:
+        table = [{k: (v if k == "policy" else float(v)) for k, v in r.items()} for r in csv.DictReader(open(a.from_csv))]
+        return plot(table, pathlib.Path(a.out))
+    work = pathlib.Path(tempfile.mkdtemp(prefix="gapfe_tradeoff_"))
     print(f"# closed form: p_c = {P_CLOSE:.4f}, q(100) = {Q_EXACT:.4f}; element {a.element}; median of {a.repeat}")
     print(f"{'policy':22s} {'steps':>5s} {'closure_err':>11s} {'q_err':>9s} {'solves':>6s} {'wall_s':>7s}")
     for policy in ("saac", "active-set", "augmented-lagrangian"):
@@ -74,6 +78,10 @@ def main():
         w = csv.DictWriter(f, fieldnames=list(table[0]))
         w.writeheader()
         w.writerows(table)
+    plot(table, outdir)
+
+
+def plot(table, outdir):
     try:
         import matplotlib
         matplotlib.use("Agg")
