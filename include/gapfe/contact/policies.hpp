@@ -63,6 +63,19 @@ concept ContactPolicy = requires {
   P::step(s, t);
 };
 
+namespace detail {
+
+/// Fraction of the interval from the accepted state to the last solve at which open pair p closes:
+/// f = g_start / (g_start - g_end), exact while the response is linear (THEORY.md 5.4); 0 when it
+/// already touched at the start.
+template <class S>
+double closure_fraction(const S& s, int p) {
+  const double g0 = std::max(s.gap(p), 0.0), g1 = s.trial_gap(p);
+  return g0 / (g0 - g1);
+}
+
+}  // namespace detail
+
 struct NoContact {
   static constexpr std::string_view kName = "none";
   static constexpr bool kContact          = false;
@@ -90,8 +103,7 @@ struct Saac {
     for (int p = 0; p < s.pair_count(); ++p)
       if (!s.closed(p) && s.trial_gap(p) < -s.gap_tolerance()) {
         overlapping.push_back(p);
-        const double g0 = std::max(s.gap(p), 0.0), g1 = s.trial_gap(p);
-        f = std::min(f, g0 / (g0 - g1));
+        f = std::min(f, detail::closure_fraction(s, p));
       }
     if (!overlapping.empty()) {
       s.count_split();
@@ -130,8 +142,7 @@ void event_step(S& s, double t_end, int max_events) {
     for (int p = 0; p < s.pair_count(); ++p) {
       double f = 2;
       if (!s.closed(p) && s.trial_gap(p) < -s.gap_tolerance()) {
-        const double g0 = std::max(s.gap(p), 0.0), g1 = s.trial_gap(p);
-        f = g0 / (g0 - g1);
+        f = closure_fraction(s, p);
       } else if (s.closed(p) && s.trial_force(p) < -s.force_tolerance(p)) {
         const double p0 = std::max(s.force(p), 0.0), p1 = s.trial_force(p);
         f = p0 / (p0 - p1);
