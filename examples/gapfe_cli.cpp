@@ -158,6 +158,7 @@ void run_contact(const Deck& d, const DeckScene& s, const std::string& dir, std:
         if (progress) err << "\rstep " << step << "/" << d.steps() << std::flush;
       });
   if (progress) err << "\r" << std::string(32, ' ') << "\r" << std::flush;
+  files.write_deformed(d.title);
 }
 
 template <class Kin, class Elem, class Solver>
@@ -184,6 +185,7 @@ void run_variant(const Deck& d, const DeckScene& s, const std::string& dir, std:
     if (progress) err << "\rstep " << step << "/" << d.steps() << std::flush;
   });
   if (progress) err << "\r" << std::string(32, ' ') << "\r" << std::flush;
+  files.write_deformed(d.title);
 }
 
 template <class Solver>
@@ -274,7 +276,7 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) 
         << times.contact.multiplier_updates << " multiplier updates; penalty " << times.penalty
         << " x adjacent; " << times.closed << " of " << times.pairs << " pairs closed at the end\n";
   log << "wrote " << a.out << "/nodes.csv, elements.csv" << (s.needs.gaps.empty() ? "" : ", gaps.csv")
-      << ", result.pvd\n";
+      << ", result.pvd, deformed.svg\n";
   return ok;
 }
 

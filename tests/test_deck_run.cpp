@@ -183,6 +183,11 @@ TEST_CASE(
     }
     const double p_closure = closed_at / 20 * 100;
     CHECK(std::abs(p_closure - pc) / pc < 5e-3);  // 20 legacy elements across each tube
+    // deformed.svg shows the last increment: at 100 > p_c every gap element is closed (red), none open.
+    std::ifstream svg_file(out / "deformed.svg");
+    const std::string svg((std::istreambuf_iterator<char>(svg_file)), std::istreambuf_iterator<char>());
+    CHECK(svg.find("fill=\"#d62728\"") != std::string::npos);
+    CHECK(svg.find("fill=\"#1f77b4\"") == std::string::npos);
     if (std::string(policy) == "active-set") {
       const fs::path saac  = run_deck_file(kExamples / "two_tubes.deck", "tubes_lgap",
                                            {"--contact", policy, "--set", "gap_direction=1"});

@@ -56,14 +56,50 @@ struct ElementKernel {
     return v;
   }
 
+  using StrainDisplacement = Mat<kStrain, kShapeDofs>;
+  using VolumetricRow      = Eigen::Matrix<double, 1, kShapeDofs>;
+
+  /// Elements that declare kMeanDilatation get B-bar (Hughes 1980): the volumetric strain
+  /// eps_rr + eps_zz + eps_hoop at each point is replaced by its volume average over the element, which
+  /// relieves the volumetric locking of near-incompressible (and plastic) flow.
+  static constexpr bool kMeanDilatation = requires { requires Elem::kMeanDilatation; };
+
+  /// (1/V) int (B_rr + B_zz + B_hoop) dV over the stiffness points; zero when kMeanDilatation is off.
+  static VolumetricRow mean_volumetric(const Coords& x) {
+    VolumetricRow mean = VolumetricRow::Zero();
+    if constexpr (kMeanDilatation) {
+      double volume = 0, det = 0;
+      for (int q = 0; q < Elem::kStiffnessPoints; ++q) {
+        const auto g               = Elem::stiffness_point(x, q, det);
+        const StrainDisplacement b = Kin::B(g);
+        mean += g.weight * b.template topRows<3>().colwise().sum();
+        volume += g.weight;
+      }
+      mean /= volume;
+    }
+    return mean;
+  }
+  /// B at a point; with B-bar, B + (1/3) m (mean_vol - B_vol), m = 1 on the normal rows rr, zz, hoop
+  /// (the first three rows of both kinematics).
+  static StrainDisplacement point_B(const PointGeometry<Elem::kShapeNodes>& g,
+                                    const VolumetricRow& mean_vol) {
+    StrainDisplacement b = Kin::B(g);
+    if constexpr (kMeanDilatation) {
+      const VolumetricRow shift = (mean_vol - b.template topRows<3>().colwise().sum()) / 3.0;
+      for (int i = 0; i < 3; ++i) b.row(i) += shift;
+    }
+    return b;
+  }
+
   /// K_s = sum_q B^T D B 2 pi r |J| w over the stiffness points (before condensation).
   static ShapeMatrix shape_stiffness(const Coords& x, const StrainMatrix& D) {
-    ShapeMatrix k = ShapeMatrix::Zero();
-    double det    = 0;
+    ShapeMatrix k            = ShapeMatrix::Zero();
+    double det               = 0;
+    const VolumetricRow mean = mean_volumetric(x);
     for (int q = 0; q < Elem::kStiffnessPoints; ++q) {
-      const auto g                       = Elem::stiffness_point(x, q, det);
-      const Mat<kStrain, kShapeDofs> b   = Kin::B(g);
-      const Mat<kStrain, kShapeDofs> d_b = D * b;
+      const auto g                 = Elem::stiffness_point(x, q, det);
+      const StrainDisplacement b   = point_B(g, mean);
+      const StrainDisplacement d_b = D * b;
       k.noalias() += g.weight * (b.transpose() * d_b);
     }
     return k;
@@ -87,10 +123,11 @@ struct ElementKernel {
       }
     }
     if (!eps_th.isZero(0.0)) {
-      const StrainVector s_th = D * eps_th;
+      const StrainVector s_th  = D * eps_th;
+      const VolumetricRow mean = mean_volumetric(x);
       for (int q = 0; q < Elem::kStiffnessPoints; ++q) {
         const auto g = Elem::stiffness_point(x, q, det);
-        f.noalias() += g.weight * (Kin::B(g).transpose() * s_th);
+        f.noalias() += g.weight * (point_B(g, mean).transpose() * s_th);
       }
     }
     return f;
@@ -134,9 +171,11 @@ struct ElementKernel {
     return us;
   }
 
-  /// Voigt-6 strain at a point from shape-level displacements (zero in slots the kinematics lacks).
-  static Vec6 strain(const PointGeometry<Elem::kShapeNodes>& g, const ShapeVector& us) {
-    return extend(Kin::B(g) * us);
+  /// Voigt-6 strain at a point from shape-level displacements (zero in slots the kinematics lacks);
+  /// `mean_vol` from mean_volumetric() of the same element.
+  static Vec6 strain(const PointGeometry<Elem::kShapeNodes>& g, const VolumetricRow& mean_vol,
+                     const ShapeVector& us) {
+    return extend(point_B(g, mean_vol) * us);
   }
 };
 

@@ -164,23 +164,26 @@ class LinearStatic {
   /// sub-triangles, THEORY.md 2 item 4).
   std::vector<PointValues> centroid_values() const { return recover(true); }
 
- private:
+ protected:  // shared with NonlinearStatic (driver/nonlinear_static.hpp), which derives privately
+  /// Numeric factorization of k_; a SolveError naming the equation where it broke down.
+  void factorize() {
+    ++factorization_count_;
+    if (!(factorized_ = solver_->factorize(k_))) {
+      std::string where;
+      if (const int eq = solver_->failed_equation(); eq >= 0) where = " near " + describe_equation(eq);
+      throw SolveError(solver_->failure() + where +
+                       ": check that the constraints remove every rigid-body motion (axial translation; in "
+                       "3-DOF also rotation about the axis) and that no element is degenerate");
+    }
+  }
+
   /// Factorize (when asked), solve, recover reactions; `assembly` is the time already spent assembling.
   template <class Duration>
   const Solution& finish(bool refactor, Duration assembly) {
     using clock        = std::chrono::steady_clock;
     const auto seconds = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
     auto t1            = clock::now();
-    if (dofs_.free_count > 0 && refactor) {
-      ++factorization_count_;
-      if (!(factorized_ = solver_->factorize(k_))) {
-        std::string where;
-        if (const int eq = solver_->failed_equation(); eq >= 0) where = " near " + describe_equation(eq);
-        throw SolveError(solver_->failure() + where +
-                         ": check that the constraints remove every rigid-body motion (axial translation; in "
-                         "3-DOF also rotation about the axis) and that no element is degenerate");
-      }
-    }
+    if (dofs_.free_count > 0 && refactor) factorize();
     auto t2        = clock::now();
     const VecX u_f = dofs_.free_count > 0 ? solver_->solve(rhs_) : VecX();
     auto t3        = clock::now();
@@ -195,6 +198,36 @@ class LinearStatic {
     return sol_;
   }
 
+  /// An element matrix's upper triangle into the stiffness values, through its scatter offsets (-1: a
+  /// prescribed row or column).
+  template <class Matrix>
+  static void scatter(double* values, const int* off, const Matrix& k) {
+    for (int i = 0, c = 0; i < k.rows(); ++i)
+      for (int j = i; j < k.cols(); ++j, ++c)
+        if (off[c] >= 0) values[off[c]] += k(i, j);
+  }
+
+  /// The element (or link) DOF values of `u` (all DOFs), node-major.
+  template <std::size_t NPC>
+  Vec<kNd* static_cast<int>(NPC)> gather(const std::array<int, NPC>& nodes, const VecX& u) const {
+    Vec<kNd* static_cast<int>(NPC)> ue;
+    for (int a = 0; a < static_cast<int>(NPC); ++a)
+      for (int c = 0; c < kNd; ++c) ue(a * kNd + c) = u(dofs_.dof(nodes[a], c));
+    return ue;
+  }
+  /// out(dof) += v over the element's (or link's) DOFs.
+  template <std::size_t NPC, class Vector>
+  void add_to(const std::array<int, NPC>& nodes, const Vector& v, VecX& out) const {
+    for (int a = 0; a < static_cast<int>(NPC); ++a)
+      for (int c = 0; c < kNd; ++c) out(dofs_.dof(nodes[a], c)) += v(a * kNd + c);
+  }
+
+  /// Internal force K u_e - f_e of node link `l` at displacements `u` (all DOFs).
+  Vec<2 * kNd> link_force(std::size_t l, const VecX& u) const {
+    const NodeLink& link = link_values_[l];
+    return link.template element_stiffness<kNd>() * gather(links_[l], u) - link.template element_load<kNd>();
+  }
+
   /// Node links into the stiffness values and the right-hand side (after the element assembly).
   void add_links() {
     constexpr int n = 2 * kNd;
@@ -203,10 +236,7 @@ class LinearStatic {
       const NodeLink& link = link_values_[l];
       if (link.zero()) continue;
       const Mat<n, n> k = link.template element_stiffness<kNd>();
-      const int* off    = link_offsets_.data() + l * (n * (n + 1) / 2);
-      for (int i = 0, c = 0; i < n; ++i)
-        for (int j = i; j < n; ++j, ++c)
-          if (off[c] >= 0) values[off[c]] += k(i, j);
+      scatter(values, link_offsets_.data() + l * (n * (n + 1) / 2), k);
       add_element_rhs(links_[l], link.template element_load<kNd>(), [&](int i, int j) { return k(i, j); });
     }
   }
@@ -293,9 +323,7 @@ class LinearStatic {
       typename Kernel::Matrix k;
       typename Kernel::Vector f;
       element_system<E>(cell, tag, k, f);
-      for (int i = 0, c = 0; i < n; ++i)
-        for (int j = i; j < n; ++j, ++c)
-          if (off[c] >= 0) values[off[c]] += k(i, j);
+      scatter(values, off, k);
       add_element_rhs(cell, f, [&](int i, int j) { return k(i, j); });
     });
     if constexpr (kBatchedQuad4) assemble_quad4_batched(values);
@@ -424,24 +452,23 @@ class LinearStatic {
                                                 const std::array<int, NPC>& cell, const CellTag& tag) {
       using Kernel = ElementKernel<Kin, E>;
       typename Kernel::Matrix k;
-      typename Kernel::Vector f, ue;
+      typename Kernel::Vector f;
       element_system<E>(cell, tag, k, f);
-      for (int a = 0; a < E::kNodes; ++a)
-        for (int c = 0; c < kNd; ++c) ue(a * kNd + c) = u_(dofs_.dof(cell[a], c));
+      const auto ue                    = gather(cell, u_);
       const typename Kernel::Vector fe = k * ue - f;
-      for (int a = 0; a < E::kNodes; ++a)
-        for (int c = 0; c < kNd; ++c) internal(dofs_.dof(cell[a], c)) += fe(a * kNd + c);
+      add_to(cell, fe, internal);
     });
     for (std::size_t l = 0; l < links_.size(); ++l) {  // internal force of a link: K u_e - f_e
       const NodeLink& link = link_values_[l];
       if (link.zero()) continue;
-      Vec<2 * kNd> ue;
-      for (int a = 0; a < 2; ++a)
-        for (int c = 0; c < kNd; ++c) ue(a * kNd + c) = u_(dofs_.dof(links_[l][a], c));
-      const Vec<2 * kNd> fe = link.template element_stiffness<kNd>() * ue - link.template element_load<kNd>();
-      for (int a = 0; a < 2; ++a)
-        for (int c = 0; c < kNd; ++c) internal(dofs_.dof(links_[l][a], c)) += fe(a * kNd + c);
+      add_to(links_[l], link_force(l, u_), internal);
     }
+    balance(internal);
+  }
+
+  /// sol_ from u_ and the internal forces (all DOFs): displacements, reactions = internal - external at
+  /// prescribed DOFs, and the relative out-of-balance |internal - external| / |internal| at free DOFs.
+  void balance(const VecX& internal) {
     const int nn = p_.mesh.node_count();
     sol_.displacement.setZero(nn, 3);
     sol_.reaction.setZero(nn, 3);
@@ -471,9 +498,7 @@ class LinearStatic {
       const auto x                          = coords<E>(cell);
       const auto& lp                        = local(tag, cell_temperature(cell));
       const typename Kernel::StrainMatrix d = Kernel::restrict(lp.stiffness);
-      typename Kernel::Vector ue;
-      for (int a = 0; a < E::kNodes; ++a)
-        for (int c = 0; c < kNd; ++c) ue(a * kNd + c) = u_(dofs_.dof(cell[a], c));
+      const typename Kernel::Vector ue      = gather(cell, u_);
       typename Kernel::ShapeVector us;
       if constexpr (Kernel::kInner > 0) {
         us = Kernel::expand(
@@ -485,11 +510,12 @@ class LinearStatic {
       const Mat<E::kShapeNodes, 2> xs = E::shape_coords(x);
       const bool triangle             = !std::is_same_v<E, Elem>;
       const Mat66 to_strain_material  = strain_rotation(lp.to_material);
+      const auto mean_vol             = Kernel::mean_volumetric(x);
       auto values_at                  = [&](const PointGeometry<E::kShapeNodes>& g, int point) {
         PointValues v;
         v.cell = static_cast<int>(e), v.triangle = triangle, v.point = point;
         v.r = g.r, v.z = g.N.dot(xs.col(1));
-        v.strain          = Kernel::strain(g, us);
+        v.strain          = Kernel::strain(g, mean_vol, us);
         v.stress          = Law::update(lp, v.strain, typename Law::State{}, StepContext{}).stress;
         v.strain_material = to_strain_material * v.strain;
         v.stress_material = lp.to_material * v.stress;

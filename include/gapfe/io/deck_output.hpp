@@ -5,6 +5,7 @@
 //  * gaps.csv      step,inc,element,pair,status,gap,f_n,f_t per gap node pair (decks with gap elements)
 //  * result.pvd    one step_NNNN.vtu per completed step (step_NNNN_split_K.vtu at the points where a
 //                  contact policy split the step), for ParaView
+//  * deformed.svg  the last increment's deformed mesh (magnified), gap elements coloured open/closed
 //  * mesh.svg, mesh_nodes.csv, mesh_elements.csv, mesh.vtu (gapfe mesh: the grid with its numbers)
 // One header line per CSV, one block of rows per completed step, steps from 1; `inc` is the number
 // of load increments applied so far. Node and element numbers are the deck's (1-based). Stresses in
@@ -50,6 +51,54 @@ inline void csv_number(std::string& s, double v) {
   append_number(s, v);
   s += ',';
 }
+
+/// An SVG picture of a meridian section: r to the right, z up, 1000 px wide, fitted to `nodes`.
+struct SvgCanvas {
+  Vec2 lo, hi;
+  double width = 1000.0, margin = 40.0, scale = 1.0, height = 0.0;
+  std::string t;
+
+  SvgCanvas(const std::vector<Vec2>& nodes, const std::string& title, double extra_height = 30) {
+    lo = hi = nodes.front();
+    for (const auto& x : nodes) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+    scale  = (width - 2 * margin) / std::max((hi - lo).maxCoeff(), 1e-300);
+    height = (hi(1) - lo(1)) * scale + 2 * margin + extra_height;
+    t += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"";
+    num(width), t += "\" height=\"", num(height), t += "\" font-family=\"sans-serif\">\n";
+    t += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"10\" y=\"20\" font-size=\"14\">";
+    for (const char c : title)
+      t += c == '<' ? std::string("&lt;") : c == '&' ? std::string("&amp;") : std::string(1, c);
+    t += "</text>\n";
+  }
+  double extent() const { return (hi - lo).maxCoeff(); }
+  void num(double v) { append_number(t, std::round(v * 100) / 100); }
+  std::array<double, 2> px(const Vec2& x) const {
+    return {margin + (x(0) - lo(0)) * scale, height - margin - (x(1) - lo(1)) * scale};
+  }
+  /// A closed polygon through `corners` points of `x`.
+  template <class Points>
+  void polygon(const Points& x, int corners, const char* fill, const char* stroke, double stroke_width) {
+    t += "<polygon points=\"";
+    for (int k = 0; k < corners; ++k) {
+      const auto p = px(x[k]);
+      num(p[0]), t += ',', num(p[1]), t += ' ';
+    }
+    t += "\" fill=\"" + std::string(fill) + "\" stroke=\"" + stroke + "\" stroke-width=\"";
+    num(stroke_width), t += "\"/>\n";
+  }
+  void text(double x, double y, double size, const std::string& what, const char* fill = "black",
+            const char* anchor = "start") {
+    t += "<text x=\"", num(x), t += "\" y=\"", num(y), t += "\" font-size=\"", num(size),
+        t += "\" fill=\"" + std::string(fill) + "\" text-anchor=\"" + anchor + "\">" + what + "</text>\n";
+  }
+  void save(const std::string& path) {
+    t += "</svg>\n";
+    write_file_atomically(path, t);
+  }
+};
+
+inline constexpr const char* kMaterialFill[] = {"#dbe8f6", "#f6e3c9", "#d8f0d2",
+                                                "#eed8f0", "#f3f0c8", "#d5eeee"};
 
 }  // namespace detail
 
@@ -119,15 +168,74 @@ class StepFiles {
         point[0].values.push_back(u(n, c)), point[1].values.push_back(fe.solution().reaction(n, c));
     std::vector<VtuField> cell = detail::element_ids(scene_);
     cell.insert(cell.begin(), VtuField{"stress", 6, std::move(stress)});
-    for (auto& f : extra_cells) cell.push_back(std::move(f));
+    for (auto& f : extra_cells) {
+      if (f.name == "gap_state") last_gap_state_ = f.values;
+      cell.push_back(std::move(f));
+    }
+    last_displacement_ = u;
     write_vtu(dir_ + "/" + name, g.nodes, detail::grid_cells(g), point, cell);
     steps_.emplace_back(inc, name);
     write_pvd(dir_ + "/result.pvd", steps_);
   }
 
+  /// deformed.svg: the last increment's deformed mesh over the undeformed outline, displacements
+  /// magnified to 5% of the section (a 1-2-5 factor, printed); gap elements coloured by their state.
+  void write_deformed(const std::string& title) const {
+    const IJGrid& g = scene_.grid;
+    if (last_displacement_.rows() != g.node_count()) return;  // no increment written
+    const double u_max = last_displacement_.leftCols<2>().rowwise().norm().maxCoeff();
+    std::vector<Vec2> deformed(g.nodes), both(g.nodes);
+    Vec2 lo = g.nodes.front(), hi = g.nodes.front();
+    for (const auto& x : g.nodes) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+    double factor = 1;
+    if (u_max > 0) {
+      const double want   = 0.05 * (hi - lo).maxCoeff() / u_max,
+                   decade = std::pow(10.0, std::floor(std::log10(want)));
+      factor              = want >= 5 * decade ? 5 * decade : want >= 2 * decade ? 2 * decade : decade;
+    }
+    for (int n = 0; n < g.node_count(); ++n) {
+      deformed[n] = g.nodes[n] + factor * last_displacement_.row(n).head<2>().transpose();
+      both.push_back(deformed[n]);
+    }
+    std::string factor_text;
+    detail::append_number(factor_text, factor);
+    detail::SvgCanvas svg(both, title + ": deformed x " + factor_text + " over the undeformed outline (grey)",
+                          50);
+    const bool gaps = !last_gap_state_.empty();
+    for (const auto& c : g.cells) {
+      std::array<Vec2, 4> x;
+      for (int k = 0; k < c.corners; ++k) x[k] = g.nodes[c.node[k]];
+      svg.polygon(x, c.corners, "none", "#b0b0b0", 0.5);
+    }
+    // Structural cells first, then the gap elements on top with a heavy outline in their state's colour:
+    // gap elements are usually slivers, and a sliver's outline is what stays visible.
+    for (const bool gap_pass : {false, true})
+      for (std::size_t e = 0; e < g.cells.size(); ++e) {
+        const double state = gaps ? last_gap_state_[e] : 0;
+        if ((state != 0) != gap_pass) continue;
+        const GridCell& c = g.cells[e];
+        std::array<Vec2, 4> x;
+        for (int k = 0; k < c.corners; ++k) x[k] = deformed[c.node[k]];
+        if (!gap_pass) {
+          svg.polygon(x, c.corners, detail::kMaterialFill[(std::max(scene_.material_id[e], 1) - 1) % 6],
+                      "#333", 0.6);
+          continue;
+        }
+        const char* colour = state < 0 ? "#8c8c8c" : state == 1 ? "#1f77b4" : "#d62728";
+        svg.polygon(x, c.corners, colour, colour, 3.0);
+      }
+    if (gaps)
+      svg.text(10, svg.height - 12, 13,
+               "gap elements: red = closed (a node pair in contact), blue = open, grey = soft throughout "
+               "(corners, IJDIR 0)");
+    svg.save(dir_ + "/deformed.svg");
+  }
+
  private:
   std::string dir_;
   const DeckScene& scene_;
+  Eigen::Matrix<double, Eigen::Dynamic, 3> last_displacement_;
+  std::vector<double> last_gap_state_;
   std::ofstream nodes_, elements_;
   std::vector<std::pair<double, std::string>> steps_;
   int last_step_ = 0, split_ = 0;
@@ -209,55 +317,33 @@ inline void write_mesh_files(const std::string& dir, const Deck& d, const DeckSc
   }
 
   // ---- SVG: r to the right, z up; numbers only while they stay legible
-  Vec2 lo = g.nodes.front(), hi = g.nodes.front();
-  for (const auto& x : g.nodes) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
-  const double extent = std::max((hi - lo).maxCoeff(), 1e-300);
-  const double width = 1000.0, margin = 40.0, scale = (width - 2 * margin) / extent;
-  const double height = (hi(1) - lo(1)) * scale + 2 * margin + 30;
-  const auto px       = [&](const Vec2& x) {
-    return std::array<double, 2>{margin + (x(0) - lo(0)) * scale, height - margin - (x(1) - lo(1)) * scale};
-  };
+  detail::SvgCanvas svg(
+      g.nodes, d.title + " (" + std::to_string(g.node_count()) + " nodes, " + std::to_string(g.cells.size()) +
+                   " elements; node numbers black, element numbers blue; r to the right, z up)");
   const bool labels = g.cells.size() <= 2500;
   const double font =
-      labels ? std::clamp(0.25 * scale * extent / std::sqrt(static_cast<double>(g.cells.size()) + 1.0), 4.0,
-                          14.0)
-             : 0;
-  static constexpr const char* kFill[] = {"#dbe8f6", "#f6e3c9", "#d8f0d2", "#eed8f0", "#f3f0c8", "#d5eeee"};
-  std::string t;
-  const auto num = [&](double v) { detail::append_number(t, std::round(v * 100) / 100); };
-  t += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"";
-  num(width), t += "\" height=\"", num(height), t += "\" font-family=\"sans-serif\">\n";
-  t += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"10\" y=\"20\" font-size=\"14\">";
-  for (const char c : d.title)
-    t += c == '<' ? std::string("&lt;") : c == '&' ? std::string("&amp;") : std::string(1, c);
-  t += " (" + std::to_string(g.node_count()) + " nodes, " + std::to_string(g.cells.size()) +
-       " elements; node numbers black, element numbers blue; r to the right, z up)</text>\n";
+      labels
+          ? std::clamp(0.25 * svg.scale * svg.extent() / std::sqrt(static_cast<double>(g.cells.size()) + 1.0),
+                       4.0, 14.0)
+          : 0;
   for (std::size_t e = 0; e < g.cells.size(); ++e) {
     const GridCell& c = g.cells[e];
-    t += "<polygon points=\"";
+    std::array<Vec2, 4> x;
     Vec2 centre = Vec2::Zero();
-    for (int k = 0; k < c.corners; ++k) {
-      const auto p = px(g.nodes[c.node[k]]);
-      centre += g.nodes[c.node[k]] / c.corners;
-      num(p[0]), t += ',', num(p[1]), t += ' ';
-    }
-    t += "\" fill=\"" + std::string(kFill[(std::max(s.material_id[e], 1) - 1) % 6]) +
-         "\" stroke=\"#333\" stroke-width=\"0.6\"/>\n";
+    for (int k = 0; k < c.corners; ++k) x[k] = g.nodes[c.node[k]], centre += x[k] / c.corners;
+    svg.polygon(x, c.corners, detail::kMaterialFill[(std::max(s.material_id[e], 1) - 1) % 6], "#333", 0.6);
     if (labels) {
-      const auto p = px(centre);
-      t += "<text x=\"", num(p[0]), t += "\" y=\"", num(p[1] + font / 3), t += "\" font-size=\"", num(font),
-          t += "\" fill=\"#1f4fbf\" text-anchor=\"middle\">" + std::to_string(e + 1) + "</text>\n";
+      const auto p = svg.px(centre);
+      svg.text(p[0], p[1] + font / 3, font, std::to_string(e + 1), "#1f4fbf", "middle");
     }
   }
   if (labels)
     for (int n = 0; n < g.node_count(); ++n) {
-      const auto p = px(g.nodes[n]);
-      t += "<circle cx=\"", num(p[0]), t += "\" cy=\"", num(p[1]), t += "\" r=\"1.5\"/>";
-      t += "<text x=\"", num(p[0] + 2), t += "\" y=\"", num(p[1] - 2), t += "\" font-size=\"",
-          num(0.8 * font), t += "\">" + std::to_string(n + 1) + "</text>\n";
+      const auto p = svg.px(g.nodes[n]);
+      svg.t += "<circle cx=\"", svg.num(p[0]), svg.t += "\" cy=\"", svg.num(p[1]), svg.t += "\" r=\"1.5\"/>";
+      svg.text(p[0] + 2, p[1] - 2, 0.8 * font, std::to_string(n + 1));
     }
-  t += "</svg>\n";
-  detail::write_file_atomically(dir + "/mesh.svg", t);
+  svg.save(dir + "/mesh.svg");
 }
 
 }  // namespace gapfe

@@ -15,6 +15,7 @@ struct PointValues {
   Vec6 stress;            ///< global axes
   Vec6 strain_material;   ///< material axes (N, S, T)
   Vec6 stress_material;   ///< material axes
+  double eqps = 0.0;      ///< equivalent plastic strain (laws with history; 0 when elastic) [-]
 };
 
 }  // namespace gapfe

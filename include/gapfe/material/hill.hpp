@@ -1,0 +1,287 @@
+#pragma once
+// Hill (1948) anisotropic plasticity with Prager kinematic hardening: SAGAEP's law (seed section 2.1,
+// Appendix B subroutine EPLSS; THEORY.md 7), on top of the orthotropic elastic law.
+//
+// Yield function in material axes (N, S, T), xi = sigma - alpha (tensor shears), yield at f = 1:
+//   f = xi_NN^2/X^2 + xi_SS^2/Y^2 + xi_TT^2/Z^2 + (1/Z^2 - 1/X^2 - 1/Y^2) xi_NN xi_SS
+//     + (1/Y^2 - 1/X^2 - 1/Z^2) xi_NN xi_TT + (1/X^2 - 1/Y^2 - 1/Z^2) xi_SS xi_TT
+//     + xi_NS^2/R_NS^2 + xi_ST^2/R_TS^2 + xi_TN^2/R_NT^2  =  xi^T P xi,
+// exactly the function whose gradient EPLSS computes (DFDSIG = a = 2 P xi, cross coefficients SIGYB).
+// The card's shear order (NS, NT, TS) differs from the Voigt order (NS, ST, TN): mapped by axis pair.
+// Flow is associated, d eps_p = d lambda a (a is conjugate to engineering shear strain), and Prager's
+// rule d alpha = c H d eps_p moves the centre. H = I is EPLSS's choice (`PragerShear::legacy`, which
+// doubles the shear back-stress rate of the tensorial rule); H = diag(1, 1, 1, 1/2, 1/2, 1/2) is the
+// tensorial rule (`PragerShear::tensor`). Uniaxial answers agree; shear answers do not (THEORY.md 7.2).
+//
+// Everything is evaluated in global axes with P_g = T_s^T P T_s and H_g = T_e^T H T_e (T_s, T_e the
+// stress and strain rotations): the dual pairings are invariant, so the update formulas keep their form.
+//
+// Integration is a compile-time policy (the `Integration` parameter):
+//   * `Tangent`: SAGAEP's forward-Euler scheme. The elastic part of a step up to the yield surface is
+//     found exactly (a quadratic in the step fraction), the rest is integrated with the continuum
+//     elastic-plastic tangent C_ep of EPLSS at the yield point, once. The tangent it gives the assembler
+//     is C_ep at the start of the step for points that ended the last step plastic (the seed's IFGPL
+//     flag), so one linear solve per increment is the seed's method. Stresses drift off the surface.
+//   * `ReturnMapping`: backward-Euler closest-point projection onto the surface (THEORY.md 7.3) with
+//     the algorithmically consistent tangent, for Newton equilibrium iterations: no drift.
+// Both detect loading, unloading and reloading from the elastic trial state.
+//
+// Units: stresses as the moduli; C (card 11, `hardening`) in stress units; strains dimensionless.
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <type_traits>
+
+#include <Eigen/LU>
+
+#include "gapfe/core/concepts.hpp"
+#include "gapfe/core/error.hpp"
+#include "gapfe/material/elastic.hpp"
+
+namespace gapfe {
+
+/// How the back stress follows the plastic strain (THEORY.md 7.2).
+enum class PragerShear { legacy, tensor };
+
+/// Seed Data 11: yield stresses in material axes and the kinematic hardening parameter.
+struct HillYield {
+  double X = 0, Y = 0, Z = 0;           ///< tensile yield stresses along N, S, T [stress]
+  double R_NS = 0, R_NT = 0, R_TS = 0;  ///< shear yield stresses, the card's order NS, NT, TS [stress]
+  double hardening  = 0;                ///< Prager's c: d alpha = c H d eps_p [stress]
+  PragerShear shear = PragerShear::legacy;
+
+  /// Equal yield stresses in every direction and sigma_y / sqrt(3) in shear: f = (sigma_Mises / sigma_y)^2.
+  static HillYield mises(double sigma_y, double hardening = 0.0, PragerShear shear = PragerShear::legacy) {
+    const double k = sigma_y / std::sqrt(3.0);
+    return {sigma_y, sigma_y, sigma_y, k, k, k, hardening, shear};
+  }
+
+  /// P of f = xi^T P xi in material Voigt order [NN, SS, TT, NS, ST, TN], tensor shear stresses.
+  Mat66 yield_matrix() const {
+    const double x = 1 / (X * X), y = 1 / (Y * Y), z = 1 / (Z * Z);
+    Mat66 p = Mat66::Zero();
+    p(0, 0) = x, p(1, 1) = y, p(2, 2) = z;
+    p(0, 1) = p(1, 0) = 0.5 * (z - x - y);  // SIGYB(3) / 2
+    p(0, 2) = p(2, 0) = 0.5 * (y - x - z);  // SIGYB(2) / 2
+    p(1, 2) = p(2, 1) = 0.5 * (x - y - z);  // SIGYB(1) / 2
+    p(3, 3)           = 1 / (R_NS * R_NS);
+    p(4, 4)           = 1 / (R_TS * R_TS);  // ST = TS
+    p(5, 5)           = 1 / (R_NT * R_NT);  // TN = NT
+    return p;
+  }
+  /// H of d alpha = c H d eps_p in material Voigt order (engineering plastic shear strain).
+  Mat66 hardening_matrix() const {
+    Mat66 h = Mat66::Identity();
+    if (shear == PragerShear::tensor) h.diagonal().tail<3>().setConstant(0.5);
+    return h;
+  }
+
+  /// Throws InputError naming `where` unless every yield stress is positive and finite, c >= 0 and the
+  /// normal part of P is positive semi-definite (Hill's F, G, H >= 0 is not required, but a yield
+  /// surface open in some deviatoric direction never yields there and is refused).
+  void validate(const std::string& where) const {
+    const auto fail = [&](const std::string& what) { throw InputError(where + ": " + what); };
+    for (double s : {X, Y, Z, R_NS, R_NT, R_TS})
+      if (!(s > 0 && std::isfinite(s))) fail("yield stresses must be positive and finite (card 11)");
+    if (!(hardening >= 0 && std::isfinite(hardening))) fail("hardening parameter C must be >= 0 (card 11)");
+    // The normal block is singular along (1, 1, 1) (pressure does not yield); it must be positive
+    // definite on the deviatoric plane.
+    const Mat33 p = yield_matrix().topLeftCorner<3, 3>();
+    Eigen::Matrix<double, 3, 2> dev;
+    dev << 1, 1, -1, 1, 0, -2;
+    const Eigen::Matrix2d pd = dev.transpose() * p * dev;
+    if (!(pd(0, 0) > 0 && pd.determinant() > 0))
+      fail(
+          "the tensile yield stresses X, Y, Z violate the triangle-type condition of Hill's criterion "
+          "(the yield surface is open in a deviatoric direction)");
+  }
+};
+
+/// History of one material point, committed only when a step is accepted (the driver keeps two copies).
+struct HillState {
+  Vec6 strain         = Vec6::Zero();  ///< total strain at the last commit, global [-]
+  Vec6 plastic_strain = Vec6::Zero();  ///< global, engineering shears [-]
+  Vec6 back_stress    = Vec6::Zero();  ///< alpha, global, tensor shears [stress]
+  double eqps         = 0.0;    ///< equivalent plastic strain: plastic work / X (= Mises' for Mises) [-]
+  bool plastic        = false;  ///< on the yield surface at the last commit (the seed's IFGPL flag)
+  bool operator==(const HillState&) const = default;
+};
+
+/// The law resolved for one element: elastic data plus P, c H in global axes.
+struct HillPoint : ElasticPoint {
+  Mat66 yield_matrix;            ///< P_g [1 / stress^2]
+  Mat66 hardening_matrix;        ///< c H_g [stress]
+  double reference_yield = 1.0;  ///< X, the stress eqps is measured with [stress]
+};
+
+/// The seed's scheme: one forward-Euler step with EPLSS's continuum tangent (see the header comment).
+struct Tangent {
+  static constexpr const char* kName           = "tangent";
+  static constexpr bool kEquilibriumIterations = false;
+};
+/// Backward-Euler closest-point projection with the consistent tangent, for Newton iterations.
+struct ReturnMapping {
+  static constexpr const char* kName           = "return-mapping";
+  static constexpr bool kEquilibriumIterations = true;
+  static constexpr int kMaxIterations          = 50;     ///< scalar Newton on the plastic multiplier
+  static constexpr double kTolerance           = 1e-13;  ///< |f - 1|
+};
+
+namespace detail {
+
+/// EPLSS's continuum elastic-plastic tangent C - (C a)(C a)^T / (a^T C a + a^T cH a) (THEORY.md 7.2).
+inline Mat66 continuum_tangent(const Mat66& c, const Mat66& ch, const Vec6& a) {
+  const Vec6 ca = c * a;
+  return c - ca * ca.transpose() / (a.dot(ca) + a.dot(ch * a));
+}
+
+/// Smallest r in [0, 1] with f(xi0 + r d) = 1 when f(xi0) < 1 <= f(xi0 + d): the elastic fraction of a
+/// step that crosses the surface. The quadratic is solved in the cancellation-free form.
+inline double elastic_fraction(const Mat66& p, const Vec6& xi0, const Vec6& d) {
+  const double qa = d.dot(p * d), qb = xi0.dot(p * d), qc = xi0.dot(p * xi0) - 1.0;  // qc < 0
+  if (!(qa > 0)) return 1.0;
+  const double disc = std::sqrt(std::max(0.0, qb * qb - qa * qc));
+  return std::clamp(-qc / (qb + disc), 0.0, 1.0);  // = (-qb + disc) / qa
+}
+
+}  // namespace detail
+
+/// Hill plasticity over the orthotropic elastic law; `Integration` is Tangent or ReturnMapping.
+template <class Integration>
+struct Hill {
+  Orthotropic elastic;
+  HillYield yield;
+
+  using State                    = HillState;
+  using Local                    = HillPoint;
+  using Integrator               = Integration;
+  static constexpr bool kLinear  = false;
+  static constexpr bool kIterate = Integration::kEquilibriumIterations;
+
+  Local localize(const MaterialFrame& frame, double T, double T_ref) const {
+    Local p;
+    static_cast<ElasticPoint&>(p) = elastic.localize(frame, T, T_ref);
+    const Mat66 t_eps             = strain_rotation(p.to_material);
+    p.yield_matrix                = p.to_material.transpose() * yield.yield_matrix() * p.to_material;
+    p.hardening_matrix            = yield.hardening * (t_eps.transpose() * yield.hardening_matrix() * t_eps);
+    p.reference_yield             = yield.X;
+    return p;
+  }
+  void validate(const std::string& where) const {
+    elastic.validate(where);
+    yield.validate(where);
+  }
+
+  /// sqrt(f): the equivalent stress over the yield stress (1 on the surface).
+  static double yield_ratio(const Local& p, const Vec6& stress, const State& s) {
+    const Vec6 xi = stress - s.back_stress;
+    return std::sqrt(std::max(0.0, xi.dot(p.yield_matrix * xi)));
+  }
+
+  static PointResponse<State> update(const Local& p, const Vec6& strain, const State& old,
+                                     const StepContext&) {
+    if constexpr (std::is_same_v<Integration, ReturnMapping>)
+      return return_map(p, strain, old);
+    else
+      return forward_euler(p, strain, old);
+  }
+
+ private:
+  static Vec6 stress_of(const Local& p, const Vec6& strain, const Vec6& plastic) {
+    return p.stiffness * (strain - p.thermal_strain - plastic);
+  }
+  /// Plastic strain increment d eps_p = dl a into the state (strain, back stress, eqps).
+  static void add_flow(const Local& p, State& s, const Vec6& xi, double dl, const Vec6& a) {
+    const Vec6 d_eps_p = dl * a;
+    s.plastic_strain += d_eps_p;
+    s.back_stress += p.hardening_matrix * d_eps_p;
+    const double ratio = std::sqrt(std::max(xi.dot(p.yield_matrix * xi), 1e-300));
+    s.eqps += xi.dot(d_eps_p) / (p.reference_yield * ratio);  // plastic work / (X sqrt f)
+  }
+
+  static PointResponse<State> forward_euler(const Local& p, const Vec6& strain, const State& old) {
+    const Mat66& c = p.stiffness;
+    const Mat66& P = p.yield_matrix;
+    PointResponse<State> r{stress_of(p, strain, old.plastic_strain), c, old, false};
+    r.state.strain   = strain;
+    const Vec6 d_eps = strain - old.strain;
+    const Vec6 xi0   = stress_of(p, old.strain, old.plastic_strain) - old.back_stress;
+    const Vec6 d_xi  = c * d_eps;
+    // The seed's IFGPL flag: a point that ended the last step plastic and is loaded further gets C_ep of
+    // the start state, for the assembler too; otherwise the step starts elastic.
+    const Vec6 a0      = 2.0 * (P * xi0);
+    const bool loading = old.plastic && a0.dot(d_xi) >= 0;  // d_eps = 0: the assembler's query
+    if (loading) r.tangent = detail::continuum_tangent(c, p.hardening_matrix, a0);
+    const Vec6 xi_trial = xi0 + d_xi;
+    if (!loading && xi_trial.dot(P * xi_trial) <= 1.0) {
+      r.state.plastic = false;  // elastic step, unloading, or reloading below the surface
+      return r;
+    }
+    // Elastic part up to the surface (none when the point starts on it), then one forward-Euler step.
+    const double f0 = xi0.dot(P * xi0);
+    const double e  = (old.plastic || f0 >= 1.0) ? 0.0 : detail::elastic_fraction(P, xi0, d_xi);
+    const Vec6 xi_y = xi0 + e * d_xi;
+    const Vec6 a    = 2.0 * (P * xi_y);
+    const Vec6 ca   = c * a;
+    const double dl = a.dot(c * ((1.0 - e) * d_eps)) / (a.dot(ca) + a.dot(p.hardening_matrix * a));
+    if (!(dl > 0)) {
+      r.state.plastic = false;
+      return r;
+    }
+    add_flow(p, r.state, xi_y, dl, a);
+    r.stress        = stress_of(p, strain, r.state.plastic_strain);
+    r.state.plastic = true;
+    r.yielded       = true;
+    return r;
+  }
+
+  static PointResponse<State> return_map(const Local& p, const Vec6& strain, const State& old) {
+    const Mat66& c = p.stiffness;
+    const Mat66& P = p.yield_matrix;
+    PointResponse<State> r{stress_of(p, strain, old.plastic_strain), c, old, false};
+    r.state.strain      = strain;
+    const Vec6 xi_trial = r.stress - old.back_stress;
+    if (xi_trial.dot(P * xi_trial) <= 1.0) {
+      r.state.plastic = false;
+      return r;
+    }
+    // phi(dl) = xi^T P xi - 1 with xi = A^-1 xi_trial, A = I + 2 dl E P, E = C + cH: convex and
+    // decreasing from phi(0) > 0, so Newton from 0 approaches the root from below, monotonically.
+    const Mat66 e_mod = c + p.hardening_matrix;
+    const Mat66 e_p   = 2.0 * (e_mod * P);
+    double dl         = 0.0;
+    Vec6 xi           = xi_trial;
+    Eigen::PartialPivLU<Mat66> a_lu;
+    for (int it = 0; it < ReturnMapping::kMaxIterations; ++it) {
+      a_lu.compute(Mat66::Identity() + dl * e_p);
+      xi               = a_lu.solve(xi_trial);
+      const double phi = xi.dot(P * xi) - 1.0;
+      if (std::abs(phi) <= ReturnMapping::kTolerance) break;
+      const double d_phi = -2.0 * xi.dot(P * a_lu.solve(e_p * xi));
+      dl -= phi / d_phi;
+    }
+    a_lu.compute(Mat66::Identity() + dl * e_p);
+    xi           = a_lu.solve(xi_trial);
+    const Vec6 a = 2.0 * (P * xi);
+    add_flow(p, r.state, xi, dl, a);
+    r.stress        = stress_of(p, strain, r.state.plastic_strain);
+    r.state.plastic = true;
+    r.yielded       = true;
+    // Consistent tangent (THEORY.md 7.3): g^T = a^T A^-1 C / (a^T A^-1 E a),
+    // d xi / d eps = A^-1 (C - E a g^T), d eps_p / d eps = a g^T + 2 dl P d xi / d eps, D = C (I - ...).
+    const Vec6 ai_t     = a_lu.transpose().solve(a);  // A^-T a
+    const Vec6 g        = c * ai_t / ai_t.dot(e_mod * a);
+    const Mat66 dxi     = a_lu.solve(c - (e_mod * a) * g.transpose());
+    const Mat66 d_eps_p = a * g.transpose() + 2.0 * dl * (P * dxi);
+    r.tangent           = c * (Mat66::Identity() - d_eps_p);
+    r.tangent           = 0.5 * (r.tangent + r.tangent.transpose());  // symmetric up to round-off
+    return r;
+  }
+};
+
+}  // namespace gapfe
+
+namespace gapfe {
+static_assert(MaterialLaw<Hill<Tangent>>);
+static_assert(MaterialLaw<Hill<ReturnMapping>>);
+}  // namespace gapfe
