@@ -154,6 +154,24 @@ def two_tubes_deck(n=40, nz=80, a=1.0, b=1.5, gap=5e-4, c=2.0, h=None, p=100.0, 
     return "\n".join(lines) + "\n"
 
 
+def plastic_tube_deck(ni=41, a=100.0, b=200.0, p=300.0, steps=15, sigma_y=400.0, plasticity="return-mapping",
+                      extension=()):
+    """Thick tube a..b (THEORY.md V6), plane strain, one cell high, Mises (Hill with equal yields, shear
+    sigma_y / sqrt 3), elastic-perfectly plastic, bore pressure ramped to p in `steps` equal steps (INCF = 0).
+    Mises first yield at about 173 and the limit (2 / sqrt 3) sigma_y ln(b / a) = 320.15 (sigma_y = 400)."""
+    h = (b - a) / (ni - 1)
+    k = sigma_y / math.sqrt(3.0)
+    lines = [f"$ plasticity = {plasticity}"] + [f"$ {e}" for e in extension]
+    lines += [f"PLASTIC TUBE {a:g} < r < {b:g}, SIGMA_Y {sigma_y:g}, PRESSURE {p:g} IN {steps} STEPS",
+              control(numpc=1, nlinc=steps, incf=0), mesh_control(ni, 2, 4, 1, 1),
+              segment([(1, 1, a, 0.0), (ni, 1, b, 0.0)], 1), segment([(ni, 1, b, 0.0), (ni, 2, b, h)], 1),
+              segment([(ni, 2, b, h), (1, 2, a, h)], 1), segment([(1, 2, a, h), (1, 1, a, 0.0)], 1),
+              bc(1, ni, 1, 2, 2), block(1, 1, ni, 1, 2)]
+    lines += material(1, [isotropic(200000.0, 0.3)], yield_card=[sigma_y, sigma_y, sigma_y, k, k, k, 0.0])
+    lines += [edge(ni + 1, 1, p / steps)]
+    return "\n".join(lines) + "\n"
+
+
 def projectile_deck(steps=10, g_load=20000.0):
     """A projectile (mm, t, s, N, MPa): a steel cup (base 0 < z < 20, wall 30 < r < 40 up to z = 120)
     holding a separate filler insert (r < 29.9, 20.1 < z < 120; E = 3000, nu = 0.4, like a cast
@@ -219,6 +237,7 @@ def main():
         (out / "two_tubes.deck").write_text(two_tubes_deck(n=20, nz=2, a=50.0, b=75.0, gap=0.02, c=100.0,
                                                            steps=20, contact="active-set"))
         (out / "projectile.deck").write_text(projectile_deck())
+        (out / "plastic_tube.deck").write_text(plastic_tube_deck())
 
 
 if __name__ == "__main__":

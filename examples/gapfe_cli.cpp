@@ -9,13 +9,10 @@
 #include <iostream>
 #include <sstream>
 
-#include "gapfe/driver/deck_run.hpp"
 #include "gapfe/io/deck_output.hpp"
-#include "gapfe/model.hpp"
 #include "gapfe/version.hpp"
-#ifdef GAPFE_HAS_CHOLMOD
-#include "gapfe/solver/cholmod.hpp"
-#endif
+
+#include "cli_run.hpp"
 
 namespace gapfe::cli {
 namespace {
@@ -129,82 +126,6 @@ void describe(std::ostream& out, const Deck& d, const DeckScene& s) {
   out << "\n";
 }
 
-/// Wall-clock seconds of a run's phases after meshing (read and mesh are timed in execute()), and the
-/// contact work of a gap deck.
-struct RunTimes {
-  double assemble = 0, factorize = 0, solve = 0, write = 0;
-  ContactCounters contact;
-  int increments = 0, closed = 0, pairs = 0;
-  double penalty = 0;
-};
-
-template <class M, ContactPolicy P>
-void run_contact(const Deck& d, const DeckScene& s, const std::string& dir, std::ostream& err, bool progress,
-                 RunTimes& times) {
-  StepFiles files(dir, s);
-  GapFile gaps(dir, s);
-  run_deck_contact<M, P>(
-      d, s, d.options.gap_penalty, [&](int step, double inc, const ContactStatic<M, P>& c) {
-        const auto& t = c.fe().timings();
-        times.assemble += t.assemble, times.factorize += t.factorize, times.solve += t.solve + t.reactions;
-        if (!std::isfinite(c.fe().solution().residual) || !c.fe().solution().displacement.allFinite())
-          throw SolveError("load step " + std::to_string(step) + ": the solution is not finite");
-        const auto start = Clock::now();
-        files.write(step, inc, c.fe(), gaps.write(step, inc, c));
-        times.write += since(start);
-        times.contact = c.counters(), ++times.increments, times.penalty = c.penalty_factor();
-        times.pairs = static_cast<int>(c.pairs().size()), times.closed = 0;
-        for (const auto& st : c.states()) times.closed += st.closed;
-        if (progress) err << "\rstep " << step << "/" << d.steps() << std::flush;
-      });
-  if (progress) err << "\r" << std::string(32, ' ') << "\r" << std::flush;
-  files.write_deformed(d.title);
-}
-
-template <class Kin, class Elem, class Solver>
-void run_variant(const Deck& d, const DeckScene& s, const std::string& dir, std::ostream& err, bool progress,
-                 RunTimes& times) {
-  using M = Model<Kin, Elem, Orthotropic, Solver>;
-  if (!s.needs.gaps.empty()) {  // the contact policy of the deck (extension or --contact)
-    const std::string& c = d.options.contact;
-    if (c == "saac") return run_contact<M, Saac>(d, s, dir, err, progress, times);
-    if (c == "active-set") return run_contact<M, ActiveSet>(d, s, dir, err, progress, times);
-    if (c == "augmented-lagrangian")
-      return run_contact<M, AugmentedLagrangian>(d, s, dir, err, progress, times);
-    return run_contact<M, NoContact>(d, s, dir, err, progress, times);
-  }
-  StepFiles files(dir, s);
-  run_deck<M>(d, s, [&](int step, double inc, const LinearStatic<M>& fe) {
-    const auto& t = fe.timings();
-    times.assemble += t.assemble, times.factorize += t.factorize, times.solve += t.solve + t.reactions;
-    if (!std::isfinite(fe.solution().residual) || !fe.solution().displacement.allFinite())
-      throw SolveError("load step " + std::to_string(step) + ": the solution is not finite");
-    const auto start = Clock::now();
-    files.write(step, inc, fe);
-    times.write += since(start);
-    if (progress) err << "\rstep " << step << "/" << d.steps() << std::flush;
-  });
-  if (progress) err << "\r" << std::string(32, ' ') << "\r" << std::flush;
-  files.write_deformed(d.title);
-}
-
-template <class Solver>
-void run_with_solver(const std::string& variant, const Deck& d, const DeckScene& s, const std::string& dir,
-                     std::ostream& err, bool progress, RunTimes& times) {
-  const bool quad4 = d.options.element == "quad4";
-  if (variant == "saga") {
-    if (quad4)
-      run_variant<Axisym3, Quad4, Solver>(d, s, dir, err, progress, times);
-    else
-      run_variant<Axisym3, LegacyQuad, Solver>(d, s, dir, err, progress, times);
-  } else {
-    if (quad4)
-      run_variant<Axisym2, Quad4, Solver>(d, s, dir, err, progress, times);
-    else
-      run_variant<Axisym2, LegacyQuad, Solver>(d, s, dir, err, progress, times);
-  }
-}
-
 int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) {
   std::ostringstream null_stream;
   std::ostream& log = a.quiet ? null_stream : out;
@@ -240,11 +161,7 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) 
     log << "wrote " << a.out << "/mesh.svg, mesh_nodes.csv, mesh_elements.csv, mesh.vtu\n";
     return ok;
   }
-  if (!s.needs.plasticity.empty())
-    throw InputError(
-        "this deck asks for plasticity (" + s.needs.plasticity.front() +
-        "); plasticity is not in this version of gapfe yet: blank the yield cards for an elastic run");
-
+  const bool plastic = !s.needs.plasticity.empty();
   std::string solver = d.options.solver;
 #ifdef GAPFE_HAS_CHOLMOD
   if (solver == "auto") solver = "cholmod";
@@ -253,24 +170,32 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) 
   if (solver == "cholmod")
     throw InputError("solver = cholmod: this gapfe was built without CHOLMOD (SuiteSparse)");
 #endif
+  const std::string element = d.options.element != "auto" ? d.options.element
+                              : plastic                   ? "quad4bbar"
+                                                          : "legacy";
+  log << "solver: " << (solver == "eigen" ? EigenLdlt::kName : "CHOLMOD supernodal LLT (AMD)") << "; element "
+      << element << "\n";
   RunTimes times;
+  const RunRequest request{d, s, a.out, variant, element, solver, err, progress};
   t0 = Clock::now();
-#ifdef GAPFE_HAS_CHOLMOD
-  if (solver == "cholmod") {
-    log << "solver: " << CholmodLlt::kName << "\n";
-    run_with_solver<CholmodLlt>(variant, d, s, a.out, err, progress, times);
-  } else
-#endif
-  {
-    log << "solver: " << EigenLdlt::kName << "\n";
-    run_with_solver<EigenLdlt>(variant, d, s, a.out, err, progress, times);
-  }
+  if (plastic)
+    run_plastic(request, times);
+  else if (!s.needs.gaps.empty())
+    run_contact(request, times);
+  else
+    run_elastic(request, times);
   // setup: the Problem, DOF map, sparsity pattern, symbolic analysis and stress recovery.
   const double setup = since(t0) - times.assemble - times.factorize - times.solve - times.write;
   log << "time [s]: read " << t_read << ", mesh " << t_mesh << ", setup " << setup << ", assemble "
       << times.assemble << ", factorize " << times.factorize << ", solve " << times.solve << ", write "
       << times.write << "\n";
-  if (!s.needs.gaps.empty())
+  if (plastic)
+    log << "plasticity: " << d.options.plasticity << "; " << times.increments << " increments ("
+        << times.cut_steps << " from cut steps), " << times.newton_iterations
+        << " linear solves; worst residual " << times.worst_residual
+        << ", largest drift off the yield surface " << times.drift << "; " << times.plastic_points
+        << " plastic points at the end\n";
+  if (!s.needs.gaps.empty() && !plastic)
     log << "contact: " << times.increments << " increments (" << times.contact.splits << " split points), "
         << times.contact.solves << " linear solves, " << times.contact.factorizations << " factorizations, "
         << times.contact.multiplier_updates << " multiplier updates; penalty " << times.penalty

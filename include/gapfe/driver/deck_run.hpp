@@ -9,7 +9,9 @@
 
 #include "gapfe/driver/contact_static.hpp"
 #include "gapfe/driver/linear_static.hpp"
+#include "gapfe/driver/nonlinear_static.hpp"
 #include "gapfe/io/deck_scene.hpp"
+#include "gapfe/material/hill.hpp"
 
 namespace gapfe {
 
@@ -43,17 +45,31 @@ void set_step_loads(Problem<M>& p, const Deck& d, const DeckScene& s, int step) 
   set_loads(p, step_totals(d, s, step), s);
 }
 
+/// A deck material as law `Law`: the elastic table, and for Hill the yield card (blank or absent: elastic).
+template <class Law>
+Law deck_law(const Orthotropic& elastic, const std::optional<YieldCard>& card) {
+  if constexpr (requires(Law l) { l.yield; }) {
+    Law law{elastic, {}};
+    if (card && !card->blank) {
+      const auto& y = card->yield;
+      law.yield     = {y[0], y[1], y[2], y[3], y[4], y[5], card->hardening, PragerShear::legacy};
+    }
+    return law;
+  } else {
+    Law law;
+    law.table = elastic.table;
+    return law;
+  }
+}
+
 /// The Problem of a scene under the loads in force after `step`.
 template <class M>
 Problem<M> deck_problem(const Deck& d, const DeckScene& s, int step) {
   static_assert(M::Element::kNodes == 4, "I-J decks make 4-corner cells (LegacyQuad or Quad4)");
   Problem<M> p;
   p.mesh = s.mesh;
-  for (const auto& law : s.materials) {
-    typename M::Material m;
-    m.table = law.table;
-    p.materials.push_back(m);
-  }
+  for (std::size_t k = 0; k < s.materials.size(); ++k)
+    p.materials.push_back(deck_law<typename M::Material>(s.materials[k], d.materials[k].yield));
   set_step_loads(p, d, s, step);
   p.temperature           = s.temperature;
   p.reference_temperature = s.reference_temperature;
@@ -69,6 +85,36 @@ void run_deck(const Deck& d, const DeckScene& s, OnStep&& on_step) {
     if (step > 1) set_step_loads(fe.problem(), d, s, step);
     fe.solve(/*same_stiffness=*/step > 1);
     on_step(step, static_cast<double>(step), static_cast<const LinearStatic<M>&>(fe));
+  }
+}
+
+/// Run every load step of a deck with yield cards (law with history, NonlinearStatic). A step whose
+/// Newton iterations fail is rejected and cut in halves, down to 1/64 of a step (the load factor
+/// interpolates the totals as in run_deck_contact); then the SolveError goes to the caller.
+/// `on_increment(step, inc, const NonlinearStatic<M>&)` sees every accepted increment.
+template <class M, class OnIncrement>
+void run_deck_plastic(const Deck& d, const DeckScene& s, OnIncrement&& on_increment) {
+  NonlinearStatic<M> fe(deck_problem<M>(d, s, 1));
+  for (int step = 1; step <= d.steps(); ++step) {
+    const StepTotals before = step_totals(d, s, step - 1), after = step_totals(d, s, step);
+    double done = 0, size = 1;
+    while (done < 1 - 1e-12) {
+      const double to = std::min(1.0, done + size);
+      set_loads(fe.problem(), interpolate(before, after, to), s);
+      try {
+        fe.solve();
+      } catch (const SolveError& e) {
+        fe.reject();
+        if (size < 1.0 / 64)
+          throw SolveError("load step " + std::to_string(step) + " (cut to 1/64): " + e.what());
+        size /= 2;
+        continue;
+      }
+      fe.commit();
+      done = to;
+      on_increment(step, step - 1 + done, static_cast<const NonlinearStatic<M>&>(fe));
+      size = std::min(1.0, 2 * size);  // grow again after a cut
+    }
   }
 }
 

@@ -113,8 +113,9 @@ class StepFiles {
   }
 
   /// One increment; `extra_cells` are more VTU cell arrays (the gap fields of GapFile).
-  template <class M>
-  void write(int step, double inc, const LinearStatic<M>& fe, std::vector<VtuField> extra_cells = {}) {
+  /// `fe`: a LinearStatic or NonlinearStatic (solution(), centroid_values()).
+  template <class Fe>
+  void write(int step, double inc, const Fe& fe, std::vector<VtuField> extra_cells = {}) {
     const IJGrid& g = scene_.grid;
     const auto& u   = fe.solution().displacement;
     std::string prefix;
@@ -140,7 +141,7 @@ class StepFiles {
     for (const auto& v : values)
       by_element[(v.triangle ? scene_.element_of_triangle : scene_.element_of_cell)[v.cell]] = &v;
     s.clear();
-    std::vector<double> stress(6 * g.cells.size());
+    std::vector<double> stress(6 * g.cells.size()), eqps(g.cells.size());
     for (std::size_t e = 0; e < g.cells.size(); ++e) {
       const PointValues& v = *by_element[e];
       s += prefix;
@@ -149,8 +150,9 @@ class StepFiles {
       detail::csv_number(s, v.r), detail::csv_number(s, v.z);
       for (const int k : {voigt::rr, voigt::zz, voigt::hoop, voigt::rz, voigt::theta_r, voigt::z_theta})
         detail::csv_number(s, v.stress(k));
-      s += "0\n";  // eqps: elastic run
+      detail::append_number(s, v.eqps), s += '\n';
       for (int k = 0; k < 6; ++k) stress[6 * e + k] = v.stress(k);
+      eqps[e] = v.eqps;
     }
     elements_ << s;
     elements_.flush();
@@ -167,6 +169,7 @@ class StepFiles {
       for (int c = 0; c < 3; ++c)
         point[0].values.push_back(u(n, c)), point[1].values.push_back(fe.solution().reaction(n, c));
     std::vector<VtuField> cell = detail::element_ids(scene_);
+    cell.insert(cell.begin(), VtuField{"eqps", 1, std::move(eqps)});
     cell.insert(cell.begin(), VtuField{"stress", 6, std::move(stress)});
     for (auto& f : extra_cells) {
       if (f.name == "gap_state") last_gap_state_ = f.values;

@@ -56,8 +56,12 @@ struct HillYield {
     return {sigma_y, sigma_y, sigma_y, k, k, k, hardening, shear};
   }
 
+  /// An all-blank card 11: the material stays elastic (P = 0, so f = 0 < 1 always).
+  bool blank() const { return X == 0 && Y == 0 && Z == 0 && R_NS == 0 && R_NT == 0 && R_TS == 0; }
+
   /// P of f = xi^T P xi in material Voigt order [NN, SS, TT, NS, ST, TN], tensor shear stresses.
   Mat66 yield_matrix() const {
+    if (blank()) return Mat66::Zero();
     const double x = 1 / (X * X), y = 1 / (Y * Y), z = 1 / (Z * Z);
     Mat66 p = Mat66::Zero();
     p(0, 0) = x, p(1, 1) = y, p(2, 2) = z;
@@ -81,6 +85,7 @@ struct HillYield {
   /// surface open in some deviatoric direction never yields there and is refused).
   void validate(const std::string& where) const {
     const auto fail = [&](const std::string& what) { throw InputError(where + ": " + what); };
+    if (blank()) return;
     for (double s : {X, Y, Z, R_NS, R_NT, R_TS})
       if (!(s > 0 && std::isfinite(s))) fail("yield stresses must be positive and finite (card 11)");
     if (!(hardening >= 0 && std::isfinite(hardening))) fail("hardening parameter C must be >= 0 (card 11)");
@@ -164,7 +169,7 @@ struct Hill {
     const Mat66 t_eps             = strain_rotation(p.to_material);
     p.yield_matrix                = p.to_material.transpose() * yield.yield_matrix() * p.to_material;
     p.hardening_matrix            = yield.hardening * (t_eps.transpose() * yield.hardening_matrix() * t_eps);
-    p.reference_yield             = yield.X;
+    p.reference_yield             = yield.blank() ? 1.0 : yield.X;
     return p;
   }
   void validate(const std::string& where) const {
