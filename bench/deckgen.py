@@ -131,7 +131,7 @@ def helical_sleeve_deck():
 
 
 def two_tubes_deck(n=40, nz=80, a=1.0, b=1.5, gap=5e-4, c=2.0, h=None, p=100.0, steps=10, contact="saac",
-                   extension=()):
+                   extension=(), sigma_y=None):
     """Two tubes across a radial gap (THEORY.md V5, plane strain): inner a..b and outer b + gap..c, n x nz
     cells each, one column of gap elements (material 2, IJDIR = 1) between them, bore pressure ramped to
     p in `steps` equal steps (INCF = 0). E = 200000, nu = 0.3; the gap material is 1e-9 as stiff.
@@ -141,15 +141,22 @@ def two_tubes_deck(n=40, nz=80, a=1.0, b=1.5, gap=5e-4, c=2.0, h=None, p=100.0, 
     node = lambda I, J: (J - 1) * ni + I
     lines = [f"$ contact = {contact}"] + [f"$ {e}" for e in extension]
     lines += [f"TWO TUBES {a:g}-{b:g} AND {b + gap:g}-{c:g}, GAP {gap:g}, PRESSURE {p:g} IN {steps} STEPS",
-              control(nummat=2, numpc=nz, nlinc=steps, incf=0), mesh_control(ni, nj, 8, 1, 3),
+              control(nummat=2 if sigma_y is None else 3, numpc=nz, nlinc=steps, incf=0), mesh_control(ni, nj, 8, 1, 3),
               segment([(1, 1, a, 0.0), (n + 1, 1, b, 0.0)], 1), segment([(n + 2, 1, b + gap, 0.0), (ni, 1, c, 0.0)], 1),
               segment([(1, nj, a, h), (n + 1, nj, b, h)], 1), segment([(n + 2, nj, b + gap, h), (ni, nj, c, h)], 1),
               segment([(1, 1, a, 0.0), (1, nj, a, h)], 1), segment([(n + 1, 1, b, 0.0), (n + 1, nj, b, h)], 1),
               segment([(n + 2, 1, b + gap, 0.0), (n + 2, nj, b + gap, h)], 1), segment([(ni, 1, c, 0.0), (ni, nj, c, h)], 1),
               bc(1, ni, 1, nj, 2), block(1, 1, n + 1, 1, nj), block(2, n + 1, n + 2, 1, nj, ijdir=1),
-              block(1, n + 2, ni, 1, nj)]
-    lines += material(1, [isotropic(200000.0, 0.3)])
+              block(1 if sigma_y is None else 3, n + 2, ni, 1, nj)]
+    if sigma_y is None:
+        lines += material(1, [isotropic(200000.0, 0.3)])
+    else:  # the inner tube (material 1) yields (Mises); the outer tube (material 3) stays elastic
+        k = sigma_y / math.sqrt(3.0)
+        lines[1 + len(extension)] = lines[1 + len(extension)].replace("TWO TUBES", "PLASTIC TUBE IN A TUBE")
+        lines += material(1, [isotropic(200000.0, 0.3)], yield_card=[sigma_y] * 3 + [k] * 3 + [0.0])
     lines += material(2, [isotropic(200000.0e-9, 0.0)])
+    if sigma_y is not None:
+        lines += material(3, [isotropic(200000.0, 0.3)])
     lines += [edge(node(1, J + 1), node(1, J), p / steps) for J in range(1, nj)]
     return "\n".join(lines) + "\n"
 
@@ -238,6 +245,9 @@ def main():
                                                            steps=20, contact="active-set"))
         (out / "projectile.deck").write_text(projectile_deck())
         (out / "plastic_tube.deck").write_text(plastic_tube_deck())
+        (out / "plastic_two_tubes.deck").write_text(two_tubes_deck(n=20, nz=2, a=50.0, b=75.0, gap=0.02, c=100.0,
+                                                                   p=200.0, steps=20, sigma_y=250.0,
+                                                                   extension=("plasticity = return-mapping",)))
 
 
 if __name__ == "__main__":

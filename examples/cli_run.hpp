@@ -12,6 +12,7 @@
 #include "gapfe/kinematics/axisym2.hpp"
 #include "gapfe/kinematics/axisym3.hpp"
 #include "gapfe/solver/eigen_ldlt.hpp"
+#include "gapfe/solver/runtime_solver.hpp"
 #ifdef GAPFE_HAS_CHOLMOD
 #include "gapfe/solver/cholmod.hpp"
 #endif
@@ -40,9 +41,11 @@ struct RunRequest {
   bool progress;
 };
 
-void run_elastic(const RunRequest& r, RunTimes& times);  // cli_run_elastic.cpp
-void run_contact(const RunRequest& r, RunTimes& times);  // cli_run_contact.cpp
-void run_plastic(const RunRequest& r, RunTimes& times);  // cli_run_plastic.cpp
+void run_elastic(const RunRequest& r, RunTimes& times);          // cli_run_elastic.cpp
+void run_contact(const RunRequest& r, RunTimes& times);          // cli_run_contact.cpp
+void run_contact_saga(const RunRequest& r, RunTimes& times);     // cli_run_contact_saga.cpp
+void run_plastic(const RunRequest& r, RunTimes& times);          // cli_run_plastic.cpp
+void run_plastic_tangent(const RunRequest& r, RunTimes& times);  // cli_run_plastic_tangent.cpp
 
 /// The deck option value (element = ...) of each element type.
 template <class E>
@@ -60,26 +63,29 @@ struct CliName<Quad4BBar> {
   static constexpr const char* value = "quad4bbar";
 };
 
-/// f.template operator()<Kin, Elem, Solver>() for the request's variant, element (one of Elems) and solver.
+/// The command's solver: EigenLdlt or CHOLMOD, chosen per run (one instantiation of every model).
+#ifdef GAPFE_HAS_CHOLMOD
+using CliSolver = RuntimeSolver<EigenLdlt, CholmodLlt>;
+#else
+using CliSolver = RuntimeSolver<EigenLdlt>;
+#endif
+
+/// f.template operator()<Kin, Elem, CliSolver>() for the request's variant, element (one of Elems) and
+/// solver (selected in CliSolver first).
 template <class... Elems, class F>
 void dispatch(const RunRequest& r, F&& f) {
-  const auto with_solver = [&]<class Solver>() {
-    bool done              = false;
-    const auto try_element = [&]<class Elem>() {
-      if (done || r.element != CliName<Elem>::value) return;
-      done = true;
-      if (r.variant == "saga")
-        f.template operator()<Axisym3, Elem, Solver>();
-      else
-        f.template operator()<Axisym2, Elem, Solver>();
-    };
-    (try_element.template operator()<Elems>(), ...);
-    if (!done) throw InputError("element = " + r.element + " is not available for this kind of deck");
+  CliSolver::select(r.solver == "cholmod" ? 1 : 0);
+  bool done              = false;
+  const auto try_element = [&]<class Elem>() {
+    if (done || r.element != CliName<Elem>::value) return;
+    done = true;
+    if (r.variant == "saga")
+      f.template operator()<Axisym3, Elem, CliSolver>();
+    else
+      f.template operator()<Axisym2, Elem, CliSolver>();
   };
-#ifdef GAPFE_HAS_CHOLMOD
-  if (r.solver == "cholmod") return with_solver.template operator()<CholmodLlt>();
-#endif
-  with_solver.template operator()<EigenLdlt>();
+  (try_element.template operator()<Elems>(), ...);
+  if (!done) throw InputError("element = " + r.element + " is not available for this kind of deck");
 }
 
 /// The log's progress line.

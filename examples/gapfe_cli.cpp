@@ -189,13 +189,13 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) 
   log << "time [s]: read " << t_read << ", mesh " << t_mesh << ", setup " << setup << ", assemble "
       << times.assemble << ", factorize " << times.factorize << ", solve " << times.solve << ", write "
       << times.write << "\n";
-  if (plastic)
+  if (plastic && s.needs.gaps.empty())
     log << "plasticity: " << d.options.plasticity << "; " << times.increments << " increments ("
         << times.cut_steps << " from cut steps), " << times.newton_iterations
         << " linear solves; worst residual " << times.worst_residual
         << ", largest drift off the yield surface " << times.drift << "; " << times.plastic_points
         << " plastic points at the end\n";
-  if (!s.needs.gaps.empty() && !plastic)
+  if (!s.needs.gaps.empty())
     log << "contact: " << times.increments << " increments (" << times.contact.splits << " split points), "
         << times.contact.solves << " linear solves, " << times.contact.factorizations << " factorizations, "
         << times.contact.multiplier_updates << " multiplier updates; penalty " << times.penalty

@@ -37,7 +37,7 @@ std::vector<std::map<std::string, double>> read_csv(const fs::path& path) {
     std::string v;
     for (const auto& n : names) {
       std::getline(s, v, ',');
-      row[n] = std::stod(v);
+      row[n] = v == "closed" ? 1.0 : v == "open" ? 0.0 : std::stod(v);  // gaps.csv status: 1 closed
     }
     rows.push_back(row);
   }
@@ -321,4 +321,27 @@ TEST_CASE("Plastic tube deck: yield cards run Hill plasticity; eqps in elements.
                           scratch("plastic_legacy").string(), "--element", "legacy"},
                          o, e) == gapfe::cli::input);
   CHECK(e.str().find("element = legacy with yield cards") != std::string::npos);
+}
+
+TEST_CASE("Plastic tube in a tube deck: SAAC = SAGAEP + gaps, closure and yield in one run") {
+  // examples/decks/plastic_two_tubes.deck: the two-tube deck with a Mises inner tube (sigma_y = 250) and
+  // bore pressure to 200: the gap closes near 36.6 (elastic, V5), the inner bore yields later.
+  const fs::path out  = run_deck_file(kExamples / "plastic_two_tubes.deck", "plastic_two_tubes");
+  const auto gaps     = read_csv(out / "gaps.csv");
+  const auto elements = read_csv(out / "elements.csv");
+  REQUIRE(!gaps.empty());
+  const double last_inc = gaps.back().at("inc");
+  int closed = 0, rows = 0;
+  for (const auto& g : gaps)
+    if (g.at("inc") == last_inc) ++rows, closed += g.at("status") == 1 && g.at("f_n") > 0;
+  CHECK(rows > 0);
+  CHECK(closed == rows);
+  double inner_eqps = 0, outer_eqps = 0;
+  for (const auto& e : elements) {
+    if (e.at("inc") != last_inc) continue;
+    (e.at("material") == 1 ? inner_eqps : outer_eqps) =
+        std::max(e.at("material") == 1 ? inner_eqps : outer_eqps, e.at("eqps"));
+  }
+  CHECK(inner_eqps > 0);
+  CHECK(outer_eqps == 0);
 }

@@ -353,6 +353,38 @@ TEST_CASE("ReturnMapping: Newton converges quadratically (the residuals of a pla
   CHECK(checked >= 2);
 }
 
+TEST_CASE("Thick tube with the seed's Tangent scheme at 10, 50 and 200 steps: error against step count") {
+  // Pressure ramped to p(rho = 0.15) = 288.3 MPa. Errors of the bore displacement against ReturnMapping
+  // (Newton, 1e-10) on the same mesh, and of the plastic radius against the closed form. The tangent
+  // scheme is first order: the error must fall with the step count, roughly in proportion.
+  const auto run = [](auto integration, int steps, double& radius) {
+    using M = Model<Axisym2, Quad4BBar, Hill<decltype(integration)>>;
+    const PlasticTube<M> tube;
+    NonlinearStatic<M> fe(tube.problem());
+    for (int s = 1; s <= steps; ++s) {
+      tube.set_pressure(fe.problem(), tube.pressure_at(0.15) * s / steps);
+      fe.solve();
+      fe.commit();
+    }
+    radius = plastic_radius(fe);
+    return fe.solution().displacement(0, 0);
+  };
+  double radius          = 0;
+  const double reference = run(ReturnMapping{}, 50, radius);
+  std::vector<double> errors;
+  std::ostringstream table;
+  for (const int steps : {10, 50, 200}) {
+    const double u = run(Tangent{}, steps, radius);
+    errors.push_back(rel(u, reference));
+    table << "\n  Tangent " << steps << " steps: bore u error " << errors.back() << ", plastic radius "
+          << radius << " (closed form 0.15)";
+  }
+  MESSAGE("thick tube, Tangent against ReturnMapping:" << table.str());
+  CHECK(errors[1] < errors[0]);
+  CHECK(errors[2] < errors[1]);
+  CHECK(errors[2] < 0.01);
+}
+
 // ------------------------------------------------------------------------------ shaft in torsion
 
 TEST_CASE_TEMPLATE("Solid shaft in torsion past yield (SAGA): the torque approaches (2 pi / 3) tau_y R^3",
@@ -387,6 +419,71 @@ TEST_CASE_TEMPLATE("Solid shaft in torsion past yield (SAGA): the torque approac
   MESSAGE(Integration::kName << ": torque " << torque * 1e6 << " N m at 10 x first-yield twist; closed form "
                              << t << " (fully plastic " << t_p << ")");
   CHECK(rel(torque * 1e6, t) < 0.02);
+}
+
+}  // namespace
+}  // namespace gapfe::test
+
+namespace gapfe::test {
+namespace {
+
+TEST_CASE("SAAC = SAGAEP + gaps: a plastic tube pressed across a gap onto an elastic one, in equilibrium") {
+  // Inner tube a..b (Mises sigma_y = 250 MPa) inside an elastic outer tube b + delta..c across a column of
+  // soft gap elements, plane strain, bore pressure ramped past closure and past first yield of the inner
+  // tube. Checked: the gap closes and the inner tube yields in the same run; every increment is in
+  // equilibrium to 1e-8 (Newton's residual over all DOFs, contact links included); the outer tube, elastic
+  // and loaded only through the closed pairs, has the bore displacement Lame gives for the contact pressure
+  // those pairs carry (1%).
+  using M        = Model<Axisym2, Quad4BBar, Hill<ReturnMapping>>;
+  const double a = 0.05, b = 0.075, c = 0.1, delta = 20e-6, E = 200e3, nu = 0.3, h = 0.001;
+  const int n_in = 30, n_out = 30;
+  std::vector<double> r;
+  for (int i = 0; i <= n_in; ++i) r.push_back(a + (b - a) * i / n_in);
+  for (int i = 0; i <= n_out; ++i) r.push_back(b + delta + (c - b - delta) * i / n_out);
+  const int ni = static_cast<int>(r.size());
+  Problem<M> p;
+  for (int j = 0; j <= 1; ++j)
+    for (int i = 0; i < ni; ++i) p.mesh.nodes.push_back({r[i], j * h});
+  std::vector<GapPair> pairs;
+  for (int i = 0; i + 1 < ni; ++i) {
+    const std::array<int, 4> ix{i, i + 1, ni + i + 1, ni + i};
+    p.mesh.cells.push_back(ix);
+    const int material = i < n_in ? 0 : i == n_in ? 1 : 2;
+    p.mesh.cell_tags.push_back({material, {}});
+    if (i == n_in)
+      for (const auto& g : gap_element_pairs(static_cast<int>(p.mesh.cells.size() - 1), ix, 1, p.mesh.nodes))
+        pairs.push_back(g);
+  }
+  const auto elastic = [](double modulus, double poisson) {
+    return Orthotropic::constant(ElasticConstants::isotropic(modulus, poisson));
+  };
+  p.materials = {{elastic(E, nu), HillYield::mises(250)}, {elastic(1e-9 * E, 0.0), {}}, {elastic(E, nu), {}}};
+  for (int n = 0; n < p.mesh.node_count(); ++n) p.conditions.push_back({n, 2, {}});
+  ContactOptions options;
+  options.gap_materials = {1};
+  ContactStatic<M, Saac> contact(std::move(p), pairs, options);
+  const double p_max                             = 200;  // MPa: closure near 36.6, inner yield near 80
+  const ContactStatic<M, Saac>::LoadsAt loads_at = [&](Problem<M>& q, double t) {
+    q.edge_loads = {{ni, 0, p_max * t / 20, 0, 0}};
+  };
+  double worst_residual                            = 0;
+  const ContactStatic<M, Saac>::OnIncrement record = [&](double, const ContactStatic<M, Saac>& s) {
+    worst_residual = std::max(worst_residual, s.fe().solution().residual);
+  };
+  for (int step = 1; step <= 20; ++step) contact.advance(step, loads_at, record);
+  const auto& fe = contact.fe();
+  CHECK(fe.report().plastic_points > 0);
+  double closed = 0, force = 0;
+  for (std::size_t q = 0; q < pairs.size(); ++q)
+    closed += contact.states()[q].closed, force += contact.states()[q].normal_force;
+  CHECK(closed == pairs.size());
+  MESSAGE("plastic points " << fe.report().plastic_points << ", worst residual " << worst_residual);
+  CHECK(worst_residual <= 1e-8);
+  const double q_contact = force / (kTwoPi * b * h);  // pairs carry total ring forces
+  const double u_outer   = fe.solution().displacement(n_in + 1, 0);
+  const double u_lame    = Lame{b + delta, c, q_contact, E, nu}.displacement(b + delta);
+  MESSAGE("contact pressure " << q_contact << " MPa; outer bore u " << u_outer << ", Lame " << u_lame);
+  CHECK(rel(u_outer, u_lame) < 0.01);
 }
 
 }  // namespace

@@ -14,11 +14,13 @@
 #include <cstdio>
 #include <functional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "gapfe/contact/gap_pairs.hpp"
 #include "gapfe/contact/policies.hpp"
 #include "gapfe/driver/linear_static.hpp"
+#include "gapfe/driver/nonlinear_static.hpp"
 
 namespace gapfe {
 
@@ -48,7 +50,9 @@ struct ContactCounters {
 template <class M, ContactPolicy Policy>
 class ContactStatic {
  public:
-  using Fe          = LinearStatic<M>;
+  /// LinearStatic for elastic laws; NonlinearStatic (Newton, history) for laws with history: SAAC is
+  /// SAGAEP plus gaps. Every trial solve starts from the committed history; accept() commits it.
+  using Fe          = std::conditional_t<M::Material::kLinear, LinearStatic<M>, NonlinearStatic<M>>;
   using LoadsAt     = std::function<void(Problem<M>&, double)>;
   using OnIncrement = std::function<void(double, const ContactStatic&)>;
 
@@ -57,6 +61,7 @@ class ContactStatic {
         opt_(std::move(options)),
         fe_(std::move(problem), links_of(pairs_)),
         accepted_(pairs_.size()) {
+    fe_.defer_reactions(true);  // trial solves need displacements only; reactions when an increment is read
     const double kappa = std::min(opt_.penalty_factor > 0 ? opt_.penalty_factor : Policy::kDefaultPenalty,
                                   Policy::kMaxPenalty);
     size_  = fe_.problem().mesh.size();
@@ -157,7 +162,7 @@ class ContactStatic {
   /// closed pair's |g| <= penetration_tolerance x max |u| (THEORY.md 5.5 item 2).
   void settle_multipliers() {
     for (int it = 0;; ++it) {
-      const double scale = std::max(fe_.solution().displacement.cwiseAbs().maxCoeff(), gap_tolerance());
+      const double scale = std::max(fe_.displacement().cwiseAbs().maxCoeff(), gap_tolerance());
       double worst       = 0;
       for (std::size_t p = 0; p < pairs_.size(); ++p)
         if (trial_[p].closed) worst = std::max(worst, std::abs(trial_[p].gap));
@@ -186,6 +191,7 @@ class ContactStatic {
     set_links();
   }
   void accept(double t) {
+    if constexpr (!M::Material::kLinear) fe_.commit();
     t_                    = t;
     accepted_             = trial_;
     count_.factorizations = fe_.factorizations() - factorizations_at_reset_;
@@ -221,7 +227,7 @@ class ContactStatic {
     }
   }
   void update_trial() {
-    const auto& u = fe_.solution().displacement;
+    const auto& u = fe_.displacement();
     for (std::size_t p = 0; p < pairs_.size(); ++p) {
       const GapPair& g = pairs_[p];
       PairState& s     = trial_[p];

@@ -90,7 +90,23 @@ class LinearStatic {
   const Problem<M>& problem() const { return p_; }
   const DofMap<kNd>& dofs() const { return dofs_; }
   const SpMat& stiffness() const { return k_; }  ///< lower triangle, free DOFs
-  const Solution& solution() const { return sol_; }
+  /// Displacements, reactions and the equilibrium residual of the last solve. With defer_reactions(),
+  /// the reactions and residual are computed here, on the first call after a solve.
+  const Solution& solution() const {
+    if (reactions_stale_) {
+      const auto t0 = std::chrono::steady_clock::now();
+      reactions();
+      time_.reactions  = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      reactions_stale_ = false;
+    }
+    return sol_;
+  }
+  /// Nodal displacements of the last solve (rows nodes, columns r, z, theta), never computing reactions.
+  const Eigen::Matrix<double, Eigen::Dynamic, 3>& displacement() const { return sol_.displacement; }
+  /// Compute reactions and the residual (an element pass) only when solution() is read, not in every
+  /// solve: for drivers that solve several trial systems per accepted increment (contact). solve() and
+  /// resolve_links() then return a Solution whose reactions and residual are stale: read solution().
+  void defer_reactions(bool defer) { defer_reactions_ = defer; }
   const SolveTimings& timings() const { return time_; }
   const Connectivity<2>& links() const { return links_; }
   /// Values of the node links, parallel to links(); change them, then solve() or resolve_links().
@@ -191,7 +207,12 @@ class LinearStatic {
     u_ = dofs_.prescribed;
     for (std::size_t d = 0; d < dofs_.equation.size(); ++d)
       if (dofs_.equation[d] >= 0) u_(static_cast<Eigen::Index>(d)) = u_f(dofs_.equation[d]);
-    reactions();
+    const int nn = p_.mesh.node_count();
+    sol_.displacement.setZero(nn, 3);
+    for (int n = 0; n < nn; ++n)
+      for (int c = 0; c < kNd; ++c) sol_.displacement(n, c) = u_(dofs_.dof(n, c));
+    reactions_stale_ = defer_reactions_;
+    if (!defer_reactions_) reactions();
     auto t4 = clock::now();
     time_   = {std::chrono::duration<double>(assembly).count(), seconds(t1, t2), seconds(t2, t3),
                seconds(t3, t4)};
@@ -445,7 +466,7 @@ class LinearStatic {
   }
 
   // ---------------------------------------------------------------- reactions
-  void reactions() {
+  void reactions() const {
     VecX internal = VecX::Zero(u_.size());
     cache_valid_  = false;
     for_each_cell([&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t,
@@ -468,7 +489,7 @@ class LinearStatic {
 
   /// sol_ from u_ and the internal forces (all DOFs): displacements, reactions = internal - external at
   /// prescribed DOFs, and the relative out-of-balance |internal - external| / |internal| at free DOFs.
-  void balance(const VecX& internal) {
+  void balance(const VecX& internal) const {
     const int nn = p_.mesh.node_count();
     sol_.displacement.setZero(nn, 3);
     sol_.reaction.setZero(nn, 3);
@@ -640,8 +661,10 @@ class LinearStatic {
   int factorization_count_        = 0;
   std::unique_ptr<Solver> solver_ = std::make_unique<Solver>();  // solvers are not movable
   bool factorized_                = false;                       // solver_ holds a factorization of k_
-  Solution sol_;
-  SolveTimings time_;
+  mutable Solution sol_;  // reactions and residual filled lazily with defer_reactions()
+  mutable SolveTimings time_;
+  mutable bool reactions_stale_ = false;
+  bool defer_reactions_         = false;
   std::unordered_map<std::uint64_t, EdgeRef> edges_;
   mutable typename Law::Local cache_local_{};
   mutable CellTag cache_tag_{};

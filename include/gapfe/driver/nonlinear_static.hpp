@@ -75,13 +75,17 @@ class NonlinearStatic : private LinearStatic<M> {
     u_committed_ = this->u_;
   }
 
+  using Base::defer_reactions;  // a no-op here: every Newton iteration computes the internal forces
+  using Base::displacement;
   using Base::dofs;
   using Base::factorizations;
   using Base::link_values;
   using Base::links;
+  using Base::nodal_stiffness;  // elastic stiffness: what a contact penalty is scaled by
   using Base::problem;
   using Base::solution;
   using Base::stiffness;
+  using Base::timings;  // of the elastic path: the Newton solve's time is solve_seconds()
 
   /// Time and step size handed to the law (rate-dependent laws read them).
   StepContext& context() { return context_; }
@@ -154,6 +158,11 @@ class NonlinearStatic : private LinearStatic<M> {
     seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return this->sol_;
   }
+
+  /// The LinearStatic stepper calls of a contact driver: both iterate from the committed state (the
+  /// stiffness changes anyway).
+  const Solution& solve(bool /*same_stiffness*/) { return solve(); }
+  const Solution& resolve_links(bool /*same_link_stiffness*/) { return solve(); }
 
   /// Accept the last solve(): its history becomes the committed state.
   void commit() {

@@ -1,0 +1,86 @@
+#pragma once
+// RuntimeSolver<S...>: a LinearSolver whose implementation is one of S..., picked at run time with
+// select(). A program that offers its users several solvers (the gapfe command's `solver =` option)
+// instantiates its models once with RuntimeSolver instead of once per solver: half the compile time with
+// two solvers. The calls are per matrix (analyze, factorize, solve), so the one virtual call each costs
+// nothing measurable; element and point code never sees it.
+//
+// The choice is a process-wide setting read when a solver is constructed (models default-construct
+// their solver): call select() before building the analysis. It is not meant to change concurrently.
+#include <array>
+#include <memory>
+#include <string>
+#include <tuple>
+
+#include "gapfe/core/concepts.hpp"
+#include "gapfe/core/error.hpp"
+
+namespace gapfe {
+
+template <LinearSolver... Solvers>
+class RuntimeSolver {
+ public:
+  static constexpr const char* kName = "chosen at run time (RuntimeSolver)";
+
+  /// Pick the solver whose kName is `name` for every RuntimeSolver constructed from now on.
+  static void select(const std::string& name) {
+    for (std::size_t k = 0; k < sizeof...(Solvers); ++k)
+      if (name == kNames[k]) {
+        chosen_ = k;
+        return;
+      }
+    throw InputError("RuntimeSolver: no solver named '" + name + "'");
+  }
+  /// Pick by position in Solvers....
+  static void select(std::size_t index) {
+    if (index >= sizeof...(Solvers))
+      throw InputError("RuntimeSolver: no solver number " + std::to_string(index));
+    chosen_ = index;
+  }
+  static const char* selected_name() { return kNames[chosen_]; }
+
+  RuntimeSolver() : impl_(make<0>(chosen_)) {}
+
+  void analyze(const SpMat& k) { impl_->analyze(k); }
+  bool factorize(const SpMat& k) { return impl_->factorize(k); }
+  VecX solve(const VecX& b) const { return impl_->solve(b); }
+  std::string failure() const { return impl_->failure(); }
+  int failed_equation() const { return impl_->failed_equation(); }
+
+ private:
+  struct Interface {
+    virtual ~Interface()                    = default;
+    virtual void analyze(const SpMat& k)    = 0;
+    virtual bool factorize(const SpMat& k)  = 0;
+    virtual VecX solve(const VecX& b) const = 0;
+    virtual std::string failure() const     = 0;
+    virtual int failed_equation() const     = 0;
+  };
+  template <class S>
+  struct Impl final : Interface {
+    S s;
+    void analyze(const SpMat& k) override { s.analyze(k); }
+    bool factorize(const SpMat& k) override { return s.factorize(k); }
+    VecX solve(const VecX& b) const override { return s.solve(b); }
+    std::string failure() const override { return s.failure(); }
+    int failed_equation() const override {
+      if constexpr (requires { s.failed_equation(); })
+        return s.failed_equation();
+      else
+        return -1;
+    }
+  };
+  template <std::size_t K>
+  static std::unique_ptr<Interface> make(std::size_t index) {
+    using S = std::tuple_element_t<K, std::tuple<Solvers...>>;
+    if constexpr (K + 1 < sizeof...(Solvers))
+      if (index != K) return make<K + 1>(index);
+    return std::make_unique<Impl<S>>();
+  }
+
+  static constexpr std::array<const char*, sizeof...(Solvers)> kNames{Solvers::kName...};
+  static inline std::size_t chosen_ = 0;
+  std::unique_ptr<Interface> impl_;
+};
+
+}  // namespace gapfe
