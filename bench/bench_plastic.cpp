@@ -150,38 +150,17 @@ void BM_StepCost_Plastic(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_Limit<gapfe::Tangent>)
-    ->Arg(5)
-    ->Arg(10)
-    ->Arg(20)
-    ->Arg(50)
-    ->Arg(100)
-    ->Arg(200)
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Limit<gapfe::ReturnMapping>)
-    ->Arg(5)
-    ->Arg(10)
-    ->Arg(20)
-    ->Arg(50)
-    ->Arg(100)
-    ->Arg(200)
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Partial<gapfe::Tangent>)
-    ->Arg(5)
-    ->Arg(10)
-    ->Arg(20)
-    ->Arg(50)
-    ->Arg(100)
-    ->Arg(200)
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Partial<gapfe::ReturnMapping>)
-    ->Arg(5)
-    ->Arg(10)
-    ->Arg(20)
-    ->Arg(50)
-    ->Arg(100)
-    ->Arg(200)
-    ->Unit(benchmark::kMillisecond);
+namespace {
+void step_counts(benchmark::internal::Benchmark* b) {
+  for (const int steps : {5, 10, 20, 50, 100, 200}) b->Arg(steps);
+  b->Unit(benchmark::kMillisecond);
+}
+}  // namespace
+
+BENCHMARK(BM_Limit<gapfe::Tangent>)->Apply(step_counts);
+BENCHMARK(BM_Limit<gapfe::ReturnMapping>)->Apply(step_counts);
+BENCHMARK(BM_Partial<gapfe::Tangent>)->Apply(step_counts);
+BENCHMARK(BM_Partial<gapfe::ReturnMapping>)->Apply(step_counts);
 BENCHMARK(BM_StepCost_Elastic)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_StepCost_Plastic<gapfe::Tangent>)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_StepCost_Plastic<gapfe::ReturnMapping>)->Unit(benchmark::kMillisecond);

@@ -1,13 +1,17 @@
 #pragma once
 // The `gapfe run` families, one translation unit each (elastic, contact, plastic), so that the model
 // variants they instantiate compile in parallel. Internal to the command.
+#include <chrono>
+#include <cmath>
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 #include "gapfe/driver/contact_static.hpp"
 #include "gapfe/element/legacy_quad.hpp"
 #include "gapfe/element/quad4.hpp"
 #include "gapfe/io/deck.hpp"
+#include "gapfe/io/deck_output.hpp"
 #include "gapfe/io/deck_scene.hpp"
 #include "gapfe/kinematics/axisym2.hpp"
 #include "gapfe/kinematics/axisym3.hpp"
@@ -91,5 +95,17 @@ void dispatch(const RunRequest& r, F&& f) {
 /// The log's progress line.
 void progress_line(const RunRequest& r, int step);
 void progress_done(const RunRequest& r);
+
+/// One accepted increment: refuse a non-finite solution, write the files (timed), show progress.
+template <class Fe>
+void write_increment(const RunRequest& r, RunTimes& times, StepFiles& files, int step, double inc,
+                     const Fe& fe, std::vector<VtuField> extra_cells = {}) {
+  if (!std::isfinite(fe.solution().residual) || !fe.solution().displacement.allFinite())
+    throw SolveError("load step " + std::to_string(step) + ": the solution is not finite");
+  const auto start = std::chrono::steady_clock::now();
+  files.write(step, inc, fe, std::move(extra_cells));
+  times.write += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  progress_line(r, step);
+}
 
 }  // namespace gapfe::cli

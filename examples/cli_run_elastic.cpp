@@ -24,12 +24,7 @@ void run_elastic(const RunRequest& r, RunTimes& times) {
     run_deck<M>(r.deck, r.scene, [&](int step, double inc, const LinearStatic<M>& fe) {
       const auto& t = fe.timings();
       times.assemble += t.assemble, times.factorize += t.factorize, times.solve += t.solve + t.reactions;
-      if (!std::isfinite(fe.solution().residual) || !fe.solution().displacement.allFinite())
-        throw SolveError("load step " + std::to_string(step) + ": the solution is not finite");
-      const auto start = std::chrono::steady_clock::now();
-      files.write(step, inc, fe);
-      times.write += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      progress_line(r, step);
+      write_increment(r, times, files, step, inc, fe);
     });
     progress_done(r);
     files.write_deformed(r.deck.title);

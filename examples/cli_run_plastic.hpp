@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 
 #include "gapfe/driver/deck_run.hpp"
 #include "gapfe/io/deck_output.hpp"
@@ -19,6 +20,10 @@ namespace gapfe::cli::plastic {
 template <class M>
 void run_law(const RunRequest& r, RunTimes& times) {
   StepFiles files(r.dir, r.scene);
+  // plasticity.csv: the Newton record of every accepted increment (residuals: |R| / |F_int| after each
+  // linear solve, separated by spaces; drift: max |sqrt f - 1| over the plastic points).
+  std::ofstream record = detail::open_output(r.dir + "/plasticity.csv");
+  record << "step,inc,iterations,plastic_points,drift,residuals\n";
   int last_step = 0;
   run_deck_plastic<M>(r.deck, r.scene, [&](int step, double inc, const NonlinearStatic<M>& fe) {
     const auto& rep = fe.report();
@@ -29,13 +34,19 @@ void run_law(const RunRequest& r, RunTimes& times) {
     times.drift          = std::max(times.drift, rep.drift);
     times.worst_residual = std::max(times.worst_residual, rep.residuals.back());
     ++times.increments;
+    std::string row;
+    detail::append_number(row, static_cast<long long>(step)), row += ',';
+    detail::csv_number(row, inc);
+    detail::append_number(row, static_cast<long long>(rep.iterations)), row += ',';
+    detail::append_number(row, static_cast<long long>(rep.plastic_points)), row += ',';
+    detail::csv_number(row, rep.drift);
+    for (std::size_t k = 0; k < rep.residuals.size(); ++k) {
+      if (k > 0) row += ' ';
+      detail::append_number(row, rep.residuals[k]);
+    }
+    record << row << '\n' << std::flush;
     last_step = step;
-    if (!fe.solution().displacement.allFinite())
-      throw SolveError("load step " + std::to_string(step) + ": the solution is not finite");
-    const auto start = std::chrono::steady_clock::now();
-    files.write(step, inc, fe);
-    times.write += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    progress_line(r, step);
+    write_increment(r, times, files, step, inc, fe);
   });
   progress_done(r);
   files.write_deformed(r.deck.title);

@@ -201,7 +201,7 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) 
         << times.contact.multiplier_updates << " multiplier updates; penalty " << times.penalty
         << " x adjacent; " << times.closed << " of " << times.pairs << " pairs closed at the end\n";
   log << "wrote " << a.out << "/nodes.csv, elements.csv" << (s.needs.gaps.empty() ? "" : ", gaps.csv")
-      << ", result.pvd, deformed.svg\n";
+      << (plastic && s.needs.gaps.empty() ? ", plasticity.csv" : "") << ", result.pvd, deformed.svg\n";
   return ok;
 }
 

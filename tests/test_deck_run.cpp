@@ -308,6 +308,26 @@ TEST_CASE("Plastic tube deck: yield cards run Hill plasticity; eqps in elements.
       if (row.at("step") == 15 && row.at("element") == 40) CHECK(row.at("eqps") == 0);
     }
     bore[integration] = read_csv(out / "nodes.csv");
+    // plasticity.csv: one row per increment; return-mapping converges to its tolerance, tangent solves once.
+    std::ifstream record(out / "plasticity.csv");
+    std::string line;
+    std::getline(record, line);
+    CHECK(line == "step,inc,iterations,plastic_points,drift,residuals");
+    int rows = 0;
+    while (std::getline(record, line)) {
+      ++rows;
+      std::stringstream fields(line);
+      std::vector<std::string> f;
+      for (std::string v; std::getline(fields, v, ',');) f.push_back(v);
+      REQUIRE(f.size() == 6);
+      const double last = std::stod(
+          f[5].substr(f[5].find_last_of(' ') == std::string::npos ? 0 : f[5].find_last_of(' ') + 1));
+      if (std::string(integration) == "return-mapping")
+        CHECK(last <= 1e-10);
+      else
+        CHECK(std::stoi(f[2]) == 1);
+    }
+    CHECK(rows == 15);
   }
   // The seed's tangent scheme against Newton: the bore displacement at 300 agrees to a few percent
   // (15 steps; bench/plastic_tradeoff.py measures the convergence in steps).

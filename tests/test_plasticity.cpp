@@ -326,6 +326,37 @@ TEST_CASE(
   CHECK(rel(pressure, tube.limit()) < 0.02);
 }
 
+TEST_CASE(
+    "Locking: the plane-strain limit pressure with Quad4, Quad4BBar and Quad8 (which element plastic decks "
+    "need)") {
+  // Fully plastic flow is isochoric: plain Quad4 locks and overshoots the limit pressure; B-bar and Quad8
+  // do not. The measured errors decide the default element of plastic decks (quad4bbar).
+  std::ostringstream table;
+  const auto limit_error = [&](auto element, const char* name) {
+    using M = Model<Axisym2, decltype(element), Hill<ReturnMapping>>;
+    PlasticTube<M> tube;
+    tube.nr            = 20;
+    Problem<M> problem = tube.problem();
+    tube.set_bore_displacement(problem, 0.0);
+    NonlinearStatic<M> fe(problem);
+    const double u_y = tube.first_yield() / kE * tube.a * 1.5;
+    for (int s = 1; s <= 20; ++s) {
+      tube.set_bore_displacement(fe.problem(), 20 * u_y * s / 20);
+      fe.solve();
+      fe.commit();
+    }
+    const double error = (tube.bore_pressure_from(fe) - tube.limit()) / tube.limit();
+    table << "\n  " << name << ": limit pressure error " << error;
+    return error;
+  };
+  const double quad4 = limit_error(Quad4{}, "Quad4"), bbar = limit_error(Quad4BBar{}, "Quad4BBar"),
+               quad8 = limit_error(Quad8{}, "Quad8");
+  MESSAGE("20 cells across the thick tube, nu = 0.49:" << table.str());
+  CHECK(std::abs(bbar) < 0.02);
+  CHECK(std::abs(quad8) < 0.02);
+  CHECK(quad4 > 2 * std::abs(bbar));  // locking: plain Quad4 is stiffer and farther off
+}
+
 TEST_CASE("ReturnMapping: Newton converges quadratically (the residuals of a plastic step)") {
   using M = Model<Axisym2, Quad4BBar, Hill<ReturnMapping>>;
   const PlasticTube<M> tube;

@@ -16,4 +16,5 @@
 #include "gapfe/mesh/structured.hpp"
 #include "gapfe/mesh/temperature.hpp"
 #include "gapfe/model.hpp"
+#include "gapfe/solver/runtime_solver.hpp"
 #include "gapfe/version.hpp"
