@@ -158,6 +158,22 @@ TEST_CASE_TEMPLATE("Kinematic hardening: a tension-compression cycle shows the c
   MESSAGE(Integration::kName << ": reverse stress " << d.stress(voigt::zz) << " MPa, closed form " << s_rev);
 }
 
+TEST_CASE_TEMPLATE(
+    "Reverse yielding inside one step: a big unloading step crosses the elastic range and yields",
+    Integration, ReturnMapping, Tangent) {
+  // Mises, perfectly plastic, uniaxial along N: at +sigma_y (plastic), one step of -3 sigma_y / E strain.
+  // Elastic over 2 sigma_y / E, then reverse plastic flow: the stress ends at -sigma_y, not at -2 sigma_y
+  // outside the surface.
+  const double sy = 400;
+  const auto law  = hill<Integration>(HillYield::mises(sy));
+  PointDriver<Hill<Integration>> d{law.localize({}, 0.0, 0.0), {}, voigt::zz};
+  d.to(2 * sy / kE, 20);
+  REQUIRE(d.state.plastic);
+  d.to(2 * sy / kE - 3 * sy / kE, 1);
+  CHECK(d.state.plastic);
+  CHECK(rel(d.stress(voigt::zz), -sy) < 1e-9);
+}
+
 TEST_CASE("ReturnMapping's consistent tangent matches finite differences") {
   HillYield y  = anisotropic_yield();
   y.hardening  = 5e3;

@@ -105,6 +105,7 @@ struct HillYield {
 /// History of one material point, committed only when a step is accepted (the driver keeps two copies).
 struct HillState {
   Vec6 strain         = Vec6::Zero();  ///< total strain at the last commit, global [-]
+  Vec6 thermal_strain = Vec6::Zero();  ///< thermal strain at the last commit, global [-]
   Vec6 plastic_strain = Vec6::Zero();  ///< global, engineering shears [-]
   Vec6 back_stress    = Vec6::Zero();  ///< alpha, global, tensor shears [stress]
   double eqps         = 0.0;    ///< equivalent plastic strain: plastic work / X (= Mises' for Mises) [-]
@@ -140,13 +141,16 @@ inline Mat66 continuum_tangent(const Mat66& c, const Mat66& ch, const Vec6& a) {
   return c - ca * ca.transpose() / (a.dot(ca) + a.dot(ch * a));
 }
 
-/// Smallest r in [0, 1] with f(xi0 + r d) = 1 when f(xi0) < 1 <= f(xi0 + d): the elastic fraction of a
-/// step that crosses the surface. The quadratic is solved in the cancellation-free form.
+/// The larger root r in [0, 1] of f(xi0 + r d) = 1 when f(xi0 + d) > 1: where a step leaves the yield
+/// surface. From inside (f(xi0) < 1) it is the elastic fraction of a step that crosses the surface; from a
+/// point on the surface moving inward (unloading, d.P xi0 < 0) it is where the step crosses the elastic
+/// region and leaves on the far side (reverse yielding). The quadratic is solved without cancellation:
+/// (-qb + disc) / qa written as -qc / (qb + disc) when qb >= 0.
 inline double elastic_fraction(const Mat66& p, const Vec6& xi0, const Vec6& d) {
-  const double qa = d.dot(p * d), qb = xi0.dot(p * d), qc = xi0.dot(p * xi0) - 1.0;  // qc < 0
+  const double qa = d.dot(p * d), qb = xi0.dot(p * d), qc = xi0.dot(p * xi0) - 1.0;
   if (!(qa > 0)) return 1.0;
   const double disc = std::sqrt(std::max(0.0, qb * qb - qa * qc));
-  return std::clamp(-qc / (qb + disc), 0.0, 1.0);  // = (-qb + disc) / qa
+  return std::clamp(qb >= 0 ? -qc / (qb + disc) : (disc - qb) / qa, 0.0, 1.0);
 }
 
 }  // namespace detail
@@ -208,9 +212,11 @@ struct Hill {
     const Mat66& c = p.stiffness;
     const Mat66& P = p.yield_matrix;
     PointResponse<State> r{stress_of(p, strain, old.plastic_strain), c, old, false};
-    r.state.strain   = strain;
-    const Vec6 d_eps = strain - old.strain;
-    const Vec6 xi0   = stress_of(p, old.strain, old.plastic_strain) - old.back_stress;
+    r.state.strain         = strain;
+    r.state.thermal_strain = p.thermal_strain;
+    // The mechanical strain increment: a temperature change within the step is part of it.
+    const Vec6 d_eps = (strain - p.thermal_strain) - (old.strain - old.thermal_strain);
+    const Vec6 xi0   = c * (old.strain - old.thermal_strain - old.plastic_strain) - old.back_stress;
     const Vec6 d_xi  = c * d_eps;
     // The seed's IFGPL flag: a point that ended the last step plastic and is loaded further gets C_ep of
     // the start state, for the assembler too; otherwise the step starts elastic.
@@ -222,9 +228,11 @@ struct Hill {
       r.state.plastic = false;  // elastic step, unloading, or reloading below the surface
       return r;
     }
-    // Elastic part up to the surface (none when the point starts on it), then one forward-Euler step.
+    // Elastic part up to where the step leaves the surface: none when it starts on it and loads; through
+    // the elastic region to the far side when it starts on it and unloads (reverse yielding); up to the
+    // surface from inside. Then one forward-Euler step.
     const double f0 = xi0.dot(P * xi0);
-    const double e  = (old.plastic || f0 >= 1.0) ? 0.0 : detail::elastic_fraction(P, xi0, d_xi);
+    const double e  = loading || (!old.plastic && f0 >= 1.0) ? 0.0 : detail::elastic_fraction(P, xi0, d_xi);
     const Vec6 xi_y = xi0 + e * d_xi;
     const Vec6 a    = 2.0 * (P * xi_y);
     const Vec6 ca   = c * a;
@@ -244,8 +252,9 @@ struct Hill {
     const Mat66& c = p.stiffness;
     const Mat66& P = p.yield_matrix;
     PointResponse<State> r{stress_of(p, strain, old.plastic_strain), c, old, false};
-    r.state.strain      = strain;
-    const Vec6 xi_trial = r.stress - old.back_stress;
+    r.state.strain         = strain;
+    r.state.thermal_strain = p.thermal_strain;
+    const Vec6 xi_trial    = r.stress - old.back_stress;
     if (xi_trial.dot(P * xi_trial) <= 1.0) {
       r.state.plastic = false;
       return r;
@@ -257,13 +266,18 @@ struct Hill {
     double dl         = 0.0;
     Vec6 xi           = xi_trial;
     Eigen::PartialPivLU<Mat66> a_lu;
-    for (int it = 0; it < ReturnMapping::kMaxIterations; ++it) {
+    for (int it = 0;; ++it) {
       a_lu.compute(Mat66::Identity() + dl * e_p);
       xi               = a_lu.solve(xi_trial);
       const double phi = xi.dot(P * xi) - 1.0;
       if (std::abs(phi) <= ReturnMapping::kTolerance) break;
+      if (it == ReturnMapping::kMaxIterations || !std::isfinite(phi))
+        throw SolveError("Hill return mapping: no convergence at a material point (|f - 1| = " +
+                         std::to_string(std::abs(phi)) + "); the driver cuts the load step");
       const double d_phi = -2.0 * xi.dot(P * a_lu.solve(e_p * xi));
-      dl -= phi / d_phi;
+      const double step  = phi / d_phi;
+      dl -= step;
+      if (std::abs(step) <= 1e-15 * std::abs(dl)) break;  // converged to round-off in dl
     }
     a_lu.compute(Mat66::Identity() + dl * e_p);
     xi           = a_lu.solve(xi_trial);
