@@ -135,10 +135,15 @@ struct ReturnMapping {
 
 namespace detail {
 
+/// 1 / D of EPLSS: a^T C a + a^T cH a, the denominator of d lambda and of C_ep (THEORY.md 7.2).
+inline double plastic_modulus(const Mat66& c, const Mat66& ch, const Vec6& a) {
+  return a.dot(c * a) + a.dot(ch * a);
+}
+
 /// EPLSS's continuum elastic-plastic tangent C - (C a)(C a)^T / (a^T C a + a^T cH a) (THEORY.md 7.2).
 inline Mat66 continuum_tangent(const Mat66& c, const Mat66& ch, const Vec6& a) {
   const Vec6 ca = c * a;
-  return c - ca * ca.transpose() / (a.dot(ca) + a.dot(ch * a));
+  return c - ca * ca.transpose() / plastic_modulus(c, ch, a);
 }
 
 /// The larger root r in [0, 1] of f(xi0 + r d) = 1 when f(xi0 + d) > 1: where a step leaves the yield
@@ -208,12 +213,19 @@ struct Hill {
     s.eqps += xi.dot(d_eps_p) / (p.reference_yield * ratio);  // plastic work / (X sqrt f)
   }
 
-  static PointResponse<State> forward_euler(const Local& p, const Vec6& strain, const State& old) {
-    const Mat66& c = p.stiffness;
-    const Mat66& P = p.yield_matrix;
-    PointResponse<State> r{stress_of(p, strain, old.plastic_strain), c, old, false};
+  /// Both updates start from the elastic trial: stress with the old plastic strain, elastic tangent, the
+  /// old history with this strain and thermal strain recorded.
+  static PointResponse<State> elastic_trial(const Local& p, const Vec6& strain, const State& old) {
+    PointResponse<State> r{stress_of(p, strain, old.plastic_strain), p.stiffness, old, false};
     r.state.strain         = strain;
     r.state.thermal_strain = p.thermal_strain;
+    return r;
+  }
+
+  static PointResponse<State> forward_euler(const Local& p, const Vec6& strain, const State& old) {
+    const Mat66& c         = p.stiffness;
+    const Mat66& P         = p.yield_matrix;
+    PointResponse<State> r = elastic_trial(p, strain, old);
     // The mechanical strain increment: a temperature change within the step is part of it.
     const Vec6 d_eps = (strain - p.thermal_strain) - (old.strain - old.thermal_strain);
     const Vec6 xi0   = c * (old.strain - old.thermal_strain - old.plastic_strain) - old.back_stress;
@@ -235,8 +247,7 @@ struct Hill {
     const double e  = loading || (!old.plastic && f0 >= 1.0) ? 0.0 : detail::elastic_fraction(P, xi0, d_xi);
     const Vec6 xi_y = xi0 + e * d_xi;
     const Vec6 a    = 2.0 * (P * xi_y);
-    const Vec6 ca   = c * a;
-    const double dl = a.dot(c * ((1.0 - e) * d_eps)) / (a.dot(ca) + a.dot(p.hardening_matrix * a));
+    const double dl = a.dot(c * ((1.0 - e) * d_eps)) / detail::plastic_modulus(c, p.hardening_matrix, a);
     if (!(dl > 0)) {
       r.state.plastic = false;
       return r;
@@ -249,11 +260,9 @@ struct Hill {
   }
 
   static PointResponse<State> return_map(const Local& p, const Vec6& strain, const State& old) {
-    const Mat66& c = p.stiffness;
-    const Mat66& P = p.yield_matrix;
-    PointResponse<State> r{stress_of(p, strain, old.plastic_strain), c, old, false};
-    r.state.strain         = strain;
-    r.state.thermal_strain = p.thermal_strain;
+    const Mat66& c         = p.stiffness;
+    const Mat66& P         = p.yield_matrix;
+    PointResponse<State> r = elastic_trial(p, strain, old);
     const Vec6 xi_trial    = r.stress - old.back_stress;
     if (xi_trial.dot(P * xi_trial) <= 1.0) {
       r.state.plastic = false;
