@@ -1,13 +1,13 @@
 #pragma once
-// The `gapfe run` families, one translation unit each (elastic, contact, plastic), so that the model
-// variants they instantiate compile in parallel. Internal to the command.
+// What the `gapfe run` command's run code shares: the request, the timings it reports, the solver
+// policy every compiled model uses, and the write of one increment. Internal to the command.
 #include <chrono>
 #include <cmath>
 #include <iosfwd>
 #include <string>
 #include <vector>
 
-#include "gapfe/driver/contact_static.hpp"
+#include "gapfe/contact/pair_state.hpp"
 #include "gapfe/element/legacy_quad.hpp"
 #include "gapfe/element/quad4.hpp"
 #include "gapfe/io/deck.hpp"
@@ -45,11 +45,9 @@ struct RunRequest {
   bool progress;
 };
 
-void run_elastic(const RunRequest& r, RunTimes& times);          // cli_run_elastic.cpp
-void run_contact(const RunRequest& r, RunTimes& times);          // cli_run_contact.cpp
-void run_contact_saga(const RunRequest& r, RunTimes& times);     // cli_run_contact_saga.cpp
-void run_plastic(const RunRequest& r, RunTimes& times);          // cli_run_plastic.cpp
-void run_plastic_tangent(const RunRequest& r, RunTimes& times);  // cli_run_plastic_tangent.cpp
+/// Run the request on the compiled variant that matches it (cli_variants.hpp); InputError when the
+/// deck asks for a combination the command does not offer (with the reason).
+void run_deck_request(const RunRequest& r, RunTimes& times);  // cli_run.cpp
 
 /// The deck option value (element = ...) of each element type.
 template <class E>
@@ -74,24 +72,6 @@ using CliSolver = RuntimeSolver<EigenLdlt, CholmodLlt>;
 using CliSolver = RuntimeSolver<EigenLdlt>;
 #endif
 
-/// f.template operator()<Kin, Elem, CliSolver>() for the request's variant, element (one of Elems) and
-/// solver (selected in CliSolver first).
-template <class... Elems, class F>
-void dispatch(const RunRequest& r, F&& f) {
-  CliSolver::select(r.solver == "cholmod" ? 1 : 0);
-  bool done              = false;
-  const auto try_element = [&]<class Elem>() {
-    if (done || r.element != CliName<Elem>::value) return;
-    done = true;
-    if (r.variant == "saga")
-      f.template operator()<Axisym3, Elem, CliSolver>();
-    else
-      f.template operator()<Axisym2, Elem, CliSolver>();
-  };
-  (try_element.template operator()<Elems>(), ...);
-  if (!done) throw InputError("element = " + r.element + " is not available for this kind of deck");
-}
-
 /// The log's progress line.
 void progress_line(const RunRequest& r, int step);
 void progress_done(const RunRequest& r);
@@ -103,7 +83,7 @@ void write_increment(const RunRequest& r, RunTimes& times, StepFiles& files, int
   if (!std::isfinite(fe.solution().residual) || !fe.solution().displacement.allFinite())
     throw SolveError("load step " + std::to_string(step) + ": the solution is not finite");
   const auto start = std::chrono::steady_clock::now();
-  files.write(step, inc, fe, std::move(extra_cells));
+  files.write(step, inc, fe.solution(), fe.centroid_values(), std::move(extra_cells));
   times.write += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   progress_line(r, step);
 }

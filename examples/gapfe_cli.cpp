@@ -178,12 +178,7 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) 
   RunTimes times;
   const RunRequest request{d, s, a.out, variant, element, solver, err, progress};
   t0 = Clock::now();
-  if (plastic)
-    run_plastic(request, times);
-  else if (!s.needs.gaps.empty())
-    run_contact(request, times);
-  else
-    run_elastic(request, times);
+  run_deck_request(request, times);
   // setup: the Problem, DOF map, sparsity pattern, symbolic analysis and stress recovery.
   const double setup = since(t0) - times.assemble - times.factorize - times.solve - times.write;
   log << "time [s]: read " << t_read << ", mesh " << t_mesh << ", setup " << setup << ", assemble "

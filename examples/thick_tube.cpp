@@ -42,10 +42,10 @@ int run(const Options& o) {
   const double u_bore  = s.displacement(gapfe::nearest_node(fe.problem().mesh, a, 0.0), 0);
 
   std::filesystem::create_directories(o.out);
-  gapfe::write_vtu(o.out + "/thick_tube.vtu", fe);
+  const auto centroids = fe.centroid_values();
+  gapfe::write_vtu(o.out + "/thick_tube.vtu", fe.problem().mesh, s, centroids);
   std::ofstream csv(o.out + "/radial_profile.csv");
   csv << "r,hoop_fe,hoop_exact,radial_fe,radial_exact\n";
-  const auto centroids = fe.centroid_values();
   for (int i = 0; i < o.nr; ++i) {
     const auto& v = centroids[static_cast<std::size_t>(i)];
     csv << v.r << ',' << v.stress(gapfe::voigt::hoop) << ',' << hoop(v.r) << ',' << v.stress(gapfe::voigt::rr)

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "gapfe/assembly/loads.hpp"
 #include "gapfe/core/error.hpp"
+#include "gapfe/problem/loads.hpp"
 
 namespace gapfe {
 
@@ -24,6 +24,13 @@ struct DofMap {
   int free_count = 0;
 
   int dof(int node, int component) const { return node * DofsPerNode + component; }
+  /// "node N u_r" for free equation `eq`, for messages (a factorization that broke down there).
+  std::string describe(int eq) const {
+    for (std::size_t d = 0; d < equation.size(); ++d)
+      if (equation[d] == eq)
+        return "node " + std::to_string(d / DofsPerNode + 1) + " " + dof::kName[d % DofsPerNode];
+    return "equation " + std::to_string(eq);
+  }
 
   template <class MeshT>
   static DofMap build(const MeshT& mesh, const std::vector<NodalCondition>& conditions) {

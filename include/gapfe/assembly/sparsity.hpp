@@ -9,12 +9,9 @@
 #include <vector>
 
 #include "gapfe/core/types.hpp"
+#include "gapfe/mesh/mesh.hpp"
 
 namespace gapfe {
-
-/// An element group: `count` cells of `NodesPerCell` nodes, node (e, a) = nodes[e][a].
-template <std::size_t NodesPerCell>
-using Connectivity = std::vector<std::array<int, NodesPerCell>>;
 
 template <int DofsPerNode>
 class SparsityBuilder {

@@ -3,9 +3,9 @@
 #include <concepts>
 #include <string>
 
+#include "gapfe/core/material_frame.hpp"
+#include "gapfe/core/point_geometry.hpp"
 #include "gapfe/core/types.hpp"
-#include "gapfe/element/point_geometry.hpp"
-#include "gapfe/material/orientation.hpp"
 
 namespace gapfe {
 

@@ -18,7 +18,9 @@
 #include <vector>
 
 #include "gapfe/contact/gap_pairs.hpp"
+#include "gapfe/contact/pair_state.hpp"
 #include "gapfe/contact/policies.hpp"
+#include "gapfe/core/history.hpp"
 #include "gapfe/driver/linear_static.hpp"
 #include "gapfe/driver/nonlinear_static.hpp"
 
@@ -30,21 +32,6 @@ struct ContactOptions {
   double penetration_tolerance = 1e-8;  ///< augmented Lagrangian: |g| of closed pairs <= this x max |u|
   int max_multiplier_updates   = 200;   ///< per solve, before the run fails
   double max_soft_share        = 1e-2;  ///< open gap element stiffness / adjacent stiffness allowed
-};
-
-/// State of one gap pair. Forces are total ring forces, compressive positive.
-struct PairState {
-  bool closed          = false;
-  double gap           = 0;   ///< [length]
-  double normal_force  = 0;   ///< P [force]
-  double multiplier    = 0;   ///< lambda (augmented Lagrangian) [force]
-  double reference_gap = 0;   ///< g_ref: the penalty acts on g - g_ref [length]
-  double closed_at     = -1;  ///< load factor at which it last closed (-1: never)
-};
-
-/// Work of the steps since the last reset, for the speed/accuracy tables.
-struct ContactCounters {
-  int solves = 0, factorizations = 0, splits = 0, multiplier_updates = 0;
 };
 
 template <class M, ContactPolicy Policy>
@@ -60,7 +47,7 @@ class ContactStatic {
       : pairs_(std::move(pairs)),
         opt_(std::move(options)),
         fe_(std::move(problem), links_of(pairs_)),
-        accepted_(pairs_.size()) {
+        history_(pairs_.size()) {
     fe_.defer_reactions(true);  // trial solves need displacements only; reactions when an increment is read
     const double kappa = std::min(opt_.penalty_factor > 0 ? opt_.penalty_factor : Policy::kDefaultPenalty,
                                   Policy::kMaxPenalty);
@@ -101,8 +88,8 @@ class ContactStatic {
         }
       }
     }
-    for (std::size_t p = 0; p < pairs_.size(); ++p) accepted_[p].gap = pairs_[p].initial_gap;
-    trial_ = accepted_;
+    for (std::size_t p = 0; p < pairs_.size(); ++p)
+      history_.amend(p, [&](PairState& s) { s.gap = pairs_[p].initial_gap; });
   }
 
   /// Advance to load factor t_end under the policy; `on_increment(t, *this)` sees every accepted
@@ -116,7 +103,7 @@ class ContactStatic {
   const Fe& fe() const { return fe_; }
   Fe& fe() { return fe_; }
   const std::vector<GapPair>& pairs() const { return pairs_; }
-  const std::vector<PairState>& states() const { return accepted_; }
+  const std::vector<PairState>& states() const { return history_.committed(); }
   double penalty(int p) const { return stiffness_[p]; }
   /// kappa in use: the option or the policy's default, capped by the policy's kMaxPenalty.
   double penalty_factor() const { return kappa_; }
@@ -125,7 +112,7 @@ class ContactStatic {
   /// Largest overlap of a closed pair at the accepted state [length] (0 when none overlaps).
   double max_penetration() const {
     double m = 0;
-    for (const auto& s : accepted_)
+    for (const auto& s : history_.committed())
       if (s.closed) m = std::max(m, -s.gap);
     return m;
   }
@@ -133,21 +120,23 @@ class ContactStatic {
   // ---- the Stepper contract (contact/policies.hpp)
   double load_factor() const { return t_; }
   int pair_count() const { return static_cast<int>(pairs_.size()); }
-  bool closed(int p) const { return trial_[p].closed; }
-  double gap(int p) const { return accepted_[p].gap; }
-  double force(int p) const { return accepted_[p].normal_force; }
-  double trial_gap(int p) const { return trial_[p].gap; }
-  double trial_force(int p) const { return trial_[p].normal_force; }
+  bool closed(int p) const { return history_.trial(p).closed; }
+  double gap(int p) const { return history_.committed(p).gap; }
+  double force(int p) const { return history_.committed(p).normal_force; }
+  double trial_gap(int p) const { return history_.trial(p).gap; }
+  double trial_force(int p) const { return history_.trial(p).normal_force; }
   /// An open pair overlaps when its gap is below -1e-12 of the model size.
   double gap_tolerance() const { return 1e-12 * size_; }
   double force_tolerance(int p) const { return stiffness_.empty() ? 0.0 : stiffness_[p] * gap_tolerance(); }
 
   void solve_at(double t) {
     (*loads_at_)(fe_.problem(), t);
+    if constexpr (!M::Material::kLinear) fe_.context() = {t, t - t_};  // time = load factor
     try {
       fe_.solve(!status_changed_);
     } catch (const SolveError& e) {
-      if (std::none_of(trial_.begin(), trial_.end(), [](const PairState& s) { return s.closed; })) throw;
+      const auto& trial = history_.trial();
+      if (std::none_of(trial.begin(), trial.end(), [](const PairState& s) { return s.closed; })) throw;
       char kappa[32];
       std::snprintf(kappa, sizeof kappa, "%g", penalty_factor());
       throw SolveError(std::string(e.what()) + " (closed gap pairs at penalty " + kappa +
@@ -165,13 +154,13 @@ class ContactStatic {
       const double scale = std::max(fe_.displacement().cwiseAbs().maxCoeff(), gap_tolerance());
       double worst       = 0;
       for (std::size_t p = 0; p < pairs_.size(); ++p)
-        if (trial_[p].closed) worst = std::max(worst, std::abs(trial_[p].gap));
+        if (history_.trial(p).closed) worst = std::max(worst, std::abs(history_.trial(p).gap));
       if (worst <= opt_.penetration_tolerance * scale) return;
       if (it == opt_.max_multiplier_updates)
         fail("the augmented-Lagrangian updates did not reach the penetration tolerance (" +
              std::to_string(worst) + " after " + std::to_string(it) + " updates)");
       for (std::size_t p = 0; p < pairs_.size(); ++p)
-        if (trial_[p].closed) trial_[p].multiplier = trial_[p].normal_force;
+        if (PairState& s = history_.trial(p); s.closed) s.multiplier = s.normal_force;
       set_links();
       fe_.resolve_links(true);
       ++count_.solves, ++count_.multiplier_updates;
@@ -179,21 +168,21 @@ class ContactStatic {
     }
   }
   void close(int p, double reference_gap) {
-    for (PairState* s : {&trial_[p], &accepted_[p]})
-      s->closed = true, s->reference_gap = reference_gap, s->multiplier = 0, s->closed_at = t_;
+    history_.amend(p, [&](PairState& s) {
+      s.closed = true, s.reference_gap = reference_gap, s.multiplier = 0, s.closed_at = t_;
+    });
     status_changed_ = true;
     set_links();
   }
   void open(int p) {
-    for (PairState* s : {&trial_[p], &accepted_[p]})
-      s->closed = false, s->multiplier = 0, s->reference_gap = 0;
+    history_.amend(p, [](PairState& s) { s.closed = false, s.multiplier = 0, s.reference_gap = 0; });
     status_changed_ = true;
     set_links();
   }
   void accept(double t) {
     if constexpr (!M::Material::kLinear) fe_.commit();
-    t_                    = t;
-    accepted_             = trial_;
+    t_ = t;
+    history_.commit();
     count_.factorizations = fe_.factorizations() - factorizations_at_reset_;
     if (on_increment_ && *on_increment_) (*on_increment_)(t, *this);
   }
@@ -214,7 +203,7 @@ class ContactStatic {
     if constexpr (Policy::kContact) {
       auto& links = fe_.link_values();
       for (std::size_t p = 0; p < pairs_.size(); ++p) {
-        const PairState& s = trial_[p];
+        const PairState& s = history_.trial(p);
         if (!s.closed) {
           links[p] = {};
           continue;
@@ -230,7 +219,7 @@ class ContactStatic {
     const auto& u = fe_.displacement();
     for (std::size_t p = 0; p < pairs_.size(); ++p) {
       const GapPair& g = pairs_[p];
-      PairState& s     = trial_[p];
+      PairState& s     = history_.trial(p);
       s.gap            = g.gap(u.row(g.node_a).template head<2>().transpose(),
                                u.row(g.node_b).template head<2>().transpose());
       s.normal_force   = s.closed ? s.multiplier - stiffness_[p] * (s.gap - s.reference_gap) : 0.0;
@@ -241,7 +230,7 @@ class ContactStatic {
   ContactOptions opt_;
   Fe fe_;
   std::vector<double> stiffness_;
-  std::vector<PairState> accepted_, trial_;
+  History<PairState> history_;  ///< committed: the accepted increment; trial: the last solve
   double t_ = 0, size_ = 1, kappa_ = 0;
   bool status_changed_ = true;
   ContactCounters count_;

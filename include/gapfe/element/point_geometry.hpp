@@ -1,19 +1,9 @@
 #pragma once
-// What the kinematics needs at one integration point: shape values N (for the hoop term u_r / r),
-// their spatial gradients, the radius and the full-ring volume weight 2 pi r |J| w (THEORY.md 1.2, 1.4).
-#include "gapfe/core/types.hpp"
+// The two ways an element fills a PointGeometry (core/point_geometry.hpp): the isoparametric map and
+// the constant-strain triangle.
+#include "gapfe/core/point_geometry.hpp"
 
 namespace gapfe {
-
-/// One integration point of an element with NN shape nodes.
-/// dN_dx: NN x 2, columns (d/dr, d/dz). weight: 2 pi r |J| w, a volume [length^3].
-template <int NN>
-struct PointGeometry {
-  Vec<NN> N;
-  Mat<NN, 2> dN_dx;
-  double r      = 0.0;
-  double weight = 0.0;
-};
 
 /// Isoparametric map at one reference point. x: NN x 2 nodal (r, z); dN_dxi: NN x 2 (d/dxi, d/deta).
 /// Returns det J through `det`; a non-positive det means an inverted or degenerate element, which

@@ -18,9 +18,10 @@
 #include <string>
 #include <vector>
 
-#include "gapfe/driver/contact_static.hpp"
+#include "gapfe/contact/pair_state.hpp"
 #include "gapfe/io/deck_scene.hpp"
 #include "gapfe/io/vtu_writer.hpp"
+#include "gapfe/problem/results.hpp"
 
 namespace gapfe {
 
@@ -112,12 +113,12 @@ class StepFiles {
     elements_ << "step,inc,element,i,j,material,r,z,s_rr,s_zz,s_tt,s_rz,s_rt,s_zt,eqps\n";
   }
 
-  /// One increment; `extra_cells` are more VTU cell arrays (the gap fields of GapFile).
-  /// `fe`: a LinearStatic or NonlinearStatic (solution(), centroid_values()).
-  template <class Fe>
-  void write(int step, double inc, const Fe& fe, std::vector<VtuField> extra_cells = {}) {
+  /// One increment: the nodal solution and the centroid values (one per cell, cells then triangles, as
+  /// a driver's centroid_values() gives them); `extra_cells` are more VTU cell arrays (GapFile's).
+  void write(int step, double inc, const Solution& solution, const std::vector<PointValues>& values,
+             std::vector<VtuField> extra_cells = {}) {
     const IJGrid& g = scene_.grid;
-    const auto& u   = fe.solution().displacement;
+    const auto& u   = solution.displacement;
     std::string prefix;
     detail::append_number(prefix, static_cast<long long>(step)), prefix += ',';
     detail::csv_number(prefix, inc);
@@ -136,7 +137,6 @@ class StepFiles {
     nodes_.flush();
 
     // Centroid values come cells first, then triangles: put them in element order.
-    const auto values = fe.centroid_values();
     std::vector<const PointValues*> by_element(g.cells.size(), nullptr);
     for (const auto& v : values)
       by_element[(v.triangle ? scene_.element_of_triangle : scene_.element_of_cell)[v.cell]] = &v;
@@ -167,7 +167,7 @@ class StepFiles {
     std::vector<VtuField> point{{"displacement", 3, {}}, {"reaction", 3, {}}};
     for (int n = 0; n < g.node_count(); ++n)
       for (int c = 0; c < 3; ++c)
-        point[0].values.push_back(u(n, c)), point[1].values.push_back(fe.solution().reaction(n, c));
+        point[0].values.push_back(u(n, c)), point[1].values.push_back(solution.reaction(n, c));
     std::vector<VtuField> cell = detail::element_ids(scene_);
     cell.insert(cell.begin(), VtuField{"eqps", 1, std::move(eqps)});
     cell.insert(cell.begin(), VtuField{"stress", 6, std::move(stress)});
@@ -255,16 +255,16 @@ class GapFile {
   }
   /// Writes the rows and returns the VTU cell arrays: gap_state (0 structural, -1 a gap element that
   /// stays soft, else the seed's contact state 1-4) and gap_size (smallest pair gap, 0 elsewhere).
-  template <class C>
-  std::vector<VtuField> write(int step, double inc, const C& contact) {
+  std::vector<VtuField> write(int step, double inc, const std::vector<GapPair>& pairs,
+                              const std::vector<PairState>& states) {
     const std::size_t ne = scene_.grid.cells.size();
     VtuField state{"gap_state", 1, std::vector<double>(ne, 0.0), true},
         size{"gap_size", 1, std::vector<double>(ne, 0.0)};
     for (const int e : scene_.gaps.soft) state.values[static_cast<std::size_t>(e)] = -1;
     std::string s;
-    for (std::size_t q = 0; q < contact.pairs().size(); ++q) {
-      const GapPair& p    = contact.pairs()[q];
-      const PairState& st = contact.states()[q];
+    for (std::size_t q = 0; q < pairs.size(); ++q) {
+      const GapPair& p    = pairs[q];
+      const PairState& st = states[q];
       const std::size_t e = static_cast<std::size_t>(p.element);
       detail::append_number(s, static_cast<long long>(step)), s += ',';
       detail::csv_number(s, inc);

@@ -16,7 +16,8 @@
 #include <vector>
 
 #include "gapfe/core/error.hpp"
-#include "gapfe/driver/linear_static.hpp"
+#include "gapfe/mesh/mesh.hpp"
+#include "gapfe/problem/results.hpp"
 
 namespace gapfe {
 
@@ -148,12 +149,12 @@ inline void write_pvd(const std::string& path, const std::vector<std::pair<doubl
   detail::write_file_atomically(path, s);
 }
 
-/// The solution of a LinearStatic: displacement and reaction per node; centroid stress and strain
-/// (global Voigt order [rr, zz, hoop, rz, z-theta, theta-r]) and material number (1-based) per cell.
-template <class M>
-void write_vtu(const std::string& path, const LinearStatic<M>& fe) {
-  const auto& m = fe.problem().mesh;
-  const auto& s = fe.solution();
+/// An analysis' results on its mesh: displacement and reaction per node (`s`); centroid stress and strain
+/// (`centroids`, one per cell, cells then triangles, as a driver's centroid_values() gives them; global
+/// Voigt order [rr, zz, hoop, rz, z-theta, theta-r]) and material number (1-based) per cell.
+template <int NodesPerCell>
+void write_vtu(const std::string& path, const Mesh<NodesPerCell>& m, const Solution& s,
+               const std::vector<PointValues>& centroids) {
   VtuCells cells;
   for (const auto& c : m.cells) cells.add(c.data(), static_cast<int>(c.size()));
   for (const auto& c : m.triangles) cells.add(c.data(), 3);
@@ -162,7 +163,7 @@ void write_vtu(const std::string& path, const LinearStatic<M>& fe) {
     for (int c = 0; c < 3; ++c)
       point[0].values.push_back(s.displacement(n, c)), point[1].values.push_back(s.reaction(n, c));
   std::vector<VtuField> cell{{"stress", 6, {}}, {"strain", 6, {}}, {"material", 1, {}, true}};
-  for (const auto& v : fe.centroid_values())
+  for (const auto& v : centroids)
     for (int k = 0; k < 6; ++k) cell[0].values.push_back(v.stress(k)), cell[1].values.push_back(v.strain(k));
   for (std::size_t e = 0; e < m.cells.size(); ++e) cell[2].values.push_back(m.cell_tag(e).material + 1);
   for (std::size_t e = 0; e < m.triangles.size(); ++e)

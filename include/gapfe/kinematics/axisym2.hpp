@@ -8,7 +8,7 @@
 // With this kinematics the z-theta and theta-r strains are held at zero: the 6x6 material matrix
 // reduces to its 4x4 block exactly (their stresses are reactions that do no work). That matches the
 // physics only when the material couples nothing into them (isotropic, or ALPHA = 0).
-#include "gapfe/element/point_geometry.hpp"
+#include "gapfe/core/point_geometry.hpp"
 
 namespace gapfe {
 

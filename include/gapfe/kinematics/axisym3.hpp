@@ -9,7 +9,7 @@
 //   [ 0        0      N_a,z         ]
 //   [ 0        0      N_a,r - N_a/r ]
 // The in-plane and torsional groups couple only through the material matrix.
-#include "gapfe/element/point_geometry.hpp"
+#include "gapfe/core/point_geometry.hpp"
 
 namespace gapfe {
 

@@ -10,17 +10,10 @@
 #include <string>
 
 #include "gapfe/core/error.hpp"
+#include "gapfe/core/material_frame.hpp"
 #include "gapfe/core/types.hpp"
 
 namespace gapfe {
-
-/// Orientation of an element's material axes [rad]. `beta`: in the meridian plane from +z toward +r;
-/// `alpha`: helical angle out of it (seed card 6 BETA, ALPHA; the deck reader converts degrees).
-struct MaterialFrame {
-  double beta                                 = 0.0;  ///< [rad]
-  double alpha                                = 0.0;  ///< [rad]
-  bool operator==(const MaterialFrame&) const = default;
-};
 
 /// The frame of the cell at I-offset `i_offset` (I - IMIN of its material block, from 0) under the seed's
 /// card 6 helical option: IANG = 0 keeps ALPHA for the whole block; IANG = 1 flips its sign every NANG

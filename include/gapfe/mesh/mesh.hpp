@@ -6,10 +6,14 @@
 #include <array>
 #include <vector>
 
+#include "gapfe/core/material_frame.hpp"
 #include "gapfe/core/types.hpp"
-#include "gapfe/material/orientation.hpp"
 
 namespace gapfe {
+
+/// An element group: `count` cells of `NodesPerCell` nodes, node (e, a) = nodes[e][a].
+template <std::size_t NodesPerCell>
+using Connectivity = std::vector<std::array<int, NodesPerCell>>;
 
 /// Per-cell attributes: which material (index into the model's material list) and its axes.
 struct CellTag {

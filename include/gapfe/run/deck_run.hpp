@@ -1,8 +1,11 @@
 #pragma once
-// A deck's load steps on one compile-time model: the linear run of the seed's elastic codes. Each
-// step applies the totals of the increments so far (deck_scene.hpp). Materials and temperatures are
-// fixed from the first step on, so the stiffness is factorized once and each later step costs an
-// assembly of the right-hand side and two triangular solves.
+// The deck layer, above the drivers and io: a deck's scene (io/deck_scene.hpp) becomes a Problem of one
+// compile-time model, and its load steps become a driver's steps. Each step applies the totals of the
+// increments so far. Three runs: linear (the seed's elastic codes: materials and temperatures are fixed
+// from the first step on, so the stiffness is factorized once and each later step costs an assembly of
+// the right-hand side and two triangular solves), plastic (Newton with history, step cutting) and
+// contact (a policy's stepping). Time in the StepContext is the load factor: 0 at the start, k at the
+// end of load step k.
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -101,6 +104,7 @@ void run_deck_plastic(const Deck& d, const DeckScene& s, OnIncrement&& on_increm
     while (done < 1 - 1e-12) {
       const double to = std::min(1.0, done + size);
       set_loads(fe.problem(), interpolate(before, after, to), s);
+      fe.context() = {step - 1 + to, to - done};
       try {
         fe.solve();
       } catch (const SolveError& e) {

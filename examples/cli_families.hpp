@@ -1,0 +1,83 @@
+#pragma once
+// The three ways `gapfe run` steps a deck on one compiled model M, with the files each writes:
+//   run_linear   no gaps, linear law: LinearStatic, one factorization (run_deck);
+//   run_plastic  no gaps, law with history: NonlinearStatic with step cutting, plus plasticity.csv;
+//   run_contact  gap elements under contact policy P: ContactStatic (over NonlinearStatic for laws with
+//                history: SAAC = SAGAEP + gaps), plus gaps.csv.
+// Internal to the command; cli_variants.hpp says which (M, P) exist.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+
+#include "gapfe/run/deck_run.hpp"
+
+#include "cli_run.hpp"
+
+namespace gapfe::cli {
+
+template <class M>
+void run_linear(const RunRequest& r, RunTimes& times) {
+  StepFiles files(r.dir, r.scene);
+  run_deck<M>(r.deck, r.scene, [&](int step, double inc, const LinearStatic<M>& fe) {
+    const auto& t = fe.timings();
+    times.assemble += t.assemble, times.factorize += t.factorize, times.solve += t.solve + t.reactions;
+    write_increment(r, times, files, step, inc, fe);
+  });
+  progress_done(r);
+  files.write_deformed(r.deck.title);
+}
+
+template <class M>
+void run_plastic(const RunRequest& r, RunTimes& times) {
+  StepFiles files(r.dir, r.scene);
+  // plasticity.csv: the Newton record of every accepted increment (residuals: |R| / |F_int| after each
+  // linear solve, separated by spaces; drift: max |sqrt f - 1| over the plastic points).
+  std::ofstream record = detail::open_output(r.dir + "/plasticity.csv");
+  record << "step,inc,iterations,plastic_points,drift,residuals\n";
+  int last_step = 0;
+  run_deck_plastic<M>(r.deck, r.scene, [&](int step, double inc, const NonlinearStatic<M>& fe) {
+    const auto& rep = fe.report();
+    times.solve += fe.solve_seconds();
+    times.newton_iterations += rep.iterations;
+    times.cut_steps += step == last_step || inc != std::floor(inc);
+    times.plastic_points = rep.plastic_points;
+    times.drift          = std::max(times.drift, rep.drift);
+    times.worst_residual = std::max(times.worst_residual, rep.residuals.back());
+    ++times.increments;
+    std::string row;
+    detail::append_number(row, static_cast<long long>(step)), row += ',';
+    detail::csv_number(row, inc);
+    detail::append_number(row, static_cast<long long>(rep.iterations)), row += ',';
+    detail::append_number(row, static_cast<long long>(rep.plastic_points)), row += ',';
+    detail::csv_number(row, rep.drift);
+    for (std::size_t k = 0; k < rep.residuals.size(); ++k) {
+      if (k > 0) row += ' ';
+      detail::append_number(row, rep.residuals[k]);
+    }
+    record << row << '\n' << std::flush;
+    last_step = step;
+    write_increment(r, times, files, step, inc, fe);
+  });
+  progress_done(r);
+  files.write_deformed(r.deck.title);
+}
+
+template <class M, ContactPolicy P>
+void run_contact(const RunRequest& r, RunTimes& times) {
+  StepFiles files(r.dir, r.scene);
+  GapFile gaps(r.dir, r.scene);
+  run_deck_contact<M, P>(
+      r.deck, r.scene, r.deck.options.gap_penalty, [&](int step, double inc, const ContactStatic<M, P>& c) {
+        const auto& t = c.fe().timings();
+        times.assemble += t.assemble, times.factorize += t.factorize, times.solve += t.solve + t.reactions;
+        times.contact = c.counters(), ++times.increments, times.penalty = c.penalty_factor();
+        times.pairs = static_cast<int>(c.pairs().size()), times.closed = 0;
+        for (const auto& st : c.states()) times.closed += st.closed;
+        write_increment(r, times, files, step, inc, c.fe(), gaps.write(step, inc, c.pairs(), c.states()));
+      });
+  progress_done(r);
+  files.write_deformed(r.deck.title);
+}
+
+}  // namespace gapfe::cli

@@ -1,0 +1,390 @@
+#pragma once
+// Assembler<M>: the discrete operator of a Problem, nothing else. Built once per analysis: the DOF map,
+// the stiffness pattern (element and node-link couplings, lower triangle of the free DOFs), the scatter
+// offsets of every element and link into its value array, and the history layout of the points. Then,
+// for a given state, it returns what a driver asks for:
+//   * linear_system       K and the right-hand side of a linear law (element loads, prescribed columns);
+//   * linear_internal     K u - f of the elements and links (reactions, equilibrium check);
+//   * evaluate            F_int(u), trial history and, on request, the tangent K_t of a law with history;
+//   * external_forces     card forces and edge tractions (add_body_forces: for laws with history);
+//   * add_links           node-link springs into values and right-hand side (contact, next friction);
+//   * nodal_stiffness     each node's diagonal block, what a contact penalty is scaled by.
+// It owns no matrix values and no solver (solver/system.hpp) and keeps no displacement or history: the
+// driver passes them in, so one assembler serves the linear, Newton and contact drivers alike.
+//
+// Conventions: full ring (core/types.hpp); element DOFs node-major; stiffness values are scattered from
+// each element matrix's upper triangle (assembly/sparsity.hpp).
+#include <algorithm>
+#include <type_traits>
+#include <vector>
+
+#include "gapfe/assembly/cells.hpp"
+#include "gapfe/assembly/dof_map.hpp"
+#include "gapfe/assembly/edge_index.hpp"
+#include "gapfe/assembly/element_kernel.hpp"
+#include "gapfe/assembly/node_links.hpp"
+#include "gapfe/assembly/problem_check.hpp"
+#include "gapfe/assembly/quad4_batch.hpp"
+#include "gapfe/assembly/sparsity.hpp"
+#include "gapfe/core/history.hpp"
+#include "gapfe/problem/problem.hpp"
+
+namespace gapfe {
+
+template <class M>
+class Assembler {
+ public:
+  using Kin                = typename M::Kinematics;
+  using Elem               = typename M::Element;
+  using Law                = typename M::Material;
+  static constexpr int kNd = Kin::kDofsPerNode;
+  /// Quad4 with 2 DOF assembles linear stiffness through the vectorized batch kernel (same result,
+  /// BENCHMARKS.md).
+  static constexpr bool kBatchedQuad4 = std::is_same_v<Elem, Quad4> && kNd == 2;
+
+  /// Checks the model (assembly/problem_check.hpp) and builds the pattern. `links`: node pairs that may
+  /// carry node links; their values start at zero.
+  Assembler(const Problem<M>& p, Connectivity<2> links)
+      : links_(std::move(links)), link_values_(links_.size()), cells_(p.mesh.cells.size()) {
+    check_model(p, links_);
+    dofs_ = DofMap<kNd>::build(p.mesh, p.conditions);
+    SparsityBuilder<kNd> sb(p.mesh.node_count(), dofs_.equation, dofs_.free_count);
+    sb.add(p.mesh.cells);
+    if constexpr (kHasTriangles<Elem>) sb.add(p.mesh.triangles);
+    sb.add(links_);
+    pattern_      = sb.build();
+    cell_offsets_ = scatter_offsets<kNd>(pattern_, dofs_.equation, p.mesh.cells);
+    if constexpr (kHasTriangles<Elem>)
+      tri_offsets_ = scatter_offsets<kNd>(pattern_, dofs_.equation, p.mesh.triangles);
+    link_offsets_ = scatter_offsets<kNd>(pattern_, dofs_.equation, links_);
+    points_       = cells_ * Elem::kStiffnessPoints;
+    if constexpr (kHasTriangles<Elem>)
+      points_ += p.mesh.triangles.size() * Elem::Degenerate::kStiffnessPoints;
+  }
+
+  const DofMap<kNd>& dofs() const { return dofs_; }
+  /// Lower triangle over the free DOFs, values zero: the System copies it once.
+  const SpMat& pattern() const { return pattern_; }
+  const Connectivity<2>& links() const { return links_; }
+  std::vector<NodeLink>& link_values() { return link_values_; }
+  const std::vector<NodeLink>& link_values() const { return link_values_; }
+  /// Stiffness points of the mesh: the size of a History of material points.
+  std::size_t point_count() const { return points_; }
+  /// History slot of stiffness point 0 of cell e of element type E: cells first, then triangles.
+  template <class E>
+  std::size_t first_point(std::size_t e) const {
+    if constexpr (std::is_same_v<E, Elem>) return e * Elem::kStiffnessPoints;
+    return cells_ * Elem::kStiffnessPoints + e * E::kStiffnessPoints;
+  }
+
+  /// Before a solve: the loads are checked and the prescribed values and card forces re-read (which DOFs
+  /// are prescribed may not change after construction: the pattern depends on it).
+  void refresh(const Problem<M>& p) {
+    check_loads(p);
+    DofMap<kNd> now = DofMap<kNd>::build(p.mesh, p.conditions);
+    if (now.equation != dofs_.equation)
+      throw InputError("boundary conditions: the set of prescribed DOFs changed after construction");
+    dofs_ = std::move(now);
+  }
+
+  /// F_ext over all DOFs: card forces and edge tractions (a linear law's body and thermal loads are
+  /// element loads in linear_system; a law with history adds body forces with add_body_forces).
+  VecX external_forces(const Problem<M>& p) {
+    VecX f = dofs_.nodal_force;
+    edges_.template add_loads<kNd>(p.mesh, p.edge_loads, f);
+    return f;
+  }
+  /// Body forces (seed Data 12) into `f` (all DOFs), for laws with history; their thermal strain is in
+  /// the law.
+  void add_body_forces(const Problem<M>& p, VecX& f) const {
+    cache_.reset();
+    for_each_cell<Elem>(
+        p.mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t,
+                                              const std::array<int, NPC>& cell, const CellTag& tag) {
+          using Kernel      = ElementKernel<Kin, E>;
+          const auto& lp    = local(p, tag, cell);
+          const BodyForce b = body_force(p.inertia, lp.density);
+          if (!b.any()) return;
+          const typename Kernel::Vector fe = Kernel::shape_load(
+              cell_coords<E>(p.mesh, cell), Kernel::restrict(lp.stiffness), Kernel::StrainVector::Zero(), b);
+          add_to(cell, fe, f);
+        });
+  }
+
+  /// A linear law's system: element stiffness into `values` (zeroed first, no links), and
+  /// rhs = F_ext (free rows) + element loads (body, thermal) - K_fp u_p.
+  void linear_system(const Problem<M>& p, const VecX& external, double* values, VecX& rhs) const {
+    Eigen::Map<VecX>(values, pattern_.nonZeros()).setZero();
+    rhs = VecX::Zero(dofs_.free_count);
+    cache_.reset();
+    for (std::size_t d = 0; d < dofs_.equation.size(); ++d)
+      if (dofs_.equation[d] >= 0) rhs(dofs_.equation[d]) += external(static_cast<Eigen::Index>(d));
+    for_each_cell<Elem>(p.mesh,
+                        [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
+                                                      const std::array<int, NPC>& cell, const CellTag& tag) {
+                          if constexpr (kBatchedQuad4 && std::is_same_v<E, Elem>)
+                            return;  // done in batches below
+                          typename ElementKernel<Kin, E>::Matrix k;
+                          typename ElementKernel<Kin, E>::Vector f;
+                          element_system<E>(p, cell, tag, k, f);
+                          scatter(values, offsets<E>(e), k);
+                          add_element_rhs(
+                              cell, f, [&](int i, int j) { return k(i, j); }, rhs);
+                        });
+    if constexpr (kBatchedQuad4) quad4_batched(p, values, rhs);
+  }
+
+  /// K u - f of a linear law's elements and of the node links at `u` (all DOFs).
+  VecX linear_internal(const Problem<M>& p, const VecX& u) const {
+    VecX internal = VecX::Zero(u.size());
+    cache_.reset();
+    for_each_cell<Elem>(p.mesh,
+                        [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t,
+                                                      const std::array<int, NPC>& cell, const CellTag& tag) {
+                          using Kernel = ElementKernel<Kin, E>;
+                          typename Kernel::Matrix k;
+                          typename Kernel::Vector f;
+                          element_system<E>(p, cell, tag, k, f);
+                          const typename Kernel::Vector fe = k * gather(cell, u) - f;
+                          add_to(cell, fe, internal);
+                        });
+    add_link_forces(u, internal);
+    return internal;
+  }
+
+  /// Node links into the stiffness values and the right-hand side (after the elements).
+  void add_links(double* values, VecX& rhs) const {
+    constexpr int n = 2 * kNd;
+    for (std::size_t l = 0; l < links_.size(); ++l) {
+      const NodeLink& link = link_values_[l];
+      if (link.zero()) continue;
+      const Mat<n, n> k = link.template element_stiffness<kNd>();
+      scatter(values, link_offsets_.data() + l * (n * (n + 1) / 2), k);
+      add_element_rhs(
+          links_[l], link.template element_load<kNd>(), [&](int i, int j) { return k(i, j); }, rhs);
+    }
+  }
+
+  /// A law with history at displacements `u` (all DOFs), from the committed states of `points`:
+  /// F_int = sum_e int B^T sigma dV + node links into `internal` (all DOFs), sigma into `stress`, the new
+  /// states into points' trial records. With `values`, K_t = sum_e int B^T D B dV + links (zeroed first);
+  /// with `prescribed_step` too, predictor = -K_fp du_p on the free rows (Newton's iteration 0).
+  template <class State>
+  void evaluate(const Problem<M>& p, const VecX& u, History<State>& points, std::vector<Vec6>& stress,
+                const StepContext& ctx, double* values, VecX& internal, const VecX* prescribed_step,
+                VecX& predictor) const {
+    static_assert(ElementKernel<Kin, Elem>::kInner == 0,
+                  "laws with history need elements without condensed interior nodes (not LegacyQuad)");
+    if (values) Eigen::Map<VecX>(values, pattern_.nonZeros()).setZero();
+    internal.setZero(u.size());
+    predictor.setZero(dofs_.free_count);
+    cache_.reset();
+    for_each_cell<Elem>(
+        p.mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
+                                              const std::array<int, NPC>& cell, const CellTag& tag) {
+          using Kernel              = ElementKernel<Kin, E>;
+          const auto x              = cell_coords<E>(p.mesh, cell);
+          const auto& lp            = local(p, tag, cell);
+          const auto mean           = Kernel::mean_volumetric(x);
+          const auto ue             = gather(cell, u);
+          const std::size_t first   = first_point<E>(e);
+          typename Kernel::Matrix k = Kernel::Matrix::Zero();
+          typename Kernel::Vector f = Kernel::Vector::Zero();
+          double det                = 0;
+          for (int q = 0; q < E::kStiffnessPoints; ++q) {
+            const auto g    = E::stiffness_point(x, q, det);
+            const auto b    = Kernel::point_B(g, mean);
+            const auto resp = Law::update(lp, Kernel::extend(b * ue), points.committed(first + q), ctx);
+            f.noalias() += g.weight * (b.transpose() * Kernel::restrict(resp.stress));
+            if (values) k.noalias() += g.weight * (b.transpose() * (Kernel::restrict(resp.tangent) * b));
+            points.trial(first + q) = resp.state;
+            stress[first + q]       = resp.stress;
+          }
+          add_to(cell, f, internal);
+          if (!values) return;
+          scatter(values, offsets<E>(e), k);
+          if (prescribed_step) add_predictor(cell, k, *prescribed_step, predictor);
+        });
+    add_link_forces(u, internal);
+    if (!values) return;
+    constexpr int n = 2 * kNd;
+    for (std::size_t l = 0; l < links_.size(); ++l) {
+      if (link_values_[l].zero()) continue;
+      const Mat<n, n> k = link_values_[l].template element_stiffness<kNd>();
+      scatter(values, link_offsets_.data() + l * (n * (n + 1) / 2), k);
+      if (prescribed_step) add_predictor(links_[l], k, *prescribed_step, predictor);
+    }
+  }
+
+  /// The kNd x kNd diagonal block of every node (zero-padded to 3 x 3), summed over the cells whose tag
+  /// passes `keep`, prescribed DOFs included: the "adjacent structure's stiffness" a penalty is scaled by.
+  template <class Keep>
+  std::vector<Mat33> nodal_stiffness(const Problem<M>& p, Keep&& keep) const {
+    std::vector<Mat33> out(static_cast<std::size_t>(p.mesh.node_count()), Mat33::Zero());
+    cache_.reset();
+    for_each_cell<Elem>(
+        p.mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t,
+                                              const std::array<int, NPC>& cell, const CellTag& tag) {
+          if (!keep(tag)) return;
+          typename ElementKernel<Kin, E>::Matrix k;
+          typename ElementKernel<Kin, E>::Vector f;
+          element_system<E>(p, cell, tag, k, f);
+          for (int a = 0; a < static_cast<int>(NPC); ++a)
+            out[cell[a]].template topLeftCorner<kNd, kNd>() += k.template block<kNd, kNd>(a * kNd, a * kNd);
+        });
+    return out;
+  }
+
+  /// The law resolved for a cell (cached across consecutive cells; reset_cache() at the start of a pass).
+  template <std::size_t NPC>
+  const typename Law::Local& local(const Problem<M>& p, const CellTag& tag,
+                                   const std::array<int, NPC>& cell) const {
+    return cache_.get(p.materials, tag, cell_temperature(p.temperature, p.reference_temperature, cell),
+                      p.reference_temperature);
+  }
+  void reset_cache() const { cache_.reset(); }
+
+  /// The element (or link) DOF values of `u` (all DOFs), node-major.
+  template <std::size_t NPC>
+  Vec<kNd* static_cast<int>(NPC)> gather(const std::array<int, NPC>& nodes, const VecX& u) const {
+    Vec<kNd* static_cast<int>(NPC)> ue;
+    for (int a = 0; a < static_cast<int>(NPC); ++a)
+      for (int c = 0; c < kNd; ++c) ue(a * kNd + c) = u(dofs_.dof(nodes[a], c));
+    return ue;
+  }
+
+ private:
+  /// out(dof) += v over the element's (or link's) DOFs.
+  template <std::size_t NPC, class Vector>
+  void add_to(const std::array<int, NPC>& nodes, const Vector& v, VecX& out) const {
+    for (int a = 0; a < static_cast<int>(NPC); ++a)
+      for (int c = 0; c < kNd; ++c) out(dofs_.dof(nodes[a], c)) += v(a * kNd + c);
+  }
+  /// Internal force K u_e - f_e of every non-zero node link into `internal`.
+  void add_link_forces(const VecX& u, VecX& internal) const {
+    for (std::size_t l = 0; l < links_.size(); ++l) {
+      const NodeLink& link = link_values_[l];
+      if (link.zero()) continue;
+      const Vec<2 * kNd> f =
+          link.template element_stiffness<kNd>() * gather(links_[l], u) - link.template element_load<kNd>();
+      add_to(links_[l], f, internal);
+    }
+  }
+  template <class E>
+  const int* offsets(std::size_t e) const {
+    constexpr int n = ElementKernel<Kin, E>::kDofs;
+    return (std::is_same_v<E, Elem> ? cell_offsets_ : tri_offsets_).data() + e * (n * (n + 1) / 2);
+  }
+  /// An element matrix's upper triangle into the stiffness values (-1: a prescribed row or column).
+  template <class Matrix>
+  static void scatter(double* values, const int* off, const Matrix& k) {
+    for (int i = 0, c = 0; i < k.rows(); ++i)
+      for (int j = i; j < k.cols(); ++j, ++c)
+        if (off[c] >= 0) values[off[c]] += k(i, j);
+  }
+
+  /// Condensed element stiffness and load (body + thermal) of one cell of a linear law.
+  template <class E, std::size_t NPC>
+  void element_system(const Problem<M>& p, const std::array<int, NPC>& cell, const CellTag& tag,
+                      typename ElementKernel<Kin, E>::Matrix& k,
+                      typename ElementKernel<Kin, E>::Vector& f) const {
+    using Kernel                           = ElementKernel<Kin, E>;
+    const auto x                           = cell_coords<E>(p.mesh, cell);
+    const auto& lp                         = local(p, tag, cell);
+    const typename Kernel::StrainMatrix d  = Kernel::restrict(lp.stiffness);
+    const typename Kernel::StrainVector th = Kernel::restrict(lp.thermal_strain);
+    const BodyForce body                   = body_force(p.inertia, lp.density);
+    if (!body.any() && th.isZero(0.0)) {
+      k = Kernel::stiffness(x, d);
+      f.setZero();
+    } else {
+      Kernel::condense(Kernel::shape_stiffness(x, d), Kernel::shape_load(x, d, th, body), k, f);
+    }
+  }
+
+  /// Element load into the right-hand side, and the prescribed-displacement columns moved there:
+  /// rhs_i += f_i - sum_j K_ij u_j over prescribed j. `k(i, j)` gives the element stiffness.
+  template <std::size_t NPC, class Vector, class Stiffness>
+  void add_element_rhs(const std::array<int, NPC>& cell, const Vector& f, Stiffness&& k, VecX& rhs) const {
+    constexpr int n = kNd * static_cast<int>(NPC);
+    std::array<int, n> dof;
+    bool moved = false;
+    for (int a = 0; a < static_cast<int>(NPC); ++a)
+      for (int c = 0; c < kNd; ++c) {
+        dof[a * kNd + c] = dofs_.dof(cell[a], c);
+        moved |= dofs_.equation[dof[a * kNd + c]] < 0 && dofs_.prescribed(dof[a * kNd + c]) != 0;
+      }
+    for (int i = 0; i < n; ++i) {
+      const int eq = dofs_.equation[dof[i]];
+      if (eq < 0) continue;
+      double r = f(i);
+      if (moved)
+        for (int j = 0; j < n; ++j)
+          if (dofs_.equation[dof[j]] < 0) r -= k(i, j) * dofs_.prescribed(dof[j]);
+      rhs(eq) += r;
+    }
+  }
+  /// predictor -= K_fp du_p over one element's free rows and prescribed columns.
+  template <std::size_t NPC, class Matrix>
+  void add_predictor(const std::array<int, NPC>& nodes, const Matrix& k, const VecX& du_p,
+                     VecX& predictor) const {
+    const auto step = gather(nodes, du_p);
+    if (step.isZero(0.0)) return;
+    for (int i = 0; i < k.rows(); ++i) {
+      const int eq = dofs_.equation[dofs_.dof(nodes[i / kNd], i % kNd)];
+      if (eq >= 0) predictor(eq) -= k.row(i).dot(step);
+    }
+  }
+
+  /// Quad4 cells with 2 DOF: stiffness from the vectorized batch kernel (assembly/quad4_batch.hpp), W
+  /// cells at a time; loads, when there are any, from the generic kernel.
+  void quad4_batched(const Problem<M>& p, double* values, VecX& rhs) const {
+    using Kernel                 = ElementKernel<Kin, Elem>;
+    using Batch                  = Quad4Axisym2Batch<8>;
+    const auto& m                = p.mesh;
+    const std::size_t count      = m.cells.size();
+    static constexpr auto kUpper = [] {  // (i, j) -> index in the upper-triangle row-major list
+      std::array<std::array<int, 8>, 8> t{};
+      for (int i = 0, c = 0; i < 8; ++i)
+        for (int j = i; j < 8; ++j, ++c) t[i][j] = t[j][i] = c;
+      return t;
+    }();
+    Batch batch;
+    for (std::size_t e0 = 0; e0 < count; e0 += Batch::kLanes) {
+      const int lanes = static_cast<int>(std::min<std::size_t>(Batch::kLanes, count - e0));
+      for (int l = 0; l < Batch::kLanes; ++l) {
+        const std::size_t e =
+            e0 + static_cast<std::size_t>(std::min(l, lanes - 1));  // pad with the last cell
+        for (int a = 0; a < 4; ++a)
+          batch.r[a][l] = m.nodes[m.cells[e][a]](0), batch.z[a][l] = m.nodes[m.cells[e][a]](1);
+        batch.set_material(l, local(p, m.cell_tag(e), m.cells[e]).stiffness.template topLeftCorner<4, 4>());
+      }
+      batch.compute();
+      for (int l = 0; l < lanes; ++l) {
+        const std::size_t e = e0 + static_cast<std::size_t>(l);
+        const int* off      = cell_offsets_.data() + e * 36;
+        for (int c = 0; c < 36; ++c)
+          if (off[c] >= 0) values[off[c]] += batch.k[c][l];
+        const auto& lp                         = local(p, m.cell_tag(e), m.cells[e]);
+        const typename Kernel::StrainVector th = Kernel::restrict(lp.thermal_strain);
+        const BodyForce body                   = body_force(p.inertia, lp.density);
+        typename Kernel::Vector f              = Kernel::Vector::Zero();
+        if (body.any() || !th.isZero(0.0))
+          f = Kernel::shape_load(cell_coords<Elem>(m, m.cells[e]), Kernel::restrict(lp.stiffness), th, body);
+        add_element_rhs(
+            m.cells[e], f, [&](int i, int j) { return batch.k[kUpper[i][j]][l]; }, rhs);
+      }
+    }
+  }
+
+  DofMap<kNd> dofs_;
+  SpMat pattern_;
+  std::vector<int> cell_offsets_, tri_offsets_, link_offsets_;
+  Connectivity<2> links_;
+  std::vector<NodeLink> link_values_;
+  std::size_t cells_ = 0, points_ = 0;
+  EdgeIndex<Elem> edges_;
+  LocalLawCache<Law> cache_;
+};
+
+}  // namespace gapfe

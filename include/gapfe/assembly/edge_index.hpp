@@ -1,0 +1,75 @@
+#pragma once
+// Edge tractions (seed Data 13-15) onto nodal forces. A load names its edge by the two end nodes M -> N
+// and the element must lie to its left (counterclockwise), so the index maps the ordered pair (start,
+// end) of every cell edge to its cell; a load given the wrong way round gets an error that says so.
+#include <cstdint>
+#include <string>
+#include <type_traits>
+#include <unordered_map>
+#include <vector>
+
+#include "gapfe/assembly/cells.hpp"
+#include "gapfe/assembly/edge_loads.hpp"
+#include "gapfe/core/error.hpp"
+
+namespace gapfe {
+
+template <class Elem>
+class EdgeIndex {
+ public:
+  /// Consistent forces of every edge load into `out` (all DOFs, DofsPerNode components per node).
+  template <int DofsPerNode, class MeshT>
+  void add_loads(const MeshT& m, const std::vector<EdgeLoad>& loads, VecX& out) {
+    if (loads.empty()) return;
+    if (edges_.empty()) build(m);
+    for (std::size_t k = 0; k < loads.size(); ++k) {
+      const EdgeLoad& l = loads[k];
+      const auto it     = edges_.find(key(l.node_m, l.node_n));
+      if (it == edges_.end()) {
+        const std::string what = "edge load " + std::to_string(k + 1) + " from node " +
+                                 std::to_string(l.node_m + 1) + " to node " + std::to_string(l.node_n + 1);
+        if (edges_.count(key(l.node_n, l.node_m)))
+          throw InputError(what + ": the element must lie to the left going from M to N; swap M and N");
+        throw InputError(what + ": the two nodes are not the ends of an element edge");
+      }
+      const auto [triangle, cell, edge] = it->second;
+      if (!triangle) apply<Elem, DofsPerNode>(m.nodes, m.cells[cell], edge, l, out);
+      if constexpr (kHasTriangles<Elem>)
+        if (triangle) apply<typename Elem::Degenerate, DofsPerNode>(m.nodes, m.triangles[cell], edge, l, out);
+    }
+  }
+
+ private:
+  struct EdgeRef {
+    bool triangle;
+    std::size_t cell;
+    int edge;
+  };
+  static std::uint64_t key(int m, int n) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(m)) << 32) | static_cast<std::uint32_t>(n);
+  }
+  template <class MeshT>
+  void build(const MeshT& m) {
+    for_each_cell<Elem>(m, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
+                                                         const std::array<int, NPC>& cell, const CellTag&) {
+      for (int k = 0; k < static_cast<int>(E::kEdges.size()); ++k)
+        edges_[key(cell[E::kEdges[k].front()], cell[E::kEdges[k].back()])] = {!std::is_same_v<E, Elem>, e, k};
+    });
+  }
+  template <class E, int DofsPerNode, std::size_t NPC>
+  static void apply(const std::vector<Vec2>& nodes, const std::array<int, NPC>& cell, int edge,
+                    const EdgeLoad& l, VecX& out) {
+    constexpr int en = E::kEdgeNodes;
+    Mat<en, 2> x;
+    std::array<int, en> node;
+    // kEdges lists (start, end) for 2-node edges and (start, mid, end) for 3-node edges.
+    for (int a = 0; a < en; ++a) node[a] = cell[E::kEdges[edge][a]], x.row(a) = nodes[node[a]].transpose();
+    const Mat<en, 3> f = edge_forces<en>(x, l.pressure, l.shear, l.transverse_shear);
+    for (int a = 0; a < en; ++a)
+      for (int c = 0; c < DofsPerNode; ++c) out(node[a] * DofsPerNode + c) += f(a, c);
+  }
+
+  std::unordered_map<std::uint64_t, EdgeRef> edges_;
+};
+
+}  // namespace gapfe

@@ -1,0 +1,114 @@
+#pragma once
+// The seed's card deck (BRL-CR-670 Appendix A, cards 0-15) as data: one struct per card kind, named
+// after the card (Data N), and the Deck that holds them. io/deck_reader.hpp fills it.
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gapfe/io/deck_options.hpp"
+#include "gapfe/material/elastic.hpp"
+#include "gapfe/mesh/ij_grid.hpp"
+#include "gapfe/mesh/temperature.hpp"
+#include "gapfe/problem/loads.hpp"
+
+namespace gapfe {
+
+/// Where a card came from, for messages about values that need the mesh to check.
+struct CardRef {
+  std::string card;  ///< "DATA NO. 13 (boundary pressure card 2 of load step 1)"
+  int line = 0;
+  std::string where() const { return card + ", line " + std::to_string(line); }
+};
+
+struct RateCard {  // Data 0 (SAAC3, SAAC3X)
+  double time_step = 0, rate_b = 0, rate_plastic_strain = 0, strain_rate = 0, shear_stress_step = 0;
+};
+
+struct ControlCard {  // Data 2
+  int nnla = 0, numtc = 0, nummat = 0, numpc = 0, numsc = 0, numst = 0;
+  double tref = 0;
+  int inert = 0, nlinc = 0, inci = 0, incf = 0, iplot = 0;
+};
+
+struct MeshControlCard {  // Data 3
+  int max_i = 0, max_j = 0, nseg = 0, nbc = 0, nmtl = 0;
+};
+
+struct BoundaryCard {  // Data 5: nodes in [i1, i2] x [j1, j2]
+  int i1 = 0, i2 = 0, j1 = 0, j2 = 0, code = 0;
+  std::array<double, 3> value{};  ///< XR, XZ, XT
+  CardRef ref;
+};
+
+struct MaterialBlockCard {  // Data 6: cells whose four corners lie in [i1, i2] x [j1, j2]
+  int material = 0, i1 = 0, i2 = 0, j1 = 0, j2 = 0;
+  double beta_deg = 0, alpha_deg = 0;
+  int iang = 0, nang = 0, ijdir = 0;
+  CardRef ref;
+};
+
+struct YieldCard {                // Data 11, in material axes
+  std::array<double, 6> yield{};  ///< tension N, S, T; shear NS, NT, TS [stress]
+  double hardening = 0;           ///< C
+  bool blank       = true;        ///< all-blank card: the material stays elastic
+};
+
+struct DeckMaterial {  // Data 10 (+ 11)
+  int id = 0;
+  ElasticTable table;
+  std::optional<YieldCard> yield;  ///< absent in elastic decks
+  CardRef ref;
+};
+
+struct EdgeCard {              // Data 13-15
+  int node_m = 0, node_n = 0;  ///< 1-based, as on the card
+  double value = 0;
+  CardRef ref;
+};
+
+struct LoadBlock {  // Data 12-15 of one load step
+  std::optional<InertiaLoad> inertia;
+  std::vector<EdgeCard> pressure, shear, transverse_shear;
+};
+
+struct Deck {
+  DeckOptions options;
+  std::optional<RateCard> rate;
+  std::string title;
+  ControlCard control;
+  MeshControlCard mesh;
+  std::vector<Segment> segments;
+  std::vector<CardRef> segment_refs;
+  std::vector<BoundaryCard> boundary;
+  std::vector<MaterialBlockCard> blocks;
+  std::string plot_title;
+  double plot_rmax = 0, plot_zmax = 0;
+  std::vector<TemperaturePoint> temperature_points;
+  std::optional<double> constant_temperature;
+  std::vector<DeckMaterial> materials;
+  std::vector<LoadBlock> blocks_read;  ///< the blocks as read (one per step, or the first only)
+
+  int steps() const { return control.nlinc; }
+  /// Inertia increment of load step s (1-based): its own card, the first block's when INCI = 0.
+  InertiaLoad inertia(int s) const {
+    if (control.inert == 0) return {};
+    const LoadBlock& b = blocks_read[control.inci == 0 ? 0 : s - 1];
+    return b.inertia.value_or(InertiaLoad{});
+  }
+  /// Surface-load cards of load step s (1-based): its own, the first block's when INCF = 0.
+  const LoadBlock& surface(int s) const { return blocks_read[control.incf == 0 ? 0 : s - 1]; }
+  const DeckMaterial* material(int id) const {
+    for (const auto& m : materials)
+      if (m.id == id) return &m;
+    return nullptr;
+  }
+};
+
+/// Limits that keep a hostile deck from exhausting memory; the seed's own limits are lifted.
+struct DeckLimits {
+  long long max_grid_points = 200'000'000;  ///< MAXI x MAXJ
+  int max_load_steps        = 1'000'000;
+};
+
+}  // namespace gapfe

@@ -1,0 +1,79 @@
+#pragma once
+// Deck extensions: the options the seed's input lacks, set by lines `$ key = value` before the first card
+// or from the command line (gapfe --set key=value), so legacy decks stay untouched. Each key's values and
+// default are documented at its field; io/deck_reader.hpp reads them.
+#include <initializer_list>
+#include <string>
+
+#include "gapfe/core/error.hpp"
+
+namespace gapfe {
+
+enum class DeckFormat { saac, saac3, elastic };
+
+/// Options a deck sets with `$ key = value` lines or the command line sets with --set key=value.
+struct DeckOptions {
+  DeckFormat format = DeckFormat::saac;  ///< format = saac | saac3 | elastic
+  /// element = auto | legacy (the seed's four-CST quad) | quad4 | quad4bbar (Quad4 with B-bar). auto:
+  /// legacy for elastic and gap decks, quad4bbar for decks with yield cards (plain Quad4 locks in
+  /// plastic flow, tests/test_plasticity.cpp; the legacy quad's condensed centre is not in the plastic
+  /// driver yet).
+  std::string element    = "auto";
+  std::string solver     = "auto";     ///< solver = auto (fastest built) | eigen | cholmod
+  bool loads_per_radian  = false;      ///< bc_loads = total (default) | per-radian (legacy decks)
+  std::string contact    = "saac";     ///< contact = saac | active-set | augmented-lagrangian (gap issue)
+  double friction        = 0.0;        ///< friction = Coulomb coefficient mu >= 0 (gap issue)
+  std::string slip       = "coulomb";  ///< slip = coulomb | extended (gap issue)
+  double gap_penalty     = 0.0;  ///< gap_penalty = closed-gap / adjacent stiffness (0: the policy's default)
+  int gap_direction      = 0;    ///< gap_direction = 0 (IJDIR per block, SAAC2) | 1 | 2 (SAAC's one LGAP)
+  std::string plasticity = "tangent";  ///< plasticity = tangent | return-mapping (plasticity issue)
+
+  /// Set one option from its text form; throws InputError naming the key and the accepted values.
+  void set(const std::string& key, const std::string& value) {
+    const auto one_of = [&](std::initializer_list<const char*> allowed) {
+      std::string list;
+      for (const char* a : allowed) {
+        if (value == a) return value;
+        list += (list.empty() ? "" : ", ") + std::string(a);
+      }
+      throw InputError("option " + key + " = '" + value + "': expected one of " + list);
+    };
+    const auto number = [&](double lo) {
+      char* end      = nullptr;
+      const double v = std::strtod(value.c_str(), &end);
+      if (value.empty() || *end != '\0' || !std::isfinite(v) || v < lo)
+        throw InputError("option " + key + " = '" + value + "': expected a number >= " + std::to_string(lo));
+      return v;
+    };
+    if (key == "format") {
+      const std::string f = one_of({"saac", "saac2", "saac3", "saac3x", "elastic", "saas", "saga"});
+      format              = (f == "saac3" || f == "saac3x")                  ? DeckFormat::saac3
+                            : (f == "elastic" || f == "saas" || f == "saga") ? DeckFormat::elastic
+                                                                             : DeckFormat::saac;
+    } else if (key == "element") {
+      element = one_of({"auto", "legacy", "quad4", "quad4bbar"});
+    } else if (key == "solver") {
+      solver = one_of({"auto", "eigen", "cholmod"});
+    } else if (key == "bc_loads") {
+      loads_per_radian = one_of({"total", "per-radian"}) == "per-radian";
+    } else if (key == "contact") {
+      contact = one_of({"saac", "active-set", "augmented-lagrangian", "none"});
+    } else if (key == "friction") {
+      friction = number(0.0);
+    } else if (key == "slip") {
+      slip = one_of({"coulomb", "extended"});
+    } else if (key == "gap_penalty") {
+      gap_penalty = number(0.0);
+    } else if (key == "gap_direction") {
+      gap_direction = std::stoi(one_of({"0", "1", "2"}));
+    } else if (key == "plasticity") {
+      plasticity = one_of({"tangent", "return-mapping"});
+    } else {
+      throw InputError("unknown option '" + key +
+                       "' (known: format, element, solver, bc_loads, contact, friction, slip, gap_penalty, "
+                       "gap_direction, plasticity)");
+    }
+  }
+};
+
+}  // namespace gapfe

@@ -1,0 +1,372 @@
+#pragma once
+// The card-deck reader: the deck's text to a Deck (io/deck_cards.hpp). It only parses: it checks each
+// card's columns, counts and value ranges that need no mesh; io/deck_scene.hpp builds the mesh and checks
+// what refers to it (node numbers, edges, material numbers). The readings of what the seed leaves open
+// are listed in io/deck.hpp.
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "gapfe/io/deck_cards.hpp"
+#include "gapfe/io/fixed_format.hpp"
+
+namespace gapfe {
+
+namespace detail {
+
+class DeckLines {
+ public:
+  explicit DeckLines(std::string_view text) {
+    std::size_t start = 0;
+    while (start < text.size()) {
+      std::size_t end = text.find('\n', start);
+      if (end == std::string_view::npos) end = text.size();
+      lines_.push_back(text.substr(start, end - start));
+      start = end + 1;
+    }
+  }
+  bool done() const { return next_ >= lines_.size(); }
+  int line_number() const { return static_cast<int>(next_) + 1; }
+  std::string_view peek() const { return lines_[next_]; }
+  void skip() { ++next_; }
+  /// The next card image, or an error that names the card the deck still owed.
+  CardImage take(const std::string& card) {
+    if (done())
+      throw InputError(card + ": the deck ends after line " + std::to_string(lines_.size()) +
+                       "; a count on the control cards asks for more cards than the deck has");
+    const std::size_t k = next_++;
+    return CardImage(lines_[k], static_cast<int>(k) + 1, card);
+  }
+  /// After the last card: only blank lines may follow.
+  void expect_end() const {
+    for (std::size_t k = next_; k < lines_.size(); ++k)
+      if (lines_[k].find_first_not_of(" \r") != std::string_view::npos)
+        throw InputError("line " + std::to_string(k + 1) +
+                         ": unexpected card after the last load block; a count on the control cards (NUMPC, "
+                         "NUMSC, NUMST, NLINC, INERT, INCI, INCF, NUMTC, IPLLOT) or the deck format (yield "
+                         "cards: format = saac or elastic) disagrees with the cards");
+  }
+
+ private:
+  std::vector<std::string_view> lines_;
+  std::size_t next_ = 0;
+};
+
+inline std::string numbered(const std::string& data, const std::string& what, int k) {
+  return data + " (" + what + " " + std::to_string(k) + ")";
+}
+
+/// Minimum I, maximum I, minimum J, maximum J: four I5 fields from column `first` (Data 5 and 6),
+/// within 1..MAXI and 1..MAXJ. A material block must span at least one cell (`spans_cell`: min < max);
+/// a BC rectangle may be a line or a point (min <= max).
+inline void read_index_rectangle(const CardImage& c, int first, const MeshControlCard& m, bool spans_cell,
+                                 int& i1, int& i2, int& j1, int& j2) {
+  i1                     = c.integer(first, first + 4, "minimum I");
+  i2                     = c.integer(first + 5, first + 9, "maximum I");
+  j1                     = c.integer(first + 10, first + 14, "minimum J");
+  j2                     = c.integer(first + 15, first + 19, "maximum J");
+  const char* order      = spans_cell ? " < " : " <= ";
+  const std::string cell = spans_cell ? " (a block spans at least one cell)" : "";
+  if (i1 < 1 || i2 < i1 + spans_cell || i2 > m.max_i)
+    c.reject(first, first + 9, "I range",
+             std::string("needs 1 <= minimum I") + order + "maximum I <= MAXI = " + std::to_string(m.max_i) +
+                 cell);
+  if (j1 < 1 || j2 < j1 + spans_cell || j2 > m.max_j)
+    c.reject(first + 10, first + 19, "J range",
+             std::string("needs 1 <= minimum J") + order + "maximum J <= MAXJ = " + std::to_string(m.max_j) +
+                 cell);
+}
+
+}  // namespace detail
+
+/// Read a deck held in `text` (the string must outlive nothing: all values are copied). `overrides`
+/// are applied after the deck's own `$` lines (the command line wins). Throws InputError naming the
+/// card, the line, the columns and what was expected.
+inline Deck read_deck(std::string_view text,
+                      const std::vector<std::pair<std::string, std::string>>& overrides = {},
+                      const DeckLimits& limits                                          = {}) {
+  Deck d;
+  detail::DeckLines in(text);
+
+  // ---- extensions: `$ key = value` lines before the first card
+  while (!in.done() && !in.peek().empty() && in.peek().front() == '$') {
+    std::string line(in.peek().substr(1));
+    const int number = in.line_number();
+    in.skip();
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+    const auto eq = line.find('=');
+    if (eq == std::string::npos) continue;  // a comment
+    const auto trim = [](std::string s) {
+      const auto a = s.find_first_not_of(' '), b = s.find_last_not_of(' ');
+      return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
+    };
+    try {
+      d.options.set(trim(line.substr(0, eq)), trim(line.substr(eq + 1)));
+    } catch (const InputError& e) {
+      throw InputError("extension line " + std::to_string(number) + ": " + e.what());
+    }
+  }
+  for (const auto& [key, value] : overrides) d.options.set(key, value);
+  const bool plastic_format = d.options.format != DeckFormat::elastic;
+
+  // ---- Data 0: rate property card (5E12.6), SAAC3 / SAAC3X only
+  if (d.options.format == DeckFormat::saac3) {
+    const CardImage c = in.take("DATA NO. 0 (rate property card)");
+    RateCard r;
+    r.time_step           = c.real(1, 12, 6, "time increment");
+    r.rate_b              = c.real(13, 24, 6, "rate parameter b");
+    r.rate_plastic_strain = c.real(25, 36, 6, "rate parameter eps_p dot");
+    r.strain_rate         = c.real(37, 48, 6, "STRRATE");
+    r.shear_stress_step   = c.real(49, 60, 6, "STRSTEP");
+    if (!(r.time_step > 0)) c.reject(1, 12, "time increment", "must be > 0");
+    d.rate = r;
+  }
+
+  // ---- Data 1: title (20A4)
+  {
+    const CardImage c = in.take("DATA NO. 1 (title card)");
+    d.title           = c.field(1, 80);
+    while (!d.title.empty() && d.title.back() == ' ') d.title.pop_back();
+  }
+
+  // ---- Data 2: control card (6I5, F5.0, 6I5)
+  {
+    const CardImage c = in.take("DATA NO. 2 (control card)");
+    ControlCard& k    = d.control;
+    k.nnla            = c.integer(1, 5, "NNLA");
+    k.numtc           = c.integer(6, 10, "NUMTC");
+    k.nummat          = c.integer(11, 15, "NUMMAT");
+    k.numpc           = c.integer(16, 20, "NUMPC");
+    k.numsc           = c.integer(21, 25, "NUMSC");
+    k.numst           = c.integer(26, 30, "NUMST");
+    k.tref            = c.real(31, 35, 0, "TREF");
+    k.inert           = c.integer(36, 40, "INERT");
+    k.nlinc           = c.integer(41, 45, "NLINC");
+    k.inci            = c.integer(46, 50, "INCI");
+    k.incf            = c.integer(51, 55, "INCF");
+    k.iplot           = c.integer(56, 60, "IPLLOT");
+    if (k.numtc < 0 && k.numtc != -2)
+      c.reject(6, 10, "NUMTC", "must be >= 0, or -2 for a constant temperature");
+    if (k.nummat < 1) c.reject(11, 15, "NUMMAT", "must be >= 1");
+    if (k.numpc < 0) c.reject(16, 20, "NUMPC", "must be >= 0");
+    if (k.numsc < 0) c.reject(21, 25, "NUMSC", "must be >= 0");
+    if (k.numst < 0) c.reject(26, 30, "NUMST", "must be >= 0");
+    if (k.nlinc < 1) c.reject(41, 45, "NLINC", "must be >= 1");
+    if (k.nlinc > limits.max_load_steps) c.reject(41, 45, "NLINC", "exceeds the limit of load steps");
+    if (k.inert < 0) c.reject(36, 40, "INERT", "must be 0 (no inertia card) or positive");
+  }
+
+  // ---- Data 3: mesh generation control (5I5)
+  {
+    const CardImage c  = in.take("DATA NO. 3 (mesh generation control card)");
+    MeshControlCard& k = d.mesh;
+    k.max_i            = c.integer(1, 5, "MAXI");
+    k.max_j            = c.integer(6, 10, "MAXJ");
+    k.nseg             = c.integer(11, 15, "NSEG");
+    k.nbc              = c.integer(16, 20, "NBC");
+    k.nmtl             = c.integer(21, 25, "NMTL");
+    if (k.max_i < 1) c.reject(1, 5, "MAXI", "must be >= 1");
+    if (k.max_j < 1) c.reject(6, 10, "MAXJ", "must be >= 1");
+    if (static_cast<long long>(k.max_i) * k.max_j > limits.max_grid_points)
+      c.reject(1, 10, "MAXI x MAXJ",
+               "the grid exceeds " + std::to_string(limits.max_grid_points) + " points");
+    if (k.nseg < 1) c.reject(11, 15, "NSEG", "must be >= 1");
+    if (k.nbc < 0) c.reject(16, 20, "NBC", "must be >= 0");
+    if (k.nmtl < 1) c.reject(21, 25, "NMTL", "must be >= 1");
+  }
+
+  // ---- Data 4: line segment cards (3(2I3, 2F8.3), I5)
+  for (int s = 1; s <= d.mesh.nseg; ++s) {
+    const CardImage c = in.take(detail::numbered("DATA NO. 4", "line segment card", s));
+    Segment seg;
+    for (int k = 0; k < 3; ++k) {
+      const int o = 22 * k;
+      seg.p[k].i  = c.integer(o + 1, o + 3, "I");
+      seg.p[k].j  = c.integer(o + 4, o + 6, "J");
+      seg.p[k].x  = {c.real(o + 7, o + 14, 3, "R"), c.real(o + 15, o + 22, 3, "Z")};
+    }
+    const int type = c.integer(67, 71, "line segment type");
+    if (type < 0 || type > 6)
+      c.reject(67, 71, "line segment type", "must be 0-6, got " + std::to_string(type));
+    seg.type       = static_cast<SegmentType>(type);
+    const int used = type == 0 ? 1 : type == 3 ? 3 : 2;
+    for (int k = 0; k < used; ++k) {
+      const int o        = 22 * k;
+      const GridPoint& p = seg.p[k];
+      if (p.i < 1 || p.i > d.mesh.max_i)
+        c.reject(o + 1, o + 3, "I",
+                 "must be within 1..MAXI = " + std::to_string(d.mesh.max_i) + ", got " + std::to_string(p.i));
+      if (p.j < 1 || p.j > d.mesh.max_j)
+        c.reject(o + 4, o + 6, "J",
+                 "must be within 1..MAXJ = " + std::to_string(d.mesh.max_j) + ", got " + std::to_string(p.j));
+    }
+    d.segments.push_back(seg);
+    d.segment_refs.push_back({c.card(), c.line()});
+  }
+
+  // ---- Data 5: boundary condition cards (4I5, I10, 3F10.0)
+  for (int b = 1; b <= d.mesh.nbc; ++b) {
+    const CardImage c = in.take(detail::numbered("DATA NO. 5", "boundary condition card", b));
+    BoundaryCard k;
+    detail::read_index_rectangle(c, 1, d.mesh, false, k.i1, k.i2, k.j1, k.j2);
+    k.code  = c.integer(21, 30, "boundary condition code");
+    k.value = {c.real(31, 40, 0, "XR"), c.real(41, 50, 0, "XZ"), c.real(51, 60, 0, "XT")};
+    if (k.code < 0 || k.code > 7)
+      c.reject(21, 30, "boundary condition code", "must be 0-7 (bit mask 1 = u_r, 2 = u_z, 4 = u_t)");
+    if (d.options.loads_per_radian)
+      for (int comp = 0; comp < 3; ++comp)
+        if (!((k.code >> comp) & 1)) k.value[comp] *= kTwoPi;  // per radian -> total ring force
+    k.ref = {c.card(), c.line()};
+    d.boundary.push_back(k);
+  }
+
+  // ---- Data 6: material block cards (5I5, 2F10.0, 3I5)
+  for (int b = 1; b <= d.mesh.nmtl; ++b) {
+    const CardImage c = in.take(detail::numbered("DATA NO. 6", "material block card", b));
+    MaterialBlockCard k;
+    k.material = c.integer(1, 5, "material number");
+    detail::read_index_rectangle(c, 6, d.mesh, true, k.i1, k.i2, k.j1, k.j2);
+    k.beta_deg  = c.real(26, 35, 0, "BETA");
+    k.alpha_deg = c.real(36, 45, 0, "ALPHA");
+    k.iang      = c.integer(46, 50, "IANG");
+    k.nang      = c.integer(51, 55, "NANG");
+    k.ijdir     = c.integer(56, 60, "IJDIR");
+    if (k.material < 1) c.reject(1, 5, "material number", "must be >= 1");
+    if (k.iang != 0 && k.iang != 1) c.reject(46, 50, "IANG", "must be 0 or 1");
+    if (k.iang == 1 && k.nang < 1) c.reject(51, 55, "NANG", "must be >= 1 when IANG = 1");
+    if (k.ijdir < 0 || k.ijdir > 2) c.reject(56, 60, "IJDIR", "must be 0, 1 or 2");
+    k.ref = {c.card(), c.line()};
+    d.blocks.push_back(k);
+  }
+
+  // ---- Data 7, 8: plot title and plot limits, only with IPLLOT = 1
+  if (d.control.iplot == 1) {
+    const CardImage t = in.take("DATA NO. 7 (plot title card)");
+    d.plot_title      = t.field(1, 80);
+    while (!d.plot_title.empty() && d.plot_title.back() == ' ') d.plot_title.pop_back();
+    const CardImage c = in.take("DATA NO. 8 (plot generation information card)");
+    d.plot_rmax       = c.real(1, 10, 0, "RMAX");
+    d.plot_zmax       = c.real(11, 20, 0, "ZMAX");
+  }
+
+  // ---- Data 9: temperature field
+  if (d.control.numtc > 0) {
+    for (int t = 1; t <= d.control.numtc; ++t) {
+      const CardImage c = in.take(detail::numbered("DATA NO. 9", "temperature card", t));
+      d.temperature_points.push_back({c.real(1, 10, 0, "R coordinate"), c.real(11, 20, 0, "Z coordinate"),
+                                      c.real(21, 30, 0, "temperature")});
+    }
+  } else if (d.control.numtc == -2) {
+    const CardImage c      = in.take("DATA NO. 9 (constant temperature card)");
+    d.constant_temperature = c.real(1, 10, 0, "temperature");
+  }
+
+  // ---- Data 10 (+ 11): materials
+  for (int m = 1; m <= d.control.nummat; ++m) {
+    const CardImage c =
+        in.take(detail::numbered("DATA NO. 10a", "material identification card of material", m));
+    DeckMaterial mat;
+    mat.id            = c.integer(1, 5, "material identification number");
+    const int ntemp   = c.integer(6, 10, "number of temperatures");
+    mat.table.density = c.real(11, 20, 0, "mass density");
+    const double tep  = c.real(21, 30, 0, "thermal expansion parameter");
+    mat.table.thermal = tep == 1.0 ? ThermalInput::free_strain : ThermalInput::coefficients;
+    mat.ref           = {c.card(), c.line()};
+    if (mat.id < 1) c.reject(1, 5, "material identification number", "must be >= 1");
+    if (d.material(mat.id))
+      c.reject(1, 5, "material identification number",
+               "material " + std::to_string(mat.id) + " is defined twice");
+    if (ntemp < 1) c.reject(6, 10, "number of temperatures", "must be >= 1");
+    if (mat.table.density < 0) c.reject(11, 20, "mass density", "must be >= 0");
+    for (int t = 1; t <= ntemp; ++t) {
+      const std::string what =
+          "property cards of material " + std::to_string(mat.id) + ", temperature " + std::to_string(t);
+      const CardImage a = in.take("DATA NO. 10b (first " + what + ")");
+      const CardImage b = in.take("DATA NO. 10b (second " + what + ")");
+      ElasticConstants row;
+      row.temperature = a.real(1, 10, 0, "temperature");
+      row.E_N         = a.real(11, 20, 0, "E_N");
+      row.E_S         = a.real(21, 30, 0, "E_S");
+      row.E_T         = a.real(31, 40, 0, "E_T");
+      row.nu_NS       = a.real(41, 50, 0, "nu_NS");
+      row.nu_NT       = a.real(51, 60, 0, "nu_NT");
+      row.nu_ST       = a.real(61, 70, 0, "nu_ST");
+      row.G_NS        = b.real(1, 10, 0, "G_NS");
+      row.G_ST        = b.real(11, 20, 0, "G_ST");
+      row.G_TN        = b.real(21, 30, 0, "G_TN");
+      row.alpha_N     = b.real(31, 40, 0, "alpha_N");
+      row.alpha_S     = b.real(41, 50, 0, "alpha_S");
+      row.alpha_T     = b.real(51, 60, 0, "alpha_T");
+      try {
+        row.validate("");
+      } catch (const InputError& e) {
+        throw InputError(a.where() + " and line " + std::to_string(b.line()) + e.what());
+      }
+      if (!mat.table.rows.empty() && !(row.temperature > mat.table.rows.back().temperature))
+        a.reject(1, 10, "temperature", "the temperatures of a material must increase strictly");
+      mat.table.rows.push_back(row);
+    }
+    if (plastic_format) {
+      const CardImage y =
+          in.take("DATA NO. 11 (yield stress card of material " + std::to_string(mat.id) + ")");
+      YieldCard card;
+      const char* names[] = {"yield stress N",  "yield stress S",  "yield stress T",
+                             "yield stress NS", "yield stress NT", "yield stress TS"};
+      for (int k = 0; k < 6; ++k) {
+        card.yield[k] = y.real(10 * k + 1, 10 * k + 10, 0, names[k]);
+        if (card.yield[k] < 0) y.reject(10 * k + 1, 10 * k + 10, names[k], "must be >= 0");
+      }
+      card.hardening = y.real(61, 70, 0, "hardening parameter C");
+      card.blank     = y.blank(1, 70);
+      if (!card.blank)
+        for (int k = 0; k < 6; ++k)
+          if (!(card.yield[k] > 0))
+            y.reject(10 * k + 1, 10 * k + 10, names[k],
+                     "a yield card that is not blank needs all six yield stresses > 0");
+      mat.yield = card;
+    }
+    d.materials.push_back(std::move(mat));
+  }
+
+  // ---- Data 12-15: load blocks
+  const ControlCard& k = d.control;
+  for (int s = 1; s <= k.nlinc; ++s) {
+    const bool inertia_card = k.inert != 0 && (s == 1 || k.inci != 0);
+    const bool surface      = s == 1 || k.incf != 0;
+    if (!inertia_card && !surface) {
+      if (s > 1 && k.inci == 0 && k.incf == 0) break;  // nothing more to read: every step repeats block 1
+      continue;
+    }
+    LoadBlock block;
+    const std::string step = " of load step " + std::to_string(s);
+    if (inertia_card) {
+      const CardImage c = in.take("DATA NO. 12 (inertia load card" + step + ")");
+      block.inertia =
+          InertiaLoad{c.real(1, 10, 0, "ACELZ"), c.real(11, 20, 0, "ANGVEL"), c.real(21, 30, 0, "ANGACC")};
+    }
+    if (surface) {
+      const auto edges = [&](int count, const char* data, const char* what, std::vector<EdgeCard>& out) {
+        for (int e = 1; e <= count; ++e) {
+          const CardImage c = in.take(std::string(data) + " (" + what + " " + std::to_string(e) + step + ")");
+          EdgeCard card{c.integer(1, 5, "nodal point M"),
+                        c.integer(6, 10, "nodal point N"),
+                        c.real(11, 20, 0, "value"),
+                        {c.card(), c.line()}};
+          if (card.node_m < 1) c.reject(1, 5, "nodal point M", "node numbers start at 1");
+          if (card.node_n < 1) c.reject(6, 10, "nodal point N", "node numbers start at 1");
+          if (card.node_m == card.node_n) c.reject(1, 10, "nodal points M, N", "M and N must differ");
+          out.push_back(card);
+        }
+      };
+      edges(k.numpc, "DATA NO. 13", "boundary pressure card", block.pressure);
+      edges(k.numsc, "DATA NO. 14", "boundary shear card", block.shear);
+      edges(k.numst, "DATA NO. 15", "boundary transverse shear card", block.transverse_shear);
+    }
+    d.blocks_read.push_back(std::move(block));
+  }
+  in.expect_end();
+  return d;
+}
+
+}  // namespace gapfe

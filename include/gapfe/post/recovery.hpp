@@ -1,0 +1,149 @@
+#pragma once
+// Recovery: nodal results and point values from a driver's displacements, one implementation for every
+// driver. Strain comes from the displacements (with the element's own B, B-bar included, and the
+// condensed centre of the legacy quad expanded back); stress comes from a StressSource:
+//   ElasticStress  a linear law: the stress of the strain, at any point (centroids exactly there);
+//   StoredStress   a law with history: the stresses the last evaluation left at the stiffness points
+//                  (and their eqps); centroids are the volume-weighted mean of the cell's points.
+// The LegacyQuad has no centroid point either: its centroid is the r-bar-A weighted mean of its four
+// sub-triangles (THEORY.md 2 item 4).
+#include <cmath>
+#include <type_traits>
+#include <vector>
+
+#include "gapfe/assembly/assembler.hpp"
+#include "gapfe/material/orientation.hpp"
+#include "gapfe/problem/results.hpp"
+
+namespace gapfe {
+
+/// The stress of a linear law at any point: Law::update from the empty state.
+template <class Law>
+struct ElasticStress {
+  static constexpr bool kAnyPoint = true;
+  Vec6 stress(const typename Law::Local& lp, const Vec6& strain, std::size_t /*slot*/) const {
+    return Law::update(lp, strain, typename Law::State{}, StepContext{}).stress;
+  }
+  double eqps(std::size_t /*slot*/) const { return 0.0; }
+};
+
+/// Stresses and states a driver with history keeps per stiffness point (History slots).
+template <class State>
+struct StoredStress {
+  static constexpr bool kAnyPoint = false;
+  const std::vector<Vec6>& stresses;
+  const std::vector<State>& states;
+  template <class Local>
+  Vec6 stress(const Local&, const Vec6&, std::size_t slot) const {
+    return stresses[slot];
+  }
+  double eqps(std::size_t slot) const {
+    if constexpr (requires { states[slot].eqps; })
+      return states[slot].eqps;
+    else
+      return 0.0;
+  }
+};
+
+/// Displacements (rows nodes, columns r, z, theta) from `u` (all DOFs).
+template <int DofsPerNode>
+void nodal_displacements(const VecX& u, int nodes, Solution& s) {
+  s.displacement.setZero(nodes, 3);
+  for (int n = 0; n < nodes; ++n)
+    for (int c = 0; c < DofsPerNode; ++c) s.displacement(n, c) = u(n * DofsPerNode + c);
+}
+
+/// Displacements, reactions = internal - external at prescribed DOFs, and the relative out-of-balance
+/// |internal - external| / |internal| at the free DOFs (all vectors over all DOFs).
+template <int DofsPerNode>
+void nodal_results(const DofMap<DofsPerNode>& dofs, const VecX& u, const VecX& internal, const VecX& external,
+                   int nodes, Solution& s) {
+  nodal_displacements<DofsPerNode>(u, nodes, s);
+  s.reaction.setZero(nodes, 3);
+  double out_of_balance = 0, applied = 0;
+  for (int n = 0; n < nodes; ++n)
+    for (int c = 0; c < DofsPerNode; ++c) {
+      const int d             = dofs.dof(n, c);
+      const double unbalanced = internal(d) - external(d);
+      if (dofs.equation[d] < 0)
+        s.reaction(n, c) = unbalanced;
+      else
+        out_of_balance += unbalanced * unbalanced;
+      applied += internal(d) * internal(d);
+    }
+  s.residual = applied > 0 ? std::sqrt(out_of_balance / applied) : 0.0;
+}
+
+/// Strain and stress at every stiffness point of every cell, or (`centroids`) one value per cell; cells
+/// first, then triangles.
+template <class M, class Source>
+std::vector<PointValues> recover(const Assembler<M>& a, const Problem<M>& p, const VecX& u,
+                                 const Source& source, bool centroids) {
+  using Kin  = typename M::Kinematics;
+  using Elem = typename M::Element;
+  std::vector<PointValues> out;
+  a.reset_cache();
+  for_each_cell<Elem>(p.mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
+                                                            const std::array<int, NPC>& cell,
+                                                            const CellTag& tag) {
+    using Kernel     = ElementKernel<Kin, E>;
+    const auto x     = cell_coords<E>(p.mesh, cell);
+    const auto& lp   = a.local(p, tag, cell);
+    const auto ue    = a.gather(cell, u);
+    const auto first = a.template first_point<E>(e);
+    typename Kernel::ShapeVector us;
+    if constexpr (Kernel::kInner > 0) {  // the condensed centre, from the element's own DOFs
+      const typename Kernel::StrainMatrix d = Kernel::restrict(lp.stiffness);
+      us                                    = Kernel::expand(
+                                             Kernel::shape_stiffness(x, d),
+                                             Kernel::shape_load(x, d, Kernel::restrict(lp.thermal_strain), body_force(p.inertia, lp.density)),
+                                             ue);
+    } else {
+      us = ue;
+    }
+    const Mat<E::kShapeNodes, 2> xs = E::shape_coords(x);
+    const Mat66 to_strain_material  = strain_rotation(lp.to_material);
+    const auto mean_vol             = Kernel::mean_volumetric(x);
+    const auto values_at = [&](const PointGeometry<E::kShapeNodes>& g, int point, std::size_t slot) {
+      PointValues v;
+      v.cell = static_cast<int>(e), v.triangle = !std::is_same_v<E, Elem>, v.point = point;
+      v.r = g.r, v.z = g.N.dot(xs.col(1));
+      v.strain          = Kernel::strain(g, mean_vol, us);
+      v.stress          = source.stress(lp, v.strain, slot);
+      v.strain_material = to_strain_material * v.strain;
+      v.stress_material = lp.to_material * v.stress;
+      v.eqps            = source.eqps(slot);
+      return v;
+    };
+    double det = 0;
+    if (!centroids) {
+      for (int q = 0; q < E::kStiffnessPoints; ++q)
+        out.push_back(values_at(E::stiffness_point(x, q, det), q, first + static_cast<std::size_t>(q)));
+      return;
+    }
+    if constexpr (Source::kAnyPoint && requires { E::centroid_point(x, det); }) {
+      out.push_back(values_at(E::centroid_point(x, det), -1, first));
+    } else {  // the volume-weighted mean of the stiffness points
+      PointValues mean{};
+      double w = 0;
+      mean.strain.setZero(), mean.stress.setZero(), mean.strain_material.setZero(),
+          mean.stress_material.setZero();
+      for (int q = 0; q < E::kStiffnessPoints; ++q) {
+        const auto g        = E::stiffness_point(x, q, det);
+        const PointValues v = values_at(g, q, first + static_cast<std::size_t>(q));
+        w += g.weight;
+        mean.r += g.weight * v.r, mean.z += g.weight * v.z, mean.eqps += g.weight * v.eqps;
+        mean.strain += g.weight * v.strain, mean.stress += g.weight * v.stress;
+        mean.strain_material += g.weight * v.strain_material,
+            mean.stress_material += g.weight * v.stress_material;
+      }
+      mean.r /= w, mean.z /= w, mean.eqps /= w, mean.strain /= w, mean.stress /= w;
+      mean.strain_material /= w, mean.stress_material /= w;
+      mean.cell = static_cast<int>(e), mean.triangle = !std::is_same_v<E, Elem>, mean.point = -1;
+      out.push_back(mean);
+    }
+  });
+  return out;
+}
+
+}  // namespace gapfe

@@ -1,0 +1,25 @@
+#pragma once
+// Problem<M>: everything an analysis of a compile-time Model needs, as plain data: the mesh, one law per
+// material, the nodal conditions, the loads and the temperature field. Drivers own one (and let the
+// caller change loads, temperatures and materials between solves); the deck layer builds one from a deck
+// (run/deck_problem.hpp). Node and material indices are 0-based.
+#include <vector>
+
+#include "gapfe/core/types.hpp"
+#include "gapfe/mesh/mesh.hpp"
+#include "gapfe/problem/loads.hpp"
+
+namespace gapfe {
+
+template <class M>
+struct Problem {
+  Mesh<M::Element::kNodes> mesh;
+  std::vector<typename M::Material> materials;  ///< indexed by CellTag::material
+  std::vector<NodalCondition> conditions;       ///< seed Data 5, later entries win
+  std::vector<EdgeLoad> edge_loads;             ///< seed Data 13-15
+  InertiaLoad inertia;                          ///< seed Data 12
+  VecX temperature;                             ///< nodal temperatures [deg]; empty: T_ref everywhere
+  double reference_temperature = 0.0;           ///< TREF [deg]
+};
+
+}  // namespace gapfe

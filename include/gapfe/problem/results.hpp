@@ -1,0 +1,49 @@
+#pragma once
+// What an analysis gives back, as plain data that io writes and tests read without knowing the driver:
+// nodal displacements and reactions (Solution), strains and stresses at points (PointValues), the cost of
+// a solve (SolveTimings) and the Newton record of a step (StepReport).
+//
+// PointValues: global (r, z, theta) Voigt order [rr, zz, hoop, rz, z-theta, theta-r] and material axes
+// [NN, SS, TT, NS, ST, TN]. Strains carry engineering shears; stresses are tensor components. Units:
+// stress as the moduli. Forces are total ring forces (core/types.hpp).
+#include <vector>
+
+#include "gapfe/core/types.hpp"
+
+namespace gapfe {
+
+/// Nodal results. Rows are nodes; columns (r, z, theta); u_theta and its reaction are 0 in 2-DOF.
+struct Solution {
+  Eigen::Matrix<double, Eigen::Dynamic, 3> displacement;  ///< [length]
+  Eigen::Matrix<double, Eigen::Dynamic, 3> reaction;      ///< total ring force at prescribed DOFs [force]
+  double residual = 0.0;  ///< |K u - f| / |f| over free DOFs after the solve (equilibrium check)
+};
+
+/// Strain and stress at one stiffness point or one cell centroid.
+struct PointValues {
+  int cell      = 0;      ///< index within its group
+  bool triangle = false;  ///< group: false = the model's element, true = 3-corner cells
+  int point     = 0;      ///< stiffness-point index; -1 for a centroid
+  double r = 0, z = 0;    ///< position [length]
+  Vec6 strain;            ///< total strain, global axes
+  Vec6 stress;            ///< global axes
+  Vec6 strain_material;   ///< material axes (N, S, T)
+  Vec6 stress_material;   ///< material axes
+  double eqps = 0.0;      ///< equivalent plastic strain (laws with history; 0 when elastic) [-]
+};
+
+/// Wall-clock seconds of the last solve's phases.
+struct SolveTimings {
+  double assemble = 0, factorize = 0, solve = 0, reactions = 0;
+};
+
+/// What the last nonlinear step did.
+struct StepReport {
+  std::vector<double> residuals;  ///< |R_free| / |F_int| after each linear solve
+  int iterations     = 0;         ///< linear solves (1 for Tangent)
+  bool converged     = false;     ///< residual <= tolerance (Tangent: never required)
+  int plastic_points = 0;         ///< points on the yield surface at the end of the step
+  double drift       = 0.0;       ///< max |sqrt(f) - 1| over those points: off the surface [-]
+};
+
+}  // namespace gapfe

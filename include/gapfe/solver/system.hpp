@@ -1,0 +1,81 @@
+#pragma once
+// System<Solver>: the matrix values, the right-hand side and the solver of one analysis. It takes the
+// assembler's pattern once and runs the solver's symbolic analysis on it once; after that only values
+// change, and factorize() is the numeric factorization alone (Eigen's SparseLinearSystems advice).
+// A factorization that breaks down is a SolveError naming the equation, never a NaN.
+//
+// Storage: the lower triangle of the free DOFs, what the symmetric LinearSolver policies read
+// (SimplicialLDLT, CHOLMOD). An unsymmetric policy (friction's tangent) comes next to them as a solver
+// that reads full storage; the System is where that choice will be made.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gapfe/core/concepts.hpp"
+#include "gapfe/core/error.hpp"
+
+namespace gapfe {
+
+template <LinearSolver Solver>
+class System {
+ public:
+  /// `pattern`: the structure, values ignored. No analysis when there is no free DOF (a pure recovery).
+  explicit System(const SpMat& pattern) : k_(pattern) {
+    if (k_.rows() > 0) solver_->analyze(k_);
+  }
+
+  SpMat& matrix() { return k_; }
+  const SpMat& matrix() const { return k_; }
+  double* values() { return k_.valuePtr(); }
+  VecX& rhs() { return rhs_; }
+  const VecX& rhs() const { return rhs_; }
+  /// Numeric factorizations so far (the symbolic analysis is done once, in the constructor).
+  int factorizations() const { return factorizations_; }
+  /// Whether the solver holds a factorization of the current values.
+  bool factorized() const { return factorized_; }
+
+  /// Numeric factorization; on failure a SolveError with the solver's reason and, when it names one,
+  /// the equation where it broke down (`describe(equation)` says which node and component that is).
+  template <class Describe>
+  void factorize(Describe&& describe) {
+    ++factorizations_;
+    if (!(factorized_ = solver_->factorize(k_))) {
+      std::string where;
+      if (const int eq = failed_equation(); eq >= 0) where = " near " + describe(eq);
+      throw SolveError(solver_->failure() + where +
+                       ": check that the constraints remove every rigid-body motion (axial translation; in "
+                       "3-DOF also rotation about the axis) and that no element is degenerate");
+    }
+  }
+  VecX solve(const VecX& b) const { return solver_->solve(b); }
+
+  /// Keep the current values and right-hand side (the elements' system) to come back to them with
+  /// restore() after changing only node links: a contact step re-solves without re-assembling.
+  void save() {
+    saved_values_.assign(k_.valuePtr(), k_.valuePtr() + k_.nonZeros());
+    saved_rhs_ = rhs_;
+  }
+  bool saved() const { return saved_values_.size() == static_cast<std::size_t>(k_.nonZeros()); }
+  void restore() {
+    std::copy(saved_values_.begin(), saved_values_.end(), k_.valuePtr());
+    rhs_ = saved_rhs_;
+  }
+
+ private:
+  int failed_equation() const {
+    if constexpr (requires { solver_->failed_equation(); })
+      return solver_->failed_equation();
+    else
+      return -1;
+  }
+
+  SpMat k_;
+  VecX rhs_;
+  std::unique_ptr<Solver> solver_ = std::make_unique<Solver>();  // solvers are not movable
+  int factorizations_             = 0;
+  bool factorized_                = false;
+  std::vector<double> saved_values_;
+  VecX saved_rhs_;
+};
+
+}  // namespace gapfe
