@@ -1,5 +1,6 @@
 // Solver policies without a mesh: the nested-dissection ordering is a valid permutation (connected or
-// not), gives the same solution as AMD, and less fill than the natural order on a grid.
+// not), gives the same solution as AMD, and less fill than the natural order on a grid. (EigenLu, the
+// full-storage policy, is checked through the drivers in test_verification.cpp.)
 #include "gapfe/solver/eigen_ldlt.hpp"
 
 #include "support.hpp"

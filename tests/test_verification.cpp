@@ -1,6 +1,10 @@
 // Closed-form verification (THEORY.md section 10): Lame, spinning tube, torsion, angular acceleration,
-// SAGA vs SAAS, helical orthotropic tube, free thermal expansion. Tolerances are the issue's.
+// SAGA vs SAAS, helical orthotropic tube, free thermal expansion. Tolerances are the issue's. Last, the
+// unsymmetric-ready solver policy (EigenLu, full storage) against LDL^T through the linear and Newton
+// drivers.
 #include <Eigen/LU>
+
+#include "gapfe/solver/eigen_lu.hpp"
 
 #include "support.hpp"
 
@@ -279,4 +283,69 @@ TEST_CASE_TEMPLATE("[verification] uniform temperature rise on a free tube: zero
   for (const auto& v : fe.point_values()) CHECK(v.stress.norm() < 1e-9 * kE * alpha * dT);
   // THEORY.md V8 example: alpha 12e-6 /K, dT 100 K, r = 0.1 m gives u_r = 0.12 mm.
   CHECK(rel(s.displacement(nearest_node(m, 0.1, 0.0), 0), 0.12e-3) < 1e-9);
+}
+
+namespace {
+/// For the EigenLu checks: a plane-strain tube r in [0.1, 0.2] under bore pressure p [Pa] (Lame, THEORY.md
+/// V1), on 16 x 2 cells.
+template <class M>
+Problem<M> lu_tube(typename M::Material law, double p) {
+  Problem<M> prob;
+  prob.mesh       = rectangle_mesh<M::Element::kNodes>(0.1, 0.2, 0, 0.02, 16, 2);
+  prob.materials  = {law};
+  prob.edge_loads = bore_pressure(prob.mesh, 16, 2, p);
+  fix_plane(prob.conditions, prob.mesh, 0.0, M::kDofsPerNode == 3 ? 6 : 2, zero3);
+  fix_plane(prob.conditions, prob.mesh, 0.02, M::kDofsPerNode == 3 ? 6 : 2, zero3);
+  return prob;
+}
+}  // namespace
+
+TEST_CASE_TEMPLATE("[solver] EigenLu reads full storage and gives the LDL^T answer in the linear driver",
+                   Elem, Quad4, LegacyQuad) {
+  // Quad4 with 2 DOF assembles through the batch kernel, LegacyQuad through the generic kernel with
+  // condensation: both scatter paths fill every entry for LU. A node link (a contact pair's spring)
+  // couples two nodes across the wall: the link path too.
+  using Lu   = Model<Axisym2, Elem, Isotropic, EigenLu>;
+  using Ldlt = Model<Axisym2, Elem, Isotropic, EigenLdlt>;
+  static_assert(Assembler<Lu>::kStorage == MatrixStorage::full &&
+                Assembler<Ldlt>::kStorage == MatrixStorage::lower);
+  const auto law = Isotropic::constant(200e9, 0.3);
+  LinearStatic<Lu> lu(lu_tube<Lu>(law, 100e6), {{0, 16}});
+  LinearStatic<Ldlt> ldlt(lu_tube<Ldlt>(law, 100e6), {{0, 16}});
+  CHECK(lu.stiffness().nonZeros() > 2 * ldlt.stiffness().nonZeros() - lu.stiffness().rows() - 1);
+  lu.solve(), ldlt.solve();  // the stiffness values are those of the last solve's assembly
+  const SpMat symmetric = ldlt.stiffness().template selfadjointView<Eigen::Lower>();
+  CHECK((SpMat(lu.stiffness()) - symmetric).norm() <= 1e-12 * symmetric.norm());
+  const double u = ldlt.solution().displacement.cwiseAbs().maxCoeff();
+  CHECK((lu.solution().displacement - ldlt.solution().displacement).cwiseAbs().maxCoeff() <= 1e-10 * u);
+  CHECK(rel(lu.solution().displacement(0, 0), Lame{0.1, 0.2, 100e6, 200e9, 0.3}.displacement(0.1)) < 0.005);
+  CHECK(lu.solution().residual < 1e-10);
+  for (auto* links : {&lu.link_values(), &ldlt.link_values()})
+    (*links)[0].stiffness = 1e9 * Mat33::Identity();
+  lu.solve(), ldlt.solve();
+  CHECK((lu.solution().displacement - ldlt.solution().displacement).cwiseAbs().maxCoeff() <= 1e-10 * u);
+  CHECK(lu.solution().residual < 1e-10);
+}
+
+TEST_CASE(
+    "[solver] EigenLu in Newton: the plastic tube takes the LDL^T iterations; a singular system is refused") {
+  // Mises tube (sigma_y 400 MPa) at 1.4x first yield: return mapping with the consistent tangent.
+  using Law  = Hill<ReturnMapping>;
+  using Lu   = Model<Axisym2, Quad4BBar, Law, EigenLu>;
+  using Ldlt = Model<Axisym2, Quad4BBar, Law, EigenLdlt>;
+  const Law law{Orthotropic::constant(ElasticConstants::isotropic(200e9, 0.3)), HillYield::mises(400e6)};
+  NonlinearStatic<Lu> lu(lu_tube<Lu>(law, 240e6));
+  NonlinearStatic<Ldlt> ldlt(lu_tube<Ldlt>(law, 240e6));
+  lu.solve(), ldlt.solve();
+  REQUIRE(lu.report().plastic_points > 0);
+  CHECK(lu.report().converged);
+  CHECK(lu.report().iterations == ldlt.report().iterations);
+  const double u = ldlt.solution().displacement.cwiseAbs().maxCoeff();
+  CHECK((lu.solution().displacement - ldlt.solution().displacement).cwiseAbs().maxCoeff() <= 1e-9 * u);
+
+  using Elastic         = Model<Axisym2, Quad4, Isotropic, EigenLu>;
+  Problem<Elastic> free = lu_tube<Elastic>(Isotropic::constant(200e9, 0.3), 100e6);
+  free.conditions.clear();  // nothing holds the tube axially: a rigid-body mode
+  LinearStatic<Elastic> fe(std::move(free));
+  CHECK_THROWS_WITH_AS(fe.solve(), doctest::Contains("singular"), SolveError);
 }

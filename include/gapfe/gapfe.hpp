@@ -1,6 +1,7 @@
 #pragma once
 // gapfe: header-only C++20 finite elements for axisymmetric structures. Umbrella header: everything
-// except solver/cholmod.hpp (CHOLMOD is GPL and opt-in).
+// except solver/cholmod.hpp (CHOLMOD is GPL and opt-in) and solver/eigen_lu.hpp (the unsymmetric solver:
+// include it where a model uses it, so that other translation units do not parse SparseLU).
 #include "gapfe/contact/gap_pairs.hpp"
 #include "gapfe/contact/policies.hpp"
 #include "gapfe/driver/contact_static.hpp"

@@ -1,6 +1,7 @@
 #pragma once
 // Assembler<M>: the discrete operator of a Problem, nothing else. Built once per analysis: the DOF map,
-// the stiffness pattern (element and node-link couplings, lower triangle of the free DOFs), the scatter
+// the stiffness pattern (element and node-link couplings over the free DOFs, in the storage the model's
+// solver reads), the scatter
 // offsets of every element and link into its value array, and the history layout of the points. Then,
 // for a given state, it returns what a driver asks for:
 //   * linear_system       K and the right-hand side of a linear law (element loads, prescribed columns);
@@ -13,7 +14,8 @@
 // driver passes them in, so one assembler serves the linear, Newton and contact drivers alike.
 //
 // Conventions: full ring (core/types.hpp); element DOFs node-major; stiffness values are scattered from
-// each element matrix's upper triangle (assembly/sparsity.hpp).
+// each element matrix's upper triangle, or all of it when the solver reads full storage
+// (assembly/sparsity.hpp).
 #include <algorithm>
 #include <type_traits>
 #include <vector>
@@ -41,6 +43,8 @@ class Assembler {
   /// Quad4 with 2 DOF assembles linear stiffness through the vectorized batch kernel (same result,
   /// BENCHMARKS.md).
   static constexpr bool kBatchedQuad4 = std::is_same_v<Elem, Quad4> && kNd == 2;
+  /// What the model's solver reads: the lower triangle, or every entry (assembly/sparsity.hpp).
+  static constexpr MatrixStorage kStorage = storage_of<typename M::LinearSolver>();
 
   /// Checks the model (assembly/problem_check.hpp) and builds the pattern. `links`: node pairs that may
   /// carry node links; their values start at zero.
@@ -52,18 +56,18 @@ class Assembler {
     sb.add(p.mesh.cells);
     if constexpr (kHasTriangles<Elem>) sb.add(p.mesh.triangles);
     sb.add(links_);
-    pattern_      = sb.build();
-    cell_offsets_ = scatter_offsets<kNd>(pattern_, dofs_.equation, p.mesh.cells);
+    pattern_      = sb.build(kStorage);
+    cell_offsets_ = scatter_offsets<kNd>(pattern_, dofs_.equation, p.mesh.cells, kStorage);
     if constexpr (kHasTriangles<Elem>)
-      tri_offsets_ = scatter_offsets<kNd>(pattern_, dofs_.equation, p.mesh.triangles);
-    link_offsets_ = scatter_offsets<kNd>(pattern_, dofs_.equation, links_);
+      tri_offsets_ = scatter_offsets<kNd>(pattern_, dofs_.equation, p.mesh.triangles, kStorage);
+    link_offsets_ = scatter_offsets<kNd>(pattern_, dofs_.equation, links_, kStorage);
     points_       = cells_ * Elem::kStiffnessPoints;
     if constexpr (kHasTriangles<Elem>)
       points_ += p.mesh.triangles.size() * Elem::Degenerate::kStiffnessPoints;
   }
 
   const DofMap<kNd>& dofs() const { return dofs_; }
-  /// Lower triangle over the free DOFs, values zero: the System copies it once.
+  /// The free DOFs' pattern in kStorage, values zero: the System copies it once.
   const SpMat& pattern() const { return pattern_; }
   const Connectivity<2>& links() const { return links_; }
   std::vector<NodeLink>& link_values() { return link_values_; }
@@ -127,7 +131,7 @@ class Assembler {
                           typename ElementKernel<Kin, E>::Matrix k;
                           typename ElementKernel<Kin, E>::Vector f;
                           element_system<E>(p, cell, tag, k, f);
-                          scatter(values, offsets<E>(e), k);
+                          scatter<kStorage>(values, offsets<E>(e), k);
                           add_element_rhs(
                               cell, f, [&](int i, int j) { return k(i, j); }, rhs);
                         });
@@ -159,7 +163,7 @@ class Assembler {
       const NodeLink& link = link_values_[l];
       if (link.zero()) continue;
       const Mat<n, n> k = link.template element_stiffness<kNd>();
-      scatter(values, link_offsets_.data() + l * (n * (n + 1) / 2), k);
+      scatter<kStorage>(values, link_offsets_.data() + l * offset_count(n, kStorage), k);
       add_element_rhs(
           links_[l], link.template element_load<kNd>(), [&](int i, int j) { return k(i, j); }, rhs);
     }
@@ -202,7 +206,7 @@ class Assembler {
           }
           add_to(cell, f, internal);
           if (!values) return;
-          scatter(values, offsets<E>(e), k);
+          scatter<kStorage>(values, offsets<E>(e), k);
           if (prescribed_step) add_predictor(cell, k, *prescribed_step, predictor);
         });
     add_link_forces(u, internal);
@@ -211,7 +215,7 @@ class Assembler {
     for (std::size_t l = 0; l < links_.size(); ++l) {
       if (link_values_[l].zero()) continue;
       const Mat<n, n> k = link_values_[l].template element_stiffness<kNd>();
-      scatter(values, link_offsets_.data() + l * (n * (n + 1) / 2), k);
+      scatter<kStorage>(values, link_offsets_.data() + l * offset_count(n, kStorage), k);
       if (prescribed_step) add_predictor(links_[l], k, *prescribed_step, predictor);
     }
   }
@@ -273,16 +277,8 @@ class Assembler {
   template <class E>
   const int* offsets(std::size_t e) const {
     constexpr int n = ElementKernel<Kin, E>::kDofs;
-    return (std::is_same_v<E, Elem> ? cell_offsets_ : tri_offsets_).data() + e * (n * (n + 1) / 2);
+    return (std::is_same_v<E, Elem> ? cell_offsets_ : tri_offsets_).data() + e * offset_count(n, kStorage);
   }
-  /// An element matrix's upper triangle into the stiffness values (-1: a prescribed row or column).
-  template <class Matrix>
-  static void scatter(double* values, const int* off, const Matrix& k) {
-    for (int i = 0, c = 0; i < k.rows(); ++i)
-      for (int j = i; j < k.cols(); ++j, ++c)
-        if (off[c] >= 0) values[off[c]] += k(i, j);
-  }
-
   /// Condensed element stiffness and load (body + thermal) of one cell of a linear law.
   template <class E, std::size_t NPC>
   void element_system(const Problem<M>& p, const std::array<int, NPC>& cell, const CellTag& tag,
@@ -362,9 +358,15 @@ class Assembler {
       batch.compute();
       for (int l = 0; l < lanes; ++l) {
         const std::size_t e = e0 + static_cast<std::size_t>(l);
-        const int* off      = cell_offsets_.data() + e * 36;
-        for (int c = 0; c < 36; ++c)
-          if (off[c] >= 0) values[off[c]] += batch.k[c][l];
+        const int* off      = cell_offsets_.data() + e * offset_count(8, kStorage);
+        if constexpr (kStorage == MatrixStorage::lower) {  // the batch's upper-triangle order is the offsets'
+          for (int c = 0; c < 36; ++c)
+            if (off[c] >= 0) values[off[c]] += batch.k[c][l];
+        } else {
+          for (int i = 0, c = 0; i < 8; ++i)
+            for (int j = 0; j < 8; ++j, ++c)
+              if (off[c] >= 0) values[off[c]] += batch.k[kUpper[i][j]][l];
+        }
         const auto& lp                         = local(p, m.cell_tag(e), m.cells[e]);
         const typename Kernel::StrainVector th = Kernel::restrict(lp.thermal_strain);
         const BodyForce body                   = body_force(p.inertia, lp.density);

@@ -64,8 +64,21 @@ concept MaterialLaw = std::semiregular<typename M::State> &&
   m.validate(where);
 };
 
-/// A sparse symmetric positive definite solver on the lower triangle: symbolic analysis once per
-/// pattern, numeric factorization per matrix, then solves. factorize() returns false, never NaN.
+/// Which entries of the stiffness a solver reads: the lower triangle (symmetric solvers: LDL^T,
+/// Cholesky) or every entry (LU, for unsymmetric tangents such as friction's slip).
+enum class MatrixStorage { lower, full };
+
+/// A solver's storage: S::kStorage where it declares one, else the lower triangle.
+template <class S>
+constexpr MatrixStorage storage_of() {
+  if constexpr (requires { S::kStorage; })
+    return S::kStorage;
+  else
+    return MatrixStorage::lower;
+}
+
+/// A sparse linear solver: symbolic analysis once per pattern, numeric factorization per matrix, then
+/// solves. It reads the entries its storage_of() names. factorize() returns false, never NaN.
 template <class S>
 concept LinearSolver = std::default_initializable<S> && requires(S s, const SpMat& K, const VecX& b) {
   { S::kName } -> std::convertible_to<const char*>;

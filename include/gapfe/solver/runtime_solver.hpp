@@ -21,6 +21,10 @@ template <LinearSolver... Solvers>
 class RuntimeSolver {
  public:
   static constexpr const char* kName = "chosen at run time (RuntimeSolver)";
+  /// One pattern serves whichever is chosen, so they must read the same entries.
+  static constexpr MatrixStorage kStorage = storage_of<std::tuple_element_t<0, std::tuple<Solvers...>>>();
+  static_assert(((storage_of<Solvers>() == kStorage) && ...),
+                "RuntimeSolver: every solver must read the same storage (lower triangle or full)");
 
   /// Pick the solver whose kName is `name` for every RuntimeSolver constructed from now on.
   static void select(const std::string& name) {

@@ -4,9 +4,9 @@
 // change, and factorize() is the numeric factorization alone (Eigen's SparseLinearSystems advice).
 // A factorization that breaks down is a SolveError naming the equation, never a NaN.
 //
-// Storage: the lower triangle of the free DOFs, what the symmetric LinearSolver policies read
-// (SimplicialLDLT, CHOLMOD). An unsymmetric policy (friction's tangent) comes next to them as a solver
-// that reads full storage; the System is where that choice will be made.
+// Storage: whatever the solver reads (MatrixStorage, core/concepts.hpp): the lower triangle of the free
+// DOFs for the symmetric policies (EigenLdlt, CHOLMOD), every entry for EigenLu, the unsymmetric one
+// (friction's tangent). The assembler builds the pattern in that storage; the System takes it as it is.
 #include <memory>
 #include <string>
 #include <vector>
