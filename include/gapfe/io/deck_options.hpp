@@ -2,6 +2,8 @@
 // Deck extensions: the options the seed's input lacks, set by lines `$ key = value` before the first card
 // or from the command line (gapfe --set key=value), so legacy decks stay untouched. Each key's values and
 // default are documented at its field; io/deck_reader.hpp reads them.
+#include <cmath>
+#include <cstdlib>
 #include <initializer_list>
 #include <string>
 
