@@ -1,9 +1,11 @@
 #pragma once
-// ContactStatic: a linear-elastic analysis with gap pairs, stepped in load factor under a contact
-// policy (contact/policies.hpp). Each closed pair is a node link k n n^T (assembly/node_links.hpp)
-// whose coupling is in the stiffness pattern from the start, so the symbolic factorization is done
-// once; a solve refactorizes only after a pair changed status, and augmented-Lagrangian updates and
-// repeated (split) steps reuse the factorization.
+// ContactStatic: an analysis with gap pairs, stepped in load factor under a contact policy
+// (contact/policies.hpp), over LinearStatic or, for laws with history, NonlinearStatic (SAAC = SAGAEP +
+// gaps). The pairs' states are a History (core/history.hpp): every trial solve writes the trial records,
+// an accepted increment commits them together with the driver's material history. Each closed pair is a node
+// link k n n^T (assembly/node_links.hpp) whose coupling is in the stiffness pattern from the start, so the
+// symbolic factorization is done once; a solve refactorizes only after a pair changed status, and
+// augmented-Lagrangian updates and repeated (split) steps reuse the factorization.
 //
 // Loads are given as a function loads_at(Problem&, t) that puts the loads at load factor t into the
 // problem; the response between two solves is linear in t while no pair changes status, which is what
