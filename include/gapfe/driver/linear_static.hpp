@@ -37,7 +37,7 @@ class LinearStatic {
   Problem<M>& problem() { return p_; }
   const Problem<M>& problem() const { return p_; }
   const DofMap<kNd>& dofs() const { return assembler_.dofs(); }
-  const SpMat& stiffness() const { return system_.matrix(); }  ///< lower triangle, free DOFs
+  const SpMat& stiffness() const { return system_.matrix(); }  ///< free DOFs, solver storage
   const VecX& rhs() const { return system_.rhs(); }
   /// Displacements, reactions and the equilibrium residual of the last solve. With defer_reactions(),
   /// the reactions and residual are computed here, on the first call after a solve.

@@ -67,7 +67,7 @@ class NonlinearStatic {
   Problem<M>& problem() { return p_; }
   const Problem<M>& problem() const { return p_; }
   const DofMap<kNd>& dofs() const { return assembler_.dofs(); }
-  const SpMat& stiffness() const { return system_.matrix(); }  ///< the last tangent, lower triangle
+  const SpMat& stiffness() const { return system_.matrix(); }  ///< the last tangent, solver storage
   const Solution& solution() const { return sol_; }
   const Eigen::Matrix<double, Eigen::Dynamic, 3>& displacement() const { return sol_.displacement; }
   void defer_reactions(bool) {}  // a no-op: every Newton iteration computes the internal forces
