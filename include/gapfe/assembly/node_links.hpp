@@ -11,8 +11,10 @@
 namespace gapfe {
 
 struct NodeLink {
-  Mat33 stiffness = Mat33::Zero();  ///< on u_b - u_a [force/length], symmetric
-  Vec3 force      = Vec3::Zero();   ///< on node b at u_b = u_a [force]
+  /// On u_b - u_a [force/length]. Symmetric unless the model's solver reads full storage (a slipping
+  /// Coulomb pair's tangent is not; with a symmetric solver the contact driver passes its symmetric part).
+  Mat33 stiffness = Mat33::Zero();
+  Vec3 force      = Vec3::Zero();  ///< on node b at u_b = u_a [force]
 
   bool zero() const { return stiffness.isZero(0.0) && force.isZero(0.0); }
   /// Stiffness of the two-node element (a then b, DofsPerNode components each): [K -K; -K K].

@@ -1,7 +1,10 @@
 #pragma once
 // The record of one gap pair that a contact run keeps in its History (core/history.hpp) and writes out
 // (gaps.csv, io/deck_output.hpp), and the work counters of a run. Forces are total ring forces,
-// compressive positive; gaps are positive open (core/types.hpp).
+// compressive positive; gaps are positive open (core/types.hpp). Tangential quantities are in the pair's
+// tangent plane (T, S = theta) of contact/friction.hpp.
+#include "gapfe/core/types.hpp"
+
 namespace gapfe {
 
 /// State of one gap pair.
@@ -12,11 +15,19 @@ struct PairState {
   double multiplier    = 0;   ///< lambda (augmented Lagrangian) [force]
   double reference_gap = 0;   ///< g_ref: the penalty acts on g - g_ref [length]
   double closed_at     = -1;  ///< load factor at which it last closed (-1: never)
+  // Friction (contact/friction.hpp); zero without it.
+  Vec2 slide            = Vec2::Zero();  ///< s = (T, S) components of u_b - u_a [length]
+  Vec2 tangential_force = Vec2::Zero();  ///< t on node b [force]
+  Vec2 tangential_base  = Vec2::Zero();  ///< t_base: accepted force, or the tangential multiplier [force]
+  bool slipping         = false;         ///< the step's status (Coulomb: the return mapping's answer)
+  double slip           = 0;             ///< relative tangential travel summed over slipping steps [length]
 };
 
 /// Work of the steps since the last reset, for the speed/accuracy tables.
 struct ContactCounters {
   int solves = 0, factorizations = 0, splits = 0, multiplier_updates = 0;
+  int friction_iterations = 0;  ///< Newton iterations of the pair forces (Coulomb), over all solves
+  int friction_stalls     = 0;  ///< solves whose pair Newton stopped stalled below sqrt(tolerance)
 };
 
 }  // namespace gapfe

@@ -41,6 +41,7 @@ struct StepperArchetype {
   double trial_force(int pair) const;  ///< after the last solve
   double gap_tolerance() const;        ///< below -this an open pair overlaps [length]
   double force_tolerance(int pair) const;
+  static constexpr bool linear_response() { return true; }  ///< linear in the load between status changes
   void solve_at(double load_factor);
   void settle_multipliers();
   void close(int pair, double reference_gap);
@@ -154,9 +155,34 @@ void event_step(S& s, double t_end, int max_events) {
       return;
     }
     s.count_split();
-    const double t_event = t0 + first * (t_end - t0);
+    double t_event = t0 + first * (t_end - t0);
     if (first > 0) {
+      // The first pair to change, its gap (closing) or force (opening) at the start and at t_end.
+      const int q        = std::min_element(change.begin(), change.end())->second;
+      const auto value   = [&] { return s.closed(q) ? s.trial_force(q) : s.trial_gap(q); };
+      const double start = s.closed(q) ? std::max(s.force(q), 0.0) : std::max(s.gap(q), 0.0);
+      double h_hi        = value();
       solve(t_event);
+      if constexpr (!S::linear_response()) {
+        // Plasticity or Coulomb slip: the interpolated point is only close. Regula falsi (Illinois)
+        // between the start and t_end until the value is zero to 1e-9 of its start value.
+        const double tol = std::max(1e-9 * start, s.closed(q) ? s.force_tolerance(q) : s.gap_tolerance());
+        double lo = t0, h_lo = start, hi = t_end, h = value();
+        for (int k = 0, side = 0; k < 30 && std::abs(h) > tol; ++k) {
+          if (h > 0) {
+            lo = t_event, h_lo = h;
+            if (side == 1) h_hi *= 0.5;
+            side = 1;
+          } else {
+            hi = t_event, h_hi = h;
+            if (side == -1) h_lo *= 0.5;
+            side = -1;
+          }
+          t_event = lo + h_lo / (h_lo - h_hi) * (hi - lo);
+          solve(t_event);
+          h = value();
+        }
+      }
       s.accept(t_event);
     }
     // Pairs whose change falls within 1e-9 of the first go together (a uniform gap closes at once).

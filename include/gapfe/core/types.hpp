@@ -38,6 +38,12 @@ namespace voigt {
 inline constexpr int rr = 0, zz = 1, hoop = 2, rz = 3, z_theta = 4, theta_r = 5;
 /// Tensor index pairs (i, j) of each Voigt slot; the same table serves (r, z, theta) and (N, S, T).
 inline constexpr std::array<std::array<int, 2>, 6> kPairs{{{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {2, 0}}};
+/// The symmetric 3 x 3 tensor of a stress in Voigt form (tensor shear components), axes (r, z, theta).
+inline Mat<3, 3> stress_tensor(const Vec<6>& s) {
+  Mat<3, 3> t;
+  for (int k = 0; k < 6; ++k) t(kPairs[k][0], kPairs[k][1]) = t(kPairs[k][1], kPairs[k][0]) = s(k);
+  return t;
+}
 }  // namespace voigt
 
 /// Nodal displacement components.

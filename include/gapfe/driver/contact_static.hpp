@@ -11,14 +11,28 @@
 // problem; the response between two solves is linear in t while no pair changes status, which is what
 // step splitting relies on. The penalty of a pair is k = kappa max(n^T K_aa n, n^T K_bb n), K_aa the
 // node's diagonal block of the structural (non-gap) elements (THEORY.md 5.4).
+//
+// Friction (contact/friction.hpp) is the third parameter. A closed pair's link then carries the normal
+// spring and the tangential model's force and tangent, linearized at the current displacement:
+//   f_b = P n + E t,   K = -df_b/dd = k n n^T + E K_tt E^T + k E (dt/dP) n^T,   E = [T, S] (3 x 2),
+// with d = u_b - u_a. The last term (Coulomb slip) is unsymmetric: a solver with full storage
+// (EigenLu, UMFPACK) takes it as it is; a symmetric solver gets the tangent without it, and Newton
+// converges linearly instead of quadratically (tests/test_friction.cpp and BENCHMARKS.md measure both;
+// averaging it into (K + K^T) / 2 instead was tried: it cycles, and makes LDL^T indefinite). Coulomb is
+// nonlinear in d, so a solve becomes Newton iterations: over LinearStatic, re-linearize and re-solve the
+// links until the pair forces balance; over NonlinearStatic, the pair forces are re-linearized at every
+// Newton iterate of the material loop, so plastic history and friction converge together.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <limits>
+#include <sstream>
 #include <string>
 #include <type_traits>
 #include <vector>
 
+#include "gapfe/contact/friction.hpp"
 #include "gapfe/contact/gap_pairs.hpp"
 #include "gapfe/contact/pair_state.hpp"
 #include "gapfe/contact/policies.hpp"
@@ -34,10 +48,26 @@ struct ContactOptions {
   double penetration_tolerance = 1e-8;  ///< augmented Lagrangian: |g| of closed pairs <= this x max |u|
   int max_multiplier_updates   = 200;   ///< per solve, before the run fails
   double max_soft_share        = 1e-2;  ///< open gap element stiffness / adjacent stiffness allowed
+  double friction              = 0;     ///< mu >= 0 (models other than NoFriction)
+  /// Coulomb: k_t / adjacent stiffness; 0: the normal penalty factor (k_t = k). Proportional and
+  /// Extended take theirs from the seed (mu k and k).
+  double tangential_penalty_factor = 0;
+  double friction_tolerance        = 1e-10;  ///< Coulomb: pair force imbalance / pair force to stop at
+  int max_friction_iterations      = 40;     ///< Coulomb: Newton iterations per solve, then a SolveError
+  /// Coulomb: leave the slip's unsymmetric coupling out of the pair tangents even when the solver reads
+  /// every entry (always so for a symmetric solver). Newton then converges linearly; the tests measure it.
+  bool symmetric_tangent = false;
 };
 
-template <class M, ContactPolicy Policy>
+template <class M, ContactPolicy Policy, FrictionModel Friction = NoFriction>
 class ContactStatic {
+  static_assert(Friction::template accepts<Policy>(),
+                "ContactStatic: this friction model does not run under this contact policy "
+                "(contact/friction.hpp: proportional and extended with Saac, coulomb with the exact ones)");
+  static constexpr int kNd = M::kDofsPerNode;
+  /// A symmetric solver reads the lower triangle: links get the tangent without the slip coupling.
+  static constexpr bool kSymmetrize = storage_of<typename M::LinearSolver>() == MatrixStorage::lower;
+
  public:
   /// LinearStatic for elastic laws; NonlinearStatic (Newton, history) for laws with history: SAAC is
   /// SAGAEP plus gaps. Every trial solve starts from the committed history; accept() commits it.
@@ -69,6 +99,7 @@ class ContactStatic {
                            std::to_string(p.node_a + 1) + " nor " + std::to_string(p.node_b + 1) +
                            " belongs to a structural element, so there is nothing to scale its penalty by");
         stiffness_.push_back(kappa * adjacent);
+        adjacent_.push_back(adjacent);
       }
       // An open gap element must be soft: its own stiffness along N resists closure and shifts the
       // closure load by about its share (seed 2.2: "small relative to the adjacent structure").
@@ -90,8 +121,31 @@ class ContactStatic {
         }
       }
     }
-    for (std::size_t p = 0; p < pairs_.size(); ++p)
-      history_.amend(p, [&](PairState& s) { s.gap = pairs_[p].initial_gap; });
+    if (!(opt_.friction >= 0) || !std::isfinite(opt_.friction))
+      throw InputError("friction: the coefficient mu must be a number >= 0");
+    if constexpr (Friction::kFriction) {
+      const double kappa_t = std::min(
+          opt_.tangential_penalty_factor > 0 ? opt_.tangential_penalty_factor : kappa, Policy::kMaxPenalty);
+      if (!(kappa_t > 0) || !std::isfinite(kappa_t))
+        throw InputError("friction: the tangential penalty factor must be a positive number");
+      for (std::size_t p = 0; p < pairs_.size(); ++p)
+        tangential_.push_back(std::is_same_v<Friction, Proportional> ? opt_.friction * stiffness_[p]
+                              : std::is_same_v<Friction, Extended>   ? stiffness_[p]
+                                                                     : kappa_t * adjacent_[p]);
+      if constexpr (Friction::kStressCheck) around_ = structural_cells_around();
+    }
+    response_.resize(pairs_.size());
+    evaluate_pairs();
+    history_.commit();
+    if constexpr (Friction::kIterative && !M::Material::kLinear)
+      fe_.set_link_update([this](const VecX& u) {
+        evaluate_pairs([&](int n) {
+          Vec3 v                 = Vec3::Zero();
+          v.template head<kNd>() = u.template segment<kNd>(kNd * n);
+          return v;
+        });
+        set_links();
+      });
   }
 
   /// Advance to load factor t_end under the policy; `on_increment(t, *this)` sees every accepted
@@ -107,6 +161,13 @@ class ContactStatic {
   const std::vector<GapPair>& pairs() const { return pairs_; }
   const std::vector<PairState>& states() const { return history_.committed(); }
   double penalty(int p) const { return stiffness_[p]; }
+  /// k_t of pair p [force/length] (0 without friction).
+  double tangential_penalty(int p) const { return tangential_.empty() ? 0.0 : tangential_[p]; }
+  /// The link of pair p as the last solve used it: stiffness on u_b - u_a and force (node_links.hpp).
+  const NodeLink& link(int p) const { return fe_.link_values()[p]; }
+  /// Coulomb: the relative pair-force imbalance after each linear solve of the last solve_at (the
+  /// quadratic-convergence test reads it); over NonlinearStatic, its Newton residuals.
+  const std::vector<double>& friction_residuals() const { return friction_residuals_; }
   /// kappa in use: the option or the policy's default, capped by the policy's kMaxPenalty.
   double penalty_factor() const { return kappa_; }
   const ContactCounters& counters() const { return count_; }
@@ -130,12 +191,15 @@ class ContactStatic {
   /// An open pair overlaps when its gap is below -1e-12 of the model size.
   double gap_tolerance() const { return 1e-12 * size_; }
   double force_tolerance(int p) const { return stiffness_.empty() ? 0.0 : stiffness_[p] * gap_tolerance(); }
+  /// Between two status changes the response is linear in the load factor (elastic, no Coulomb slip):
+  /// the policies then find an event by one interpolation, otherwise by a few more solves.
+  static constexpr bool linear_response() { return M::Material::kLinear && !Friction::kIterative; }
 
   void solve_at(double t) {
     (*loads_at_)(fe_.problem(), t);
     if constexpr (!M::Material::kLinear) fe_.context() = {t, t - t_};  // time = load factor
     try {
-      fe_.solve(!status_changed_);
+      equilibrium(true);
     } catch (const SolveError& e) {
       const auto& trial = history_.trial();
       if (std::none_of(trial.begin(), trial.end(), [](const PairState& s) { return s.closed; })) throw;
@@ -145,46 +209,61 @@ class ContactStatic {
                        " x the adjacent stiffness: a penalty this large can make the stiffness numerically "
                        "singular; lower gap_penalty or use the augmented-lagrangian policy)");
     }
-    status_changed_ = false;
-    ++count_.solves;
-    update_trial();
   }
   /// Uzawa: lambda <- lambda - k g on closed pairs, re-solved with the same factorization, until every
-  /// closed pair's |g| <= penetration_tolerance x max |u| (THEORY.md 5.5 item 2).
+  /// closed pair's |g| <= penetration_tolerance x max |u| (THEORY.md 5.5 item 2). With friction the
+  /// tangential force gets its own multiplier: t_base <- t, until every sticking pair's slide in the
+  /// step is within the same tolerance (exact stick without a huge k_t).
   void settle_multipliers() {
     for (int it = 0;; ++it) {
       const double scale = std::max(fe_.displacement().cwiseAbs().maxCoeff(), gap_tolerance());
       double worst       = 0;
-      for (std::size_t p = 0; p < pairs_.size(); ++p)
-        if (history_.trial(p).closed) worst = std::max(worst, std::abs(history_.trial(p).gap));
+      for (std::size_t p = 0; p < pairs_.size(); ++p) {
+        const PairState& s = history_.trial(p);
+        if (!s.closed) continue;
+        worst = std::max(worst, std::abs(s.gap));
+        if (Friction::kFriction && !s.slipping)
+          worst = std::max(worst, (s.slide - history_.committed(p).slide).norm());
+      }
       if (worst <= opt_.penetration_tolerance * scale) return;
       if (it == opt_.max_multiplier_updates)
         fail("the augmented-Lagrangian updates did not reach the penetration tolerance (" +
              std::to_string(worst) + " after " + std::to_string(it) + " updates)");
       for (std::size_t p = 0; p < pairs_.size(); ++p)
-        if (PairState& s = history_.trial(p); s.closed) s.multiplier = s.normal_force;
-      set_links();
-      fe_.resolve_links(true);
-      ++count_.solves, ++count_.multiplier_updates;
-      update_trial();
+        if (PairState& s = history_.trial(p); s.closed) s.multiplier = s.normal_force, rebase(s);
+      evaluate_pairs();
+      equilibrium(false);
+      ++count_.multiplier_updates;
     }
   }
   void close(int p, double reference_gap) {
     history_.amend(p, [&](PairState& s) {
       s.closed = true, s.reference_gap = reference_gap, s.multiplier = 0, s.closed_at = t_;
+      clear_friction(s);
     });
     status_changed_ = true;
-    set_links();
+    evaluate_pairs();
   }
   void open(int p) {
-    history_.amend(p, [](PairState& s) { s.closed = false, s.multiplier = 0, s.reference_gap = 0; });
+    history_.amend(p, [](PairState& s) {
+      s.closed = false, s.multiplier = 0, s.reference_gap = 0;
+      clear_friction(s);
+    });
     status_changed_ = true;
-    set_links();
+    evaluate_pairs();
   }
   void accept(double t) {
     if constexpr (!M::Material::kLinear) fe_.commit();
     t_ = t;
+    if constexpr (Friction::kFriction)
+      for (std::size_t p = 0; p < pairs_.size(); ++p) {
+        PairState& s = history_.trial(p);
+        if (s.closed && s.slipping) s.slip += (s.slide - history_.committed(p).slide).norm();
+        rebase(s);
+      }
     history_.commit();
+    if constexpr (Friction::kStressCheck) decide_stick_slip();
+    if constexpr (Friction::kFriction) evaluate_pairs();  // the next step's first linearization
     count_.factorizations = fe_.factorizations() - factorizations_at_reset_;
     if (on_increment_ && *on_increment_) (*on_increment_)(t, *this);
   }
@@ -200,7 +279,10 @@ class ContactStatic {
       for (const auto& p : pairs) l.push_back({p.node_a, p.node_b});
     return l;
   }
-  /// Link of every pair: closed ones push b along +N with P = lambda - k (g0 + N.(u_b - u_a) - g_ref).
+  /// The pair forces of the trial states, linearized at the displacement d the pairs were last evaluated
+  /// at: stiffness K (its symmetric part for a symmetric solver) and force f_b + K d (node_links.hpp).
+  /// The normal part is written in closed form, (lambda - k (g0 - g_ref)) n, so that a large penalty
+  /// adds no round-off through k d.
   void set_links() {
     if constexpr (Policy::kContact) {
       auto& links = fe_.link_values();
@@ -210,28 +292,192 @@ class ContactStatic {
           links[p] = {};
           continue;
         }
+        const PairResponse& r = response_[p];
         const Vec3 n(pairs_[p].normal(0), pairs_[p].normal(1), 0.0);
-        const double k     = stiffness_[p];
-        links[p].stiffness = k * n * n.transpose();
-        links[p].force     = (s.multiplier - k * (pairs_[p].initial_gap - s.reference_gap)) * n;
+        const Mat33 normal = stiffness_[p] * n * n.transpose();
+        links[p].stiffness =
+            kSymmetrize || opt_.symmetric_tangent ? r.stiffness : Mat33(r.stiffness + r.coupling);
+        links[p].force = (s.multiplier - stiffness_[p] * (pairs_[p].initial_gap - s.reference_gap)) * n;
+        if constexpr (Friction::kFriction)
+          links[p].force += r.tangential + (links[p].stiffness - normal) * r.relative;
       }
     }
   }
-  void update_trial() {
-    const auto& u = fe_.displacement();
+  /// Set the links, solve (assembling the element system when `assemble`, else re-using it) and, for
+  /// Coulomb over an elastic structure, Newton on the pair forces: the element system is linear, so a
+  /// solve with the links linearized at the last iterate is a full Newton step.
+  void equilibrium(bool assemble) {
+    set_links();
+    if (assemble)
+      fe_.solve(!status_changed_ && !Friction::kIterative);
+    else
+      fe_.resolve_links(!Friction::kIterative);
+    status_changed_ = false;
+    ++count_.solves;
+    evaluate_pairs();
+    if constexpr (Friction::kIterative && M::Material::kLinear) {
+      friction_residuals_.clear();
+      for (int it = 0;; ++it) {
+        const double r = pair_imbalance();
+        friction_residuals_.push_back(r);
+        if (r <= opt_.friction_tolerance) break;
+        // Stalled within sqrt(tolerance) for four solves: a just-closed pair whose slip direction is
+        // decided by round-off (P tiny) can cycle; its force is then exact to that level. Counted.
+        if (it >= 4 && r <= std::sqrt(opt_.friction_tolerance) &&
+            r >= 0.5 * *std::min_element(friction_residuals_.end() - 5, friction_residuals_.end() - 1)) {
+          ++count_.friction_stalls;
+          break;
+        }
+        if (it + 1 >= opt_.max_friction_iterations) {
+          std::ostringstream text;
+          text << "the friction iterations did not converge in " << opt_.max_friction_iterations
+               << " solves at load factor " << t_ << " (relative pair force imbalances";
+          for (const double x : friction_residuals_) text << ' ' << x;
+          text << "; tolerance " << opt_.friction_tolerance << "): cut the load step";
+          fail(text.str());
+        }
+        set_links();
+        fe_.resolve_links(false);
+        ++count_.solves, ++count_.friction_iterations;
+        evaluate_pairs();
+      }
+    } else if constexpr (Friction::kIterative) {
+      friction_residuals_ = fe_.report().residuals;
+      count_.friction_iterations += fe_.report().iterations;
+    }
+  }
+  /// |f_b(d) - (force - K d)| over the closed pairs: how far the linearized links the last solve
+  /// balanced are from the pair forces at its displacement (at every DOF: at a prescribed one the
+  /// difference would go into the reaction). Relative to |f_b|, or, when larger, to the round-off of the
+  /// pair forces (ten ulps of k (|g0| + |n.d|): P = -k g is a difference of large terms, which matters
+  /// when a pair has just closed and P is tiny), so that Newton stops at round-off instead of failing.
+  double pair_imbalance() const {
+    double diff = 0, size = 0, noise = 0;
+    const auto& links = fe_.link_values();
+    for (std::size_t p = 0; p < pairs_.size(); ++p) {
+      const PairState& s = history_.trial(p);
+      if (!s.closed) continue;
+      const PairResponse& r = response_[p];
+      const Vec3 n(pairs_[p].normal(0), pairs_[p].normal(1), 0.0);
+      const Vec3 force  = s.normal_force * n + r.tangential;
+      const Vec3 linear = links[p].force - links[p].stiffness * r.relative;
+      noise += stiffness_[p] * (std::abs(pairs_[p].initial_gap) + std::abs(n.dot(r.relative)));
+      diff += (force - linear).template head<kNd>().squaredNorm();
+      size += force.template head<kNd>().squaredNorm();
+    }
+    const double floor = 10 * std::numeric_limits<double>::epsilon() * noise / opt_.friction_tolerance;
+    return std::sqrt(diff) / std::max({std::sqrt(size), floor, std::numeric_limits<double>::min()});
+  }
+  /// Gap, normal force, slide and the friction model's answer of every pair at the displacement
+  /// `node(n)` (r, z, theta of node n), into the trial records and response_.
+  template <class NodeDisplacement>
+  void evaluate_pairs(NodeDisplacement&& node) {
     for (std::size_t p = 0; p < pairs_.size(); ++p) {
       const GapPair& g = pairs_[p];
       PairState& s     = history_.trial(p);
-      s.gap            = g.gap(u.row(g.node_a).template head<2>().transpose(),
-                               u.row(g.node_b).template head<2>().transpose());
-      s.normal_force   = s.closed ? s.multiplier - stiffness_[p] * (s.gap - s.reference_gap) : 0.0;
+      PairResponse& r  = response_[p];
+      const Vec3 n(g.normal(0), g.normal(1), 0.0);
+      r.relative     = node(g.node_b) - node(g.node_a);
+      s.gap          = g.initial_gap + n.dot(r.relative);
+      s.normal_force = s.closed ? s.multiplier - stiffness_[p] * (s.gap - s.reference_gap) : 0.0;
+      r.tangential   = Vec3::Zero();
+      r.coupling     = Mat33::Zero();
+      r.stiffness    = s.closed ? Mat33(stiffness_[p] * n * n.transpose()) : Mat33::Zero();
+      if constexpr (Friction::kFriction) {
+        Mat<3, 2> e;  // E = [T, S]: along the gap and theta
+        e << -n(1), 0, n(0), 0, 0, 1;
+        s.slide = e.transpose() * r.relative;
+        if (!s.closed) continue;
+        TangentialResponse t = Friction::respond({s.slide - history_.committed(p).slide, s.tangential_base,
+                                                  s.normal_force, tangential_[p], opt_.friction, s.slipping});
+        // A slipping pair whose slip reverses from one iterate to the next is stuck: neither direction
+        // is consistent, and the slip tangent (no stiffness along the slip) cannot land within the
+        // cone's width mu P / k_t. Linearize it as stuck for the next iterate (the force stays exact).
+        if (Friction::kIterative && t.slipping && s.slipping && t.force.dot(s.tangential_force) < 0) {
+          t.stiffness          = tangential_[p] * Mat<2, 2>::Identity();
+          t.normal_force_slope = Vec2::Zero();
+        }
+        s.tangential_force = t.force;
+        s.slipping         = t.slipping;
+        r.tangential       = e * t.force;
+        r.stiffness += e * t.stiffness * e.transpose();
+        r.coupling = stiffness_[p] * e * t.normal_force_slope * n.transpose();
+      }
     }
   }
+  /// The same at the last solve's displacement (zero before the first).
+  void evaluate_pairs() {
+    const auto& u = fe_.displacement();
+    evaluate_pairs(
+        [&](int node) -> Vec3 { return u.rows() > 0 ? Vec3(u.row(node).transpose()) : Vec3::Zero(); });
+  }
+  /// The tangential force becomes the base of the next trial (an accepted increment; an Uzawa update).
+  static void rebase(PairState& s) { s.tangential_base = s.tangential_force; }
+  static void clear_friction(PairState& s) {
+    s.tangential_force = s.tangential_base = Vec2::Zero();
+    s.slipping                             = false;
+  }
+  /// Extended (seed 3.2): the real elements around each pair: every non-gap cell with node a or b,
+  /// as indices into centroid_values() (cells, then triangles).
+  std::vector<std::vector<int>> structural_cells_around() const {
+    const auto& mesh = fe_.problem().mesh;
+    const auto& gaps = opt_.gap_materials;
+    const auto real  = [&](const CellTag& t) {
+      return std::find(gaps.begin(), gaps.end(), t.material) == gaps.end();
+    };
+    std::vector<std::vector<int>> around(pairs_.size());
+    const auto add = [&](int index, const auto& nodes) {
+      for (std::size_t p = 0; p < pairs_.size(); ++p)
+        for (const int v : nodes)
+          if (v == pairs_[p].node_a || v == pairs_[p].node_b) {
+            around[p].push_back(index);
+            break;
+          }
+    };
+    for (std::size_t e = 0; e < mesh.cells.size(); ++e)
+      if (real(mesh.cell_tag(e))) add(static_cast<int>(e), mesh.cells[e]);
+    for (std::size_t e = 0; e < mesh.triangles.size(); ++e)
+      if (real(mesh.triangle_tag(e))) add(static_cast<int>(mesh.cells.size() + e), mesh.triangles[e]);
+    return around;
+  }
+  /// Extended (seed 3.2): at an accepted increment, every closed pair's status for the next step from
+  /// the mean stress of the real elements around it, rotated to (N, T, S): stick while the resultant
+  /// shear sqrt(tau_NT^2 + tau_NS^2) < mu |sigma_NN| with sigma_NN < 0, else slip. The one-step lag of
+  /// the seed's model is here: the status a step runs with was decided by the stresses before it.
+  void decide_stick_slip() {
+    if (std::none_of(history_.committed().begin(), history_.committed().end(),
+                     [](const PairState& s) { return s.closed; }))
+      return;
+    const std::vector<PointValues> values = fe_.centroid_values();
+    for (std::size_t p = 0; p < pairs_.size(); ++p) {
+      if (!history_.committed(p).closed || around_[p].empty()) continue;
+      Mat33 sigma = Mat33::Zero();
+      for (const int c : around_[p])
+        sigma += voigt::stress_tensor(values[static_cast<std::size_t>(c)].stress);
+      sigma /= static_cast<double>(around_[p].size());
+      const Vec3 n(pairs_[p].normal(0), pairs_[p].normal(1), 0.0), t(-n(1), n(0), 0.0), theta(0, 0, 1);
+      const double normal = n.dot(sigma * n);
+      const double shear  = std::hypot(t.dot(sigma * n), theta.dot(sigma * n));
+      const bool stick    = normal < 0 && shear < opt_.friction * -normal;
+      history_.amend(p, [&](PairState& s) { s.slipping = !stick; });
+    }
+  }
+
+  /// At the displacement a pair was evaluated at: u_b - u_a, the tangential force E t on b, and the
+  /// tangent K = -df_b/dd of the whole pair force f_b = P n + E t, as its symmetric part k n n^T +
+  /// E K_tt E^T and the slip's unsymmetric coupling k E (dt/dP) n^T.
+  struct PairResponse {
+    Vec3 relative = Vec3::Zero(), tangential = Vec3::Zero();
+    Mat33 stiffness = Mat33::Zero(), coupling = Mat33::Zero();
+  };
 
   std::vector<GapPair> pairs_;
   ContactOptions opt_;
   Fe fe_;
-  std::vector<double> stiffness_;
+  std::vector<double> stiffness_, adjacent_, tangential_;  ///< k, adjacent stiffness, k_t per pair
+  std::vector<PairResponse> response_;
+  std::vector<std::vector<int>> around_;  ///< Extended: real cells around each pair
+  std::vector<double> friction_residuals_;
   History<PairState> history_;  ///< committed: the accepted increment; trial: the last solve
   double t_ = 0, size_ = 1, kappa_ = 0;
   bool status_changed_ = true;

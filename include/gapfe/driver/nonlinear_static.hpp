@@ -21,6 +21,7 @@
 // displacements would need to be history too. Use Quad4BBar, Quad4 or Quad8.
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <sstream>
 #include <vector>
 
@@ -81,6 +82,11 @@ class NonlinearStatic {
   std::vector<Mat33> nodal_stiffness(Keep&& keep) const {
     return assembler_.nodal_stiffness(p_, std::forward<Keep>(keep));
   }
+
+  /// A callback that sets link_values() for the displacement u (all DOFs) before every evaluation of the
+  /// internal forces: node links whose force is nonlinear in u (Coulomb friction, driver/contact_static.hpp)
+  /// then converge in the same Newton loop as the material history. Empty: the links stay as set.
+  void set_link_update(std::function<void(const VecX&)> update) { link_update_ = std::move(update); }
 
   /// Time and step size handed to the law (rate-dependent laws read them).
   StepContext& context() { return context_; }
@@ -166,6 +172,7 @@ class NonlinearStatic {
  private:
   StoredStress<State> stored() const { return {stress_, points_.trial()}; }
   void evaluate(bool tangent, const VecX* prescribed_step) {
+    if (link_update_) link_update_(u_);
     assembler_.evaluate(p_, u_, points_, stress_, context_, tangent ? system_.values() : nullptr, internal_,
                         prescribed_step, predictor_);
   }
@@ -199,6 +206,7 @@ class NonlinearStatic {
   VecX external_, internal_, predictor_;
   Solution sol_;
   SolveTimings time_;
+  std::function<void(const VecX&)> link_update_;
 };
 
 }  // namespace gapfe

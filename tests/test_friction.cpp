@@ -1,0 +1,382 @@
+// Friction at gap pairs (issue 12; contact/friction.hpp, THEORY.md 6): the push-out and the slip torque of
+// a press fit against their closed forms, no spurious friction, the seed's two models, Newton's
+// convergence with the unsymmetric tangent, the tangential penalty sweep and friction with plasticity.
+#include <cstdio>
+#include <functional>
+
+#include "gapfe/solver/eigen_lu.hpp"
+
+#include "contact_support.hpp"
+
+namespace gapfe::test {
+namespace {
+
+using Lu2   = Model<Axisym2, Quad4, Isotropic, EigenLu>;
+using Lu3   = Model<Axisym3, Quad4, Isotropic, EigenLu>;
+using Ldlt2 = Model<Axisym2, Quad4, Isotropic, EigenLdlt>;
+using Ldlt3 = Model<Axisym3, Quad4, Isotropic, EigenLdlt>;
+
+ContactOptions fit_options(const PressFit& fit) {
+  ContactOptions o;
+  o.gap_materials = {1};
+  o.friction      = fit.mu;
+  return o;
+}
+
+/// One accepted point of a path: load factor, push force and torque on the ring, worst slip-cone error.
+struct PathPoint {
+  double t = 0, force = 0, torque = 0;
+};
+
+/// The fit's standard path: the pressure ramps over t in [0, 1] (one step), then `motion(t)` (push or
+/// twist) over `steps` equal steps up to t_end. Returns every accepted point after the pressure.
+template <class CS>
+std::vector<PathPoint> run_path(CS& cs, const PressFit& fit, const std::function<double(double)>& push,
+                                const std::function<double(double)>& twist, double t_end, int steps) {
+  using P          = std::decay_t<decltype(cs.fe().problem())>;
+  const auto loads = [&](P& p, double t) { fit.set(p, std::min(t, 1.0), push(t), twist(t)); };
+  std::vector<PathPoint> out;
+  cs.advance(1.0, loads);
+  for (int k = 1; k <= steps; ++k) {
+    const double t = 1 + (t_end - 1) * k / steps;
+    cs.advance(t, loads);
+    const auto& s = cs.fe().solution();
+    out.push_back({t, fit.push_force(s), fit.torque(cs.fe().problem(), s)});
+  }
+  return out;
+}
+
+double none(double) {
+  return 0;
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("friction: a press fit pushed out slides at mu p 2 pi b L, flat, and back at minus it",
+                   Policy, ActiveSet, AugmentedLagrangian) {
+  const PressFit fit;
+  std::vector<GapPair> pairs;
+  auto problem = fit.problem<Lu2>(pairs);
+  ContactStatic<Lu2, Policy, Coulomb> cs(std::move(problem), pairs, fit_options(fit));
+  const double d  = 2e-6;  // push amplitude [m]: up to +d, then down to -d (a hysteresis loop)
+  const auto push = [&](double t) { return t <= 1 ? 0.0 : t <= 2 ? d * (t - 1) : d * (3 - t); };
+  const auto path = run_path(cs, fit, push, none, 4.0, 30);
+  const double f  = fit.slip_force();
+  MESSAGE(Policy::kName, ": closed-form slip force ", f, " N, push-out force at the first push step ",
+          path.front().force, ", at the top ", path[7].force, ", at the bottom ", path.back().force);
+  double lo = 1e300, hi = -1e300;
+  for (const auto& pt : path) {
+    if (pt.t > 1.2 && pt.t <= 2) {  // sliding up: the plateau
+      CHECK(rel(pt.force, f) < 0.01);
+      lo = std::min(lo, pt.force), hi = std::max(hi, pt.force);
+    }
+    if (pt.t > 2.5) CHECK(rel(pt.force, -f) < 0.01);  // sliding back
+  }
+  CHECK(hi - lo < 1e-6 * f);  // flat after slip
+  // Every closed pair slips at the end, with its force on the cone: |t| = mu P.
+  for (const auto& s : cs.states()) {
+    REQUIRE(s.closed);
+    CHECK(s.slipping);
+    CHECK(std::abs(s.tangential_force.norm() - fit.mu * s.normal_force) <= 1e-9 * fit.mu * s.normal_force);
+  }
+}
+
+TEST_CASE("friction: a press fit twisted (SAGA) slips at the torque mu p 2 pi b^2 L") {
+  const PressFit fit;
+  std::vector<GapPair> pairs;
+  auto problem = fit.problem<Lu3>(pairs);
+  ContactStatic<Lu3, ActiveSet, Coulomb> cs(std::move(problem), pairs, fit_options(fit));
+  const double phi = 1e-4;  // rotation of the ring [rad]
+  const auto path  = run_path(
+       cs, fit, none, [&](double t) { return t <= 1 ? 0.0 : phi * (t - 1); }, 2.0, 10);
+  MESSAGE("closed-form slip torque ", fit.slip_torque(), " N m, computed ", path.back().torque);
+  for (const auto& pt : path)
+    if (pt.t > 1.2) CHECK(rel(pt.torque, fit.slip_torque()) < 0.01);
+  CHECK(std::abs(path.back().force) < 1e-9 * fit.slip_force());  // a twist pushes nothing along z
+}
+
+TEST_CASE("friction: nothing loads the gap tangentially, so friction changes nothing") {
+  // Shaft held at its bottom, ring at its top, nu = 0: the pressure closes the fit without any slide.
+  PressFit fit;
+  fit.drive      = PressFit::Drive::ends;
+  const auto run = [&]<class Friction>(std::type_identity<Friction>, double mu) {
+    std::vector<GapPair> pairs;
+    auto problem       = fit.problem<Lu2>(pairs);
+    ContactOptions opt = fit_options(fit);
+    opt.friction       = mu;
+    // The augmented Lagrangian's moderate penalty: with 1e4 x the adjacent stiffness (active-set), the
+    // round-off of the radial solve alone gives tangential forces of ~5e-6 of the normal ones.
+    ContactStatic<Lu2, AugmentedLagrangian, Friction> cs(std::move(problem), pairs, opt);
+    cs.advance(1.0, [&](Problem<Lu2>& p, double t) { fit.set(p, t, 0); });
+    double tangential = 0, normal = 0, closed_at = 2;
+    for (const auto& s : cs.states()) {
+      tangential = std::max(tangential, s.tangential_force.norm()), normal = std::max(normal, s.normal_force);
+      closed_at = std::min(closed_at, s.closed_at);
+    }
+    return std::tuple{Eigen::MatrixXd(cs.fe().solution().displacement), closed_at, tangential, normal};
+  };
+  const auto [u0, closed0, t0, n0] = run(std::type_identity<NoFriction>{}, 0.0);
+  const auto [u1, closed1, t1, n1] = run(std::type_identity<Coulomb>{}, 0.3);
+  const auto [u2, closed2, t2, n2] = run(std::type_identity<Coulomb>{}, 0.0);
+  REQUIRE(n0 > 0);
+  MESSAGE("closure at load factor ", closed0, " (frictionless), ", closed1,
+          " (mu = 0.3); max |t| / max P = ", t1 / n1);
+  CHECK(t1 < 1e-6 * n1);
+  CHECK(std::abs(closed1 - closed0) < 1e-9);
+  CHECK((u1 - u0).cwiseAbs().maxCoeff() < 1e-8 * u0.cwiseAbs().maxCoeff());
+  CHECK((u2 - u0).cwiseAbs().maxCoeff() < 1e-10 * u0.cwiseAbs().maxCoeff());  // mu = 0: frictionless
+  CHECK(std::abs(closed2 - closed0) < 1e-12);
+}
+
+TEST_CASE("friction: proportional (SAACFR) puts mu k along T and S of every closed pair, with no limit") {
+  PressFit fit;
+  fit.tilt = 0.5;  // a conical fit: N and T are not along r and z
+  std::vector<GapPair> pairs;
+  auto problem = fit.problem<Ldlt3>(pairs);
+  ContactStatic<Ldlt3, Saac, Proportional> cs(std::move(problem), pairs, fit_options(fit));
+  const double d = 5e-6;
+  // Pushed along -z, which presses the conical fit closed (N has a +z part).
+  const auto path = run_path(
+      cs, fit, [&](double t) { return t <= 1 ? 0.0 : -d * (t - 1); }, none, 2.0, 4);
+  int closed = 0;
+  for (int p = 0; p < cs.pair_count(); ++p) {
+    if (!cs.states()[p].closed) continue;
+    ++closed;
+    const Vec2 n = pairs[p].normal;
+    Mat33 rotation;  // rows N, T, S (seed Eq. 5)
+    rotation << n(0), n(1), 0, -n(1), n(0), 0, 0, 0, 1;
+    const Mat33 local = rotation * cs.link(p).stiffness * rotation.transpose();
+    const double k    = cs.penalty(p);
+    Mat33 expected    = Mat33::Zero();
+    expected.diagonal() << k, fit.mu * k, fit.mu * k;
+    CHECK((local - expected).cwiseAbs().maxCoeff() < 1e-12 * k);
+    // No slip limit: the tangential force is mu k times the slide since closure, far beyond mu P.
+    const PairState& s = cs.states()[p];
+    CHECK(s.tangential_force.norm() > fit.mu * s.normal_force);
+  }
+  CHECK(closed == cs.pair_count());
+  MESSAGE("push force with proportional springs after a push of ", d, " m: ", path.back().force, " N");
+}
+
+TEST_CASE(
+    "friction: extended (seed 3.2) switches pairs from stick to slip; its overshoot against the step count") {
+  // The ring pushed at its top face along an elastic shaft held at its bottom: the element stresses
+  // around the pairs carry the shear the seed's check reads.
+  // One row of elements (nz = 1): both pairs have the same two real elements around them, whose mean
+  // shear is the interface's friction, so the check compares the fit's own shear with mu p.
+  PressFit fit;
+  fit.drive      = PressFit::Drive::ends;
+  fit.nz         = 1;
+  const double d = 5e-5;
+  std::vector<double> errors;
+  for (const int steps : {10, 20, 40, 80}) {
+    std::vector<GapPair> pairs;
+    auto problem = fit.problem<Ldlt2>(pairs);
+    ContactStatic<Ldlt2, Saac, Extended> cs(std::move(problem), pairs, fit_options(fit));
+    bool stuck_after_closure = true;
+    const auto loads         = [&](Problem<Ldlt2>& p, double t) {
+      fit.set(p, std::min(t, 1.0), t <= 1 ? 0 : -d * (t - 1));
+    };
+    cs.advance(1.0, loads);
+    for (const auto& s : cs.states()) stuck_after_closure = stuck_after_closure && s.closed;
+    double peak = 0, sum_normal = 0;
+    int switched = 0;
+    for (int k = 1; k <= steps; ++k) {
+      cs.advance(1.0 + static_cast<double>(k) / steps, loads);
+      peak = std::max(peak, std::abs(fit.push_force(cs.fe().solution())));
+    }
+    for (const auto& s : cs.states()) switched += s.slipping, sum_normal += s.normal_force;
+    CHECK(stuck_after_closure);
+    CHECK(switched > 0);
+    const double error = (peak - fit.mu * sum_normal) / (fit.mu * sum_normal);
+    errors.push_back(error);
+    MESSAGE("extended, ", steps, " push steps: ", switched, " of ", cs.pair_count(),
+            " pairs slipping; peak push force ", peak, " N against mu sum P = ", fit.mu * sum_normal,
+            " N (closed form ", fit.slip_force(), "): overshoot ", 100 * error, " %");
+  }
+}
+
+namespace {
+
+/// Residual ratios log r_{k+1} / log r_k of a Newton record: about 2 where convergence is quadratic.
+bool quadratic(const std::vector<double>& r) {
+  for (std::size_t k = 0; k + 1 < r.size(); ++k)
+    if (r[k] < 0.1 && r[k] > 1e-14 && r[k + 1] <= 10 * r[k] * r[k]) return true;
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("friction: Newton with the unsymmetric Coulomb tangent converges quadratically on a slip step") {
+  // The ring pushed at its top with nu = 0.3: slip changes the normal forces (the dt/dP coupling).
+  PressFit fit;
+  fit.drive      = PressFit::Drive::ends;
+  fit.nu         = 0.3;
+  const auto run = [&](bool symmetric, double nu) {
+    fit.nu = nu;
+    std::vector<GapPair> pairs;
+    auto problem                = fit.problem<Lu2>(pairs);
+    ContactOptions opt          = fit_options(fit);
+    opt.symmetric_tangent       = symmetric;
+    opt.max_friction_iterations = 200;
+    ContactStatic<Lu2, ActiveSet, Coulomb> cs(std::move(problem), pairs, opt);
+    const auto loads = [&](Problem<Lu2>& p, double t) {
+      fit.set(p, std::min(t, 1.0), t <= 1 ? 0 : -1e-5 * (t - 1));
+    };
+    cs.advance(1.0, loads);
+    std::vector<double> longest;
+    int iterations = 0;
+    for (int k = 1; k <= 8; ++k) {
+      cs.reset_counters();
+      cs.advance(1.0 + k / 8.0, loads);
+      iterations += cs.counters().friction_iterations;
+      if (cs.friction_residuals().size() > longest.size()) longest = cs.friction_residuals();
+    }
+    int slipping = 0;
+    for (const auto& s : cs.states()) slipping += s.slipping;
+    return std::tuple{longest, iterations, slipping};
+  };
+  const auto record = [](const std::vector<double>& r) {
+    std::string text;
+    char x[32];
+    for (double v : r) std::snprintf(x, sizeof x, " %.2e", v), text += x;
+    return text;
+  };
+  const auto [lu, lu_iterations, lu_slipping] = run(false, 0.3);
+  MESSAGE("unsymmetric tangent, nu = 0.3: ", lu_iterations,
+          " extra solves in 8 push steps; longest record:", record(lu));
+  CHECK(lu_slipping > 0);
+  CHECK(quadratic(lu));
+  CHECK(lu.back() <= 1e-10);
+  // The tangent without the slip's unsymmetric coupling (what a symmetric solver gets): linear
+  // convergence, more solves, the same answer.
+  const auto [sym, sym_iterations, sym_slipping] = run(true, 0.3);
+  MESSAGE("symmetrized tangent, nu = 0.3: ", sym_iterations,
+          " extra solves in 8 push steps; longest record:", record(sym));
+  CHECK(sym_slipping == lu_slipping);
+  CHECK(sym_iterations > lu_iterations);
+  CHECK_FALSE(quadratic(sym));
+}
+
+TEST_CASE_TEMPLATE("friction: tangential penalty sweep 1e1 to 1e12 x the adjacent stiffness", Policy,
+                   ActiveSet, AugmentedLagrangian) {
+  PressFit fit;
+  std::string table = std::string(Policy::kName) +
+                      ": factor, stick slide / ring displacement, slip force error, "
+                      "friction solves\n";
+  for (double factor = 1e1; factor <= 1e12; factor *= 10) {
+    // Stick: the ring pushed at its top by about a tenth of what would slide it; exact stick slides nothing.
+    fit.drive = PressFit::Drive::ends;
+    std::vector<GapPair> pairs;
+    auto problem                  = fit.problem<Lu2>(pairs);
+    ContactOptions opt            = fit_options(fit);
+    opt.tangential_penalty_factor = factor;
+    ContactStatic<Lu2, Policy, Coulomb> stick(std::move(problem), pairs, opt);
+    const double push = 3e-7;
+    std::vector<Vec2> pressed;  // slides after the pressure
+    try {
+      stick.advance(1.0, [&](Problem<Lu2>& p, double t) { fit.set(p, t, 0); });
+      for (const auto& s : stick.states()) pressed.push_back(s.slide);
+      stick.advance(2.0, [&](Problem<Lu2>& p, double t) { fit.set(p, 1.0, -push * (t - 1)); });
+    } catch (const SolveError& e) {
+      // A penalty this large makes the stiffness numerically singular: refused, never a wrong answer.
+      CHECK(std::is_same_v<Policy, ActiveSet>);
+      CHECK(factor >= 1e9);
+      table += "   factor " + std::to_string(factor) + ": refused (" + e.what() + ")\n";
+      continue;
+    }
+    double slide = 0;
+    for (int p = 0; p < stick.pair_count(); ++p) {
+      CHECK_FALSE(stick.states()[p].slipping);
+      slide = std::max(slide, (stick.states()[p].slide - pressed[p]).norm());
+    }
+    const double stick_error = slide / push;
+    // Slip: the closed-form push-out.
+    fit.drive = PressFit::Drive::all;
+    pairs.clear();
+    auto problem2 = fit.problem<Lu2>(pairs);
+    ContactStatic<Lu2, Policy, Coulomb> slip(std::move(problem2), pairs, opt);
+    const auto path = run_path(
+        slip, fit, [&](double t) { return t <= 1 ? 0.0 : 2e-6 * (t - 1); }, none, 2.0, 5);
+    const double force_error = rel(path.back().force, fit.slip_force());
+    char row[160];
+    std::snprintf(row, sizeof row, "%8.0e  %10.3e  %10.3e  %d\n", factor, stick_error, force_error,
+                  stick.counters().friction_iterations + slip.counters().friction_iterations);
+    table += row;
+    CHECK(force_error < 0.01);
+    if (std::is_same_v<Policy, AugmentedLagrangian>) CHECK(stick_error < 1e-5);
+  }
+  MESSAGE(table);
+}
+
+TEST_CASE(
+    "friction: a plastic ring pushed along an elastic shaft: equilibrium and every slipping pair on the "
+    "cone") {
+  using M = Model<Axisym2, Quad4BBar, Hill<ReturnMapping>, EigenLu>;
+  PressFit fit;
+  fit.drive = PressFit::Drive::ends;
+  fit.nu    = 0.3;
+  std::vector<GapPair> pairs;
+  auto problem   = fit.problem<M>(pairs);
+  const auto law = [&](double e, double sy, double hardening = 0.0) {
+    return Hill<ReturnMapping>{Orthotropic::constant(ElasticConstants::isotropic(e, fit.nu)),
+                               HillYield::mises(sy, hardening)};
+  };
+  problem.materials = {law(fit.E, 1e12), law(fit.gap_modulus_ratio * fit.E, 1e12), law(fit.E, 70e6, 2e9)};
+  ContactStatic<M, ActiveSet, Coulomb> cs(std::move(problem), pairs, fit_options(fit));
+  const auto loads = [&](Problem<M>& p, double t) {
+    fit.set(p, std::min(t, 1.0), t <= 1 ? 0 : -2e-5 * (t - 1));
+  };
+  double worst_residual = 0, worst_cone = 0;
+  int slipping = 0, plastic = 0;
+  const auto check = [&](double, const auto& c) {
+    worst_residual = std::max(worst_residual, c.fe().report().residuals.back());
+    for (const auto& s : c.states())
+      if (s.closed && s.slipping)
+        worst_cone = std::max(worst_cone, std::abs(s.tangential_force.norm() - fit.mu * s.normal_force) /
+                                              (fit.mu * s.normal_force));
+  };
+  for (int k = 1; k <= 10; ++k) cs.advance(0.2 * k, loads, check);
+  for (const auto& s : cs.states()) slipping += s.slipping;
+  for (const auto& s : cs.fe().states()) plastic += s.plastic;
+  MESSAGE("plastic ring: ", plastic, " plastic points, ", slipping, " slipping pairs; worst residual ",
+          worst_residual, ", worst |t| / (mu P) - 1 ", worst_cone);
+  CHECK(plastic > 0);
+  CHECK(slipping > 0);
+  CHECK(worst_residual <= 1e-8);
+  CHECK(worst_cone <= 1e-8);
+}
+
+}  // namespace gapfe::test
+
+namespace gapfe::test {
+
+TEST_CASE_TEMPLATE("exact contact policies over the plastic driver: V5's closure and contact pressure",
+                   Policy, ActiveSet, AugmentedLagrangian) {
+  // Two tubes, plane strain, a Hill law whose yield stress is never reached: the plastic driver with
+  // Newton and the event search must give the frictionless elastic closed form (THEORY.md V5).
+  using M = Model<Axisym2, Quad4BBar, Hill<ReturnMapping>, EigenLdlt>;
+  TwoTubes tubes;
+  std::vector<GapPair> pairs;
+  auto problem   = tubes.problem<M>(pairs);
+  const auto law = [&](double e, double nu) {
+    return Hill<ReturnMapping>{Orthotropic::constant(ElasticConstants::isotropic(e, nu)),
+                               HillYield::mises(1e12)};
+  };
+  problem.materials = {law(tubes.E, tubes.nu), law(tubes.gap_modulus_ratio * tubes.E, 0.0)};
+  ContactOptions opt;
+  opt.gap_materials = {1};
+  ContactStatic<M, Policy> cs(std::move(problem), pairs, opt);
+  const double p = 100e6;
+  cs.advance(1.0, [&](Problem<M>& pr, double t) { tubes.set_pressure(pr, t * p); });
+  double closed_at = 2, force = 0;
+  for (const auto& s : cs.states()) closed_at = std::min(closed_at, s.closed_at), force += s.normal_force;
+  const double q = force / (kTwoPi * tubes.b * tubes.height);  // the pairs share the ring force
+  MESSAGE(Policy::kName, ": closure at ", closed_at * p, " Pa (closed form ", tubes.closure_pressure(),
+          "), contact pressure ", q, " (", tubes.contact_pressure(p), ")");
+  CHECK(rel(closed_at * p, tubes.closure_pressure()) < 2e-3);
+  CHECK(rel(q, tubes.contact_pressure(p)) < 5e-3);
+  CHECK(cs.fe().report().residuals.back() <= 1e-10);
+}
+
+}  // namespace gapfe::test
