@@ -218,6 +218,38 @@ def projectile_deck(steps=10, g_load=20000.0):
     return "\n".join(lines) + "\n"
 
 
+def press_fit_deck(ns=6, nh=8, nz=10, a=12.5, b=25.0, w=0.001, c=50.0, length=50.0, q=75.0, push=0.001,
+                   steps=40, mu=0.15, contact="active-set", slip="coulomb", nu=0.0):
+    """A hub clamped on a hollow shaft and pushed along it (issue 12's example; units mm, N, MPa).
+
+    Shaft a..b (ns cells), a column of gap elements b..b + w (material 2, IJDIR = 1), hub b + w..c (nh
+    cells), nz rows over the length. Step 1 presses the hub on by the pressure q on its outer surface
+    (INCF = 1: its own pressure cards; the later steps' cards are zero); every step moves the hub's top
+    face down by `push` (BC increments) while the shaft's bottom face is held. E = 200000 and nu = 0: with
+    Poisson's ratio the hub's axial growth under the pressure, held at its pushed face, would already slide
+    the whole fit in step 1 (nu = 0.3: 11 um), and the closed form is exact.
+    Closed form (plane stress Lame, one material): contact pressure p = (q - q_c) c^2 (b^2 - a^2) /
+    (b^2 (c^2 - a^2)), q_c = w E (c^2 - b^2) / (2 b c^2) closing the gap; slip force mu p 2 pi b L."""
+    ni, nj = ns + nh + 2, nz + 1
+    node = lambda I, J: (J - 1) * ni + I
+    lines = [f"$ contact = {contact}", f"$ friction = {mu:g}", f"$ slip = {slip}",
+             f"HUB {b + w:g}-{c:g} PRESSED ON SHAFT {a:g}-{b:g} BY {q:g} ON ITS OD, PUSHED DOWN {push:g} PER STEP",
+             control(nummat=2, numpc=nz, nlinc=steps, incf=1), mesh_control(ni, nj, 8, 2, 3),
+             segment([(1, 1, a, 0.0), (ns + 1, 1, b, 0.0)], 1), segment([(ns + 2, 1, b + w, 0.0), (ni, 1, c, 0.0)], 1),
+             segment([(1, nj, a, length), (ns + 1, nj, b, length)], 1),
+             segment([(ns + 2, nj, b + w, length), (ni, nj, c, length)], 1),
+             segment([(1, 1, a, 0.0), (1, nj, a, length)], 1), segment([(ns + 1, 1, b, 0.0), (ns + 1, nj, b, length)], 1),
+             segment([(ns + 2, 1, b + w, 0.0), (ns + 2, nj, b + w, length)], 1),
+             segment([(ni, 1, c, 0.0), (ni, nj, c, length)], 1),
+             bc(1, ns + 1, 1, 1, 2), bc(ns + 2, ni, nj, nj, 2, xz=-push),
+             block(1, 1, ns + 1, 1, nj), block(2, ns + 1, ns + 2, 1, nj, ijdir=1), block(1, ns + 2, ni, 1, nj)]
+    lines += material(1, [isotropic(200000.0, nu)])
+    lines += material(2, [isotropic(200000.0e-9, 0.0)])
+    for step in range(1, steps + 1):
+        lines += [edge(node(ni, J), node(ni, J + 1), q if step == 1 else 0.0) for J in range(1, nj)]
+    return "\n".join(lines) + "\n"
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = ap.add_subparsers(dest="what", required=True)
@@ -230,10 +262,16 @@ def main():
     tt.add_argument("--nz", type=int, default=80)
     tt.add_argument("--steps", type=int, default=10)
     tt.add_argument("--contact", default="saac")
+    pf = sub.add_parser("press-fit")
+    pf.add_argument("--steps", type=int, default=40)
+    pf.add_argument("--slip", default="coulomb")
+    pf.add_argument("--contact", default="augmented-lagrangian")
     sub.add_parser("examples")
     args = ap.parse_args()
     if args.what == "tube":
         print(tube_deck(args.ni, args.nj, nodal=args.nodal), end="")
+    elif args.what == "press-fit":
+        print(press_fit_deck(steps=args.steps, push=0.04 / args.steps, slip=args.slip, contact=args.contact), end="")
     elif args.what == "two-tubes":
         print(two_tubes_deck(args.n, args.nz, steps=args.steps, contact=args.contact), end="")
     else:
@@ -244,6 +282,7 @@ def main():
         (out / "two_tubes.deck").write_text(two_tubes_deck(n=20, nz=2, a=50.0, b=75.0, gap=0.02, c=100.0,
                                                            steps=20, contact="active-set"))
         (out / "projectile.deck").write_text(projectile_deck())
+        (out / "press_fit.deck").write_text(press_fit_deck())
         (out / "plastic_tube.deck").write_text(plastic_tube_deck())
         (out / "plastic_two_tubes.deck").write_text(two_tubes_deck(n=20, nz=2, a=50.0, b=75.0, gap=0.02, c=100.0,
                                                                    p=200.0, steps=20, sigma_y=250.0,

@@ -17,3 +17,22 @@ if(GAPFE_WITH_CHOLMOD)
     message(STATUS "gapfe: CHOLMOD not found: only the header-only Eigen solver is built")
   endif()
 endif()
+
+# Optional UMFPACK (SuiteSparse; GPL), the unsymmetric LU for friction's slip tangent: gapfe::umfpack
+# carries GAPFE_HAS_UMFPACK=1.
+set(GAPFE_HAS_UMFPACK OFF)
+if(GAPFE_WITH_CHOLMOD)
+  find_path(UMFPACK_INCLUDE_DIR umfpack.h PATH_SUFFIXES suitesparse)
+  find_library(UMFPACK_LIBRARY umfpack)
+  find_library(AMD_LIBRARY amd)
+  if(UMFPACK_INCLUDE_DIR AND UMFPACK_LIBRARY AND AMD_LIBRARY AND SUITESPARSECONFIG_LIBRARY)
+    set(GAPFE_HAS_UMFPACK ON)
+    add_library(gapfe_umfpack INTERFACE)
+    add_library(gapfe::umfpack ALIAS gapfe_umfpack)
+    target_include_directories(gapfe_umfpack SYSTEM INTERFACE ${UMFPACK_INCLUDE_DIR})
+    target_link_libraries(gapfe_umfpack INTERFACE gapfe::gapfe ${UMFPACK_LIBRARY} ${AMD_LIBRARY}
+                                                  ${SUITESPARSECONFIG_LIBRARY})
+    target_compile_definitions(gapfe_umfpack INTERFACE GAPFE_HAS_UMFPACK=1)
+    message(STATUS "gapfe: UMFPACK found (${UMFPACK_LIBRARY}): the UmfpackLu solver policy is enabled")
+  endif()
+endif()

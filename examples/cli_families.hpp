@@ -2,8 +2,8 @@
 // The three ways `gapfe run` steps a deck on one compiled model M, with the files each writes:
 //   run_linear   no gaps, linear law: LinearStatic, one factorization (run_deck);
 //   run_plastic  no gaps, law with history: NonlinearStatic with step cutting, plus plasticity.csv;
-//   run_contact  gap elements under contact policy P: ContactStatic (over NonlinearStatic for laws with
-//                history: SAAC = SAGAEP + gaps), plus gaps.csv.
+//   run_contact  gap elements under contact policy P and friction model F: ContactStatic (over
+//                NonlinearStatic for laws with history: SAAC = SAGAEP + gaps), plus gaps.csv.
 // Internal to the command; cli_variants.hpp says which (M, P) exist.
 #include <algorithm>
 #include <chrono>
@@ -63,12 +63,13 @@ void run_plastic(const RunRequest& r, RunTimes& times) {
   files.write_deformed(r.deck.title);
 }
 
-template <class M, ContactPolicy P>
+template <class M, ContactPolicy P, FrictionModel F = NoFriction>
 void run_contact(const RunRequest& r, RunTimes& times) {
   StepFiles files(r.dir, r.scene);
-  GapFile gaps(r.dir, r.scene);
-  run_deck_contact<M, P>(
-      r.deck, r.scene, r.deck.options.gap_penalty, [&](int step, double inc, const ContactStatic<M, P>& c) {
+  GapFile gaps(r.dir, r.scene, F::kFriction);
+  run_deck_contact<M, P, F>(
+      r.deck, r.scene, r.deck.options.gap_penalty,
+      [&](int step, double inc, const ContactStatic<M, P, F>& c) {
         const auto& t = c.fe().timings();
         times.assemble += t.assemble, times.factorize += t.factorize, times.solve += t.solve + t.reactions;
         times.contact = c.counters(), ++times.increments, times.penalty = c.penalty_factor();

@@ -2,6 +2,7 @@
 // combination the table does not hold a clear message; and the progress line.
 #include "cli_run.hpp"
 
+#include <cstdio>
 #include <iostream>
 #include <utility>
 
@@ -17,26 +18,56 @@ void progress_done(const RunRequest& r) {
 }
 
 void run_deck_request(const RunRequest& r, RunTimes& times) {
-  const bool plastic = !r.scene.needs.plasticity.empty();
-  const bool gaps    = !r.scene.needs.gaps.empty();
-  if (plastic && gaps && r.deck.options.contact != "saac")
-    throw InputError(
-        "gap elements and yield cards: contact = " + r.deck.options.contact +
-        " is for elastic decks; a plastic run with gaps uses the seed's policy (contact = saac)");
+  const bool plastic         = !r.scene.needs.plasticity.empty();
+  const bool gaps            = !r.scene.needs.gaps.empty();
+  const DeckOptions& o       = r.deck.options;
+  const std::string friction = o.friction_model();
+  if (friction != "none") {
+    char mu[32];
+    std::snprintf(mu, sizeof mu, "%g", o.friction);
+    const std::string head = "friction = " + std::string(mu) + ", slip = " + friction + ": ";
+    if (!gaps)
+      throw InputError(head +
+                       "the deck has no gap elements (material 2) to carry friction; remove the "
+                       "friction option or add a gap layer");
+    if (o.contact == "none")
+      throw InputError(head +
+                       "contact = none leaves every gap open; choose contact = saac, active-set or "
+                       "augmented-lagrangian");
+    if (friction != "coulomb" && o.contact != "saac")
+      throw InputError(head +
+                       "the seed's slip models run under the seed's stepping (contact = saac); with "
+                       "contact = " +
+                       o.contact + " use slip = coulomb");
+    if (friction == "coulomb" && o.contact == "saac")
+      throw InputError(head +
+                       "Coulomb friction needs an exact contact policy (contact = active-set or "
+                       "augmented-lagrangian): saac freezes the gap at closure, so the normal force of "
+                       "the friction cone never converges");
+    if (friction == "coulomb" && plastic && o.plasticity != "return-mapping")
+      throw InputError(head +
+                       "with yield cards Coulomb friction needs plasticity = return-mapping (slip and "
+                       "plastic flow converge together in its Newton iterations; tangent solves once "
+                       "per step)");
+  }
   if (plastic && r.element == "legacy")
     throw InputError(
         "element = legacy with yield cards: the legacy quad's condensed centre node is not in the "
         "plastic driver yet; use element = quad4bbar (the default for plastic decks) or quad4");
-  const VariantKey key{r.variant, r.element, plastic ? r.deck.options.plasticity : "elastic",
-                       gaps ? r.deck.options.contact : "none"};
+  const VariantKey key{r.variant, r.element, plastic ? o.plasticity : "elastic", gaps ? o.contact : "none",
+                       friction};
   CliSolver::select(r.solver == "cholmod" ? 1 : 0);
+#ifdef GAPFE_HAS_UMFPACK
+  CliLuSolver::select(r.solver == "eigen" ? 0 : 1);  // SuiteSparse in the build: UMFPACK unless told eigen
+#endif
   const bool done = [&]<std::size_t... Shard>(std::index_sequence<Shard...>) {
     return (run_shard<Shard>(key, r, times) || ...);
   }
   (std::make_index_sequence<GAPFE_CLI_SHARDS>{});
   if (!done)
     throw InputError("no compiled variant for " + key.kinematics + ", element = " + key.element + ", law " +
-                     key.law + ", contact " + key.contact + " (examples/cli_variants.hpp lists them)");
+                     key.law + ", contact " + key.contact + ", friction " + key.friction +
+                     " (examples/cli_variants.hpp lists them)");
 }
 
 }  // namespace gapfe::cli

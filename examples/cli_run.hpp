@@ -16,9 +16,13 @@
 #include "gapfe/kinematics/axisym2.hpp"
 #include "gapfe/kinematics/axisym3.hpp"
 #include "gapfe/solver/eigen_ldlt.hpp"
+#include "gapfe/solver/eigen_lu.hpp"
 #include "gapfe/solver/runtime_solver.hpp"
 #ifdef GAPFE_HAS_CHOLMOD
 #include "gapfe/solver/cholmod.hpp"
+#endif
+#ifdef GAPFE_HAS_UMFPACK
+#include "gapfe/solver/umfpack.hpp"
 #endif
 
 namespace gapfe::cli {
@@ -69,7 +73,15 @@ struct CliName<Quad4BBar> {
 #ifdef GAPFE_HAS_CHOLMOD
 using CliSolver = RuntimeSolver<EigenLdlt, CholmodLlt>;
 #else
-using CliSolver = RuntimeSolver<EigenLdlt>;
+using CliSolver   = RuntimeSolver<EigenLdlt>;
+#endif
+
+/// The solver of the Coulomb rows: the slip tangent is unsymmetric, so an LU on full storage: UMFPACK
+/// when SuiteSparse has it (solver = auto | cholmod), else Eigen's SparseLU (and solver = eigen).
+#ifdef GAPFE_HAS_UMFPACK
+using CliLuSolver = RuntimeSolver<EigenLu, UmfpackLu>;
+#else
+using CliLuSolver = RuntimeSolver<EigenLu>;
 #endif
 
 /// The log's progress line.

@@ -5,9 +5,10 @@
 
 namespace gapfe::cli {
 
-template <class Kin, class Elem, class Law, class Policy>
+template <class Kin, class Elem, class Law, class Policy, class Friction>
 void run_variant(const RunRequest& r, RunTimes& times) {
-  using M = Model<Kin, Elem, Law, CliSolver>;
+  using Solver = std::conditional_t<std::is_same_v<Friction, Coulomb>, CliLuSolver, CliSolver>;
+  using M      = Model<Kin, Elem, Law, Solver>;
   if constexpr (std::is_same_v<Policy, NoContact>) {
     if (r.scene.needs.gaps.empty()) {
       if constexpr (Law::kLinear)
@@ -18,17 +19,18 @@ void run_variant(const RunRequest& r, RunTimes& times) {
     }
   }
   if constexpr (Law::kLinear || !std::is_same_v<Policy, NoContact>)
-    run_contact<M, Policy>(r, times);
+    run_contact<M, Policy, Friction>(r, times);
   else
     throw std::logic_error("run_variant: a law with history and gaps needs a contact policy");
 }
 
-template <std::size_t Row, class Kin, class Elem, class Law, class Policy>
-bool try_row(Variant<Kin, Elem, Law, Policy>, const VariantKey& k, const RunRequest& r, RunTimes& times) {
+template <std::size_t Row, class Kin, class Elem, class Law, class Policy, class Friction>
+bool try_row(Variant<Kin, Elem, Law, Policy, Friction>, const VariantKey& k, const RunRequest& r,
+             RunTimes& times) {
   if (k.kinematics != kinematics_name<Kin>() || k.element != CliName<Elem>::value ||
-      k.law != law_name<Law>() || k.contact != Policy::kName)
+      k.law != law_name<Law>() || k.contact != Policy::kName || k.friction != Friction::kName)
     return false;
-  run_variant<Kin, Elem, Law, Policy>(r, times);
+  run_variant<Kin, Elem, Law, Policy, Friction>(r, times);
   return true;
 }
 

@@ -146,7 +146,10 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) 
     log << "  gaps: " << s.needs.gaps.front() << (s.needs.gaps.size() > 1 ? " and more" : "") << "; "
         << s.gaps.pairs.size() << " node pairs, " << s.gaps.soft.size()
         << " gap element(s) soft throughout (corners, IJDIR 0)\n"
-        << "  contact: " << d.options.contact
+        << "  contact: " << d.options.contact << "; friction: "
+        << (d.options.friction_model() == "none"
+                ? std::string("none")
+                : d.options.friction_model() + ", mu = " + detail::number_text(d.options.friction))
         << (d.options.gap_direction ? "; one gap direction for all (SAAC's LGAP = " +
                                           std::to_string(d.options.gap_direction) + ")"
                                     : "")
@@ -173,8 +176,19 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) 
   const std::string element = d.options.element != "auto" ? d.options.element
                               : plastic                   ? "quad4bbar"
                                                           : "legacy";
-  log << "solver: " << (solver == "eigen" ? EigenLdlt::kName : "CHOLMOD supernodal LLT (AMD)") << "; element "
-      << element << "\n";
+  const bool unsymmetric    = !s.needs.gaps.empty() && d.options.friction_model() == "coulomb";
+#ifdef GAPFE_HAS_UMFPACK
+  constexpr bool kHasUmfpack = true;
+#else
+  constexpr bool kHasUmfpack = false;
+#endif
+  log << "solver: "
+      << (unsymmetric
+              ? std::string(solver == "eigen" || !kHasUmfpack ? "Eigen SparseLU (COLAMD)" : "UMFPACK LU") +
+                    " (the Coulomb slip tangent is unsymmetric)"
+          : solver == "eigen" ? std::string(EigenLdlt::kName)
+                              : std::string("CHOLMOD supernodal LLT (AMD)"))
+      << "; element " << element << "\n";
   RunTimes times;
   const RunRequest request{d, s, a.out, variant, element, solver, err, progress};
   t0 = Clock::now();
@@ -194,8 +208,15 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) 
     log << "contact: " << times.increments << " increments (" << times.contact.splits << " split points), "
         << times.contact.solves << " linear solves, " << times.contact.factorizations << " factorizations, "
         << times.contact.multiplier_updates << " multiplier updates; penalty " << times.penalty
-        << " x adjacent; " << times.closed << " of " << times.pairs << " pairs closed at the end\n";
-  log << "wrote " << a.out << "/nodes.csv, elements.csv" << (s.needs.gaps.empty() ? "" : ", gaps.csv")
+        << " x adjacent; " << times.closed << " of " << times.pairs << " pairs closed at the end"
+        << (times.contact.friction_iterations > 0
+                ? "; friction: " + std::to_string(times.contact.friction_iterations) + " Newton re-solves, " +
+                      std::to_string(times.contact.friction_stalls) + " stalled below 1e-4, " +
+                      std::to_string(times.contact.cuts) + " intervals halved"
+                : std::string())
+        << "\n";
+  log << "wrote " << a.out << "/nodes.csv, elements.csv, reactions.csv"
+      << (s.needs.gaps.empty() ? "" : ", gaps.csv")
       << (plastic && s.needs.gaps.empty() ? ", plasticity.csv" : "") << ", result.pvd, deformed.svg\n";
   return ok;
 }

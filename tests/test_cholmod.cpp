@@ -39,3 +39,44 @@ TEST_CASE("[solver] CHOLMOD reports a singular system instead of returning garba
   LinearStatic<Fast> fe(std::move(p));
   CHECK_THROWS_WITH_AS(fe.solve(), doctest::Contains("singular"), SolveError);
 }
+
+#ifdef GAPFE_HAS_UMFPACK
+#include "gapfe/solver/eigen_lu.hpp"
+#include "gapfe/solver/umfpack.hpp"
+
+#include "contact_support.hpp"
+
+namespace gapfe::test {
+
+TEST_CASE("UmfpackLu: the Coulomb push-out of the press fit as EigenLu gives it, singular systems refused") {
+  const auto push_out = [&]<class Solver>(std::type_identity<Solver>) {
+    using M = Model<Axisym2, Quad4, Isotropic, Solver>;
+    const PressFit fit;
+    std::vector<GapPair> pairs;
+    auto problem = fit.problem<M>(pairs);
+    ContactOptions opt;
+    opt.gap_materials = {1};
+    opt.friction      = fit.mu;
+    ContactStatic<M, ActiveSet, Coulomb> cs(std::move(problem), pairs, opt);
+    const auto loads = [&](Problem<M>& p, double t) {
+      fit.set(p, std::min(t, 1.0), t <= 1 ? 0 : 1e-6 * (t - 1));
+    };
+    cs.advance(1.0, loads);
+    cs.advance(2.0, loads);
+    return fit.push_force(cs.fe().solution());
+  };
+  const double lu      = push_out(std::type_identity<EigenLu>{}),
+               umfpack = push_out(std::type_identity<UmfpackLu>{});
+  CHECK(rel(umfpack, lu) < 1e-9);
+  CHECK(rel(umfpack, PressFit{}.slip_force()) < 0.01);
+
+  UmfpackLu solver;
+  SpMat k(2, 2);
+  k.insert(0, 0) = 1, k.insert(0, 1) = 2, k.insert(1, 0) = 2, k.insert(1, 1) = 4;  // rank 1
+  solver.analyze(k);
+  CHECK_FALSE(solver.factorize(k));
+  CHECK(solver.failure().find("singular") != std::string::npos);
+}
+
+}  // namespace gapfe::test
+#endif

@@ -1,9 +1,11 @@
 // Decks run end to end through the `gapfe` command: the thick-tube example deck against the library
 // API and the Lame closed form, the same deck in the smallest and a richer variant, load-step ramps,
 // the constant-temperature card and the per-radian load option.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <sstream>
 #include <unistd.h>
@@ -38,7 +40,12 @@ std::vector<std::map<std::string, double>> read_csv(const fs::path& path) {
     std::string v;
     for (const auto& n : names) {
       std::getline(s, v, ',');
-      row[n] = v == "closed" ? 1.0 : v == "open" ? 0.0 : std::stod(v);  // gaps.csv status: 1 closed
+      // gaps.csv status: 0 open, 1 closed, 2 stick, 3 slip
+      row[n] = v == "closed"  ? 1.0
+               : v == "open"  ? 0.0
+               : v == "stick" ? 2.0
+               : v == "slip"  ? 3.0
+                              : std::stod(v);
     }
     rows.push_back(row);
   }
@@ -393,4 +400,69 @@ TEST_CASE("Plastic tube in a tube deck: SAAC = SAGAEP + gaps, closure and yield 
   }
   CHECK(inner_eqps > 0);
   CHECK(outer_eqps == 0);
+}
+
+TEST_CASE("Press-fit example deck: Coulomb push-out at mu p 2 pi b L, stick then slip, reactions.csv") {
+  // examples/decks/press_fit.deck (mm, N, MPa; nu = 0): hub 25.001-50 on a shaft 12.5-25, 50 long, 75 on
+  // its outer surface, pushed 40 x 1 um. Closed form: q_c = w E (c^2 - b^2) / (2 b c^2), p = (q - q_c)
+  // c^2 (b^2 - a^2) / (b^2 (c^2 - a^2)), F = mu p 2 pi b L = 67858 N.
+  const double a = 12.5, b = 25, w = 0.001, c = 50, L = 50, E = 200000, q = 75, mu = 0.15;
+  const double qc      = w * E * (c * c - b * b) / (2 * b * c * c);
+  const double F       = mu * (q - qc) * c * c * (b * b - a * a) / (b * b * (c * c - a * a)) * kTwoPi * b * L;
+  const fs::path out   = run_deck_file(kExamples / "press_fit.deck", "press_fit");
+  const auto reactions = read_csv(out / "reactions.csv");
+  const auto gaps      = read_csv(out / "gaps.csv");
+  const double last    = reactions.back().at("inc");
+  double push = 0, shaft = 0;
+  for (const auto& r : reactions) {
+    if (r.at("inc") != last) continue;
+    CHECK(r.at("R_r") == 0);  // only u_z is prescribed: free components are written as 0
+    (r.at("r") > b + w / 2 ? push : shaft) += r.at("R_z");
+  }
+  double friction = 0;
+  for (const auto& g : gaps)
+    if (g.at("inc") == last) friction += mu * g.at("f_n");
+  MESSAGE("push-out force ", -push, " N, mu sum f_n ", friction, ", closed form ", F);
+  CHECK(std::abs(-push - F) < 0.01 * F);
+  CHECK(std::abs(-push - friction) < 1e-3 * friction);
+  CHECK(std::abs(push + shaft) < 1e-6 * F);  // the shaft's support takes what the hub is pushed with
+  // Statuses: the closed pairs stick first (a slip front starts at the pushed end), all slip at the end.
+  bool stuck_once     = false;
+  int slipping_at_end = 0, rows_at_end = 0;
+  for (const auto& g : gaps) {  // status: 2 stick, 3 slip
+    stuck_once = stuck_once || g.at("status") == 2;
+    if (g.at("inc") == last) ++rows_at_end, slipping_at_end += g.at("status") == 3;
+  }
+  CHECK(stuck_once);
+  CHECK(rows_at_end > 0);
+  CHECK(slipping_at_end == rows_at_end);
+  // The seed's two models run on it too.
+  for (const char* slip : {"extended", "proportional"})
+    run_deck_file(kExamples / "press_fit.deck", std::string("press_fit_") + slip,
+                  {"--set", "contact=saac", "--set", std::string("slip=") + slip});
+}
+
+TEST_CASE("Friction input errors: one line naming the key, a non-zero exit, no result files") {
+  const auto refused = [&](const fs::path& deck, std::vector<std::string> set, const std::string& expect) {
+    const fs::path out            = scratch("refused_" + std::to_string(std::hash<std::string>{}(expect)));
+    std::vector<std::string> args = {"run", deck.string(), "--out", out.string(), "--quiet"};
+    for (const auto& s : set) args.push_back("--set"), args.push_back(s);
+    std::ostringstream o, e;
+    const int code = gapfe::cli::main(args, o, e);
+    const std::string message = e.str();
+    CAPTURE(message);
+    CHECK(code == 1);
+    CHECK(message.find(expect) != std::string::npos);
+    CHECK(std::count(message.begin(), message.end(), '\n') == 1);
+    CHECK_FALSE(fs::exists(out / "nodes.csv"));
+  };
+  const fs::path fit = kExamples / "press_fit.deck";
+  refused(fit, {"friction=-0.1"}, "friction");
+  refused(fit, {"slip=sticky"}, "slip");
+  refused(kExamples / "thick_tube.deck", {"friction=0.2"}, "no gap elements");
+  refused(fit, {"contact=saac", "slip=coulomb"}, "exact contact policy");
+  refused(fit, {"contact=augmented-lagrangian", "slip=extended"}, "contact = saac");
+  refused(fit, {"contact=none"}, "contact = none");
+  refused(kExamples / "plastic_two_tubes.deck",
+          {"friction=0.2", "contact=active-set", "slip=coulomb", "plasticity=tangent"}, "return-mapping");
 }

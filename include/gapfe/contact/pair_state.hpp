@@ -27,7 +27,8 @@ struct PairState {
 struct ContactCounters {
   int solves = 0, factorizations = 0, splits = 0, multiplier_updates = 0;
   int friction_iterations = 0;  ///< Newton iterations of the pair forces (Coulomb), over all solves
-  int friction_stalls     = 0;  ///< solves whose pair Newton stopped stalled below sqrt(tolerance)
+  int friction_stalls     = 0;  ///< solves whose pair Newton stopped stalled (below 1e-4, not 1e-10)
+  int cuts                = 0;  ///< solves that did not converge and were retried over half the interval
 };
 
 }  // namespace gapfe

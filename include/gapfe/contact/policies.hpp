@@ -48,6 +48,7 @@ struct StepperArchetype {
   void open(int pair);
   void accept(double load_factor);
   void count_split();
+  void count_cut();  ///< a solve that did not converge, retried over half the interval
   [[noreturn]] void fail(const std::string& why) const;
 };
 
@@ -135,9 +136,25 @@ void event_step(S& s, double t_end, int max_events) {
     s.solve_at(t);
     if constexpr (kMultipliers) s.settle_multipliers();
   };
-  for (int event = 0; event <= max_events; ++event) {
+  // A nonlinear response (plasticity, Coulomb slip) may not converge over the whole interval at once
+  // (a step that presses a fit shut and slides it): the target is then halved, down to 1/1024 of the
+  // step, and grows back to the step's end after every accepted piece. A linear response never fails.
+  const double step = t_end - s.load_factor();
+  double target     = t_end;
+  for (int event = 0; event <= max_events;) {
     const double t0 = s.load_factor();
-    solve(t_end);
+    if constexpr (S::linear_response()) {
+      solve(target);
+    } else {
+      try {
+        solve(target);
+      } catch (const SolveError&) {
+        if (target - t0 < step / 1024) throw;
+        target = t0 + 0.5 * (target - t0);
+        s.count_cut();
+        continue;
+      }
+    }
     double first = 2;
     std::vector<std::pair<double, int>> change;  // (fraction of the interval, pair)
     for (int p = 0; p < s.pair_count(); ++p) {
@@ -151,13 +168,16 @@ void event_step(S& s, double t_end, int max_events) {
       if (f <= 1) change.emplace_back(f, p), first = std::min(first, f);
     }
     if (change.empty()) {
-      s.accept(t_end);
-      return;
+      s.accept(target);
+      if (target >= t_end) return;
+      target = t_end;
+      continue;
     }
+    ++event;
     s.count_split();
-    double t_event = t0 + first * (t_end - t0);
+    double t_event = t0 + first * (target - t0);
     if (first > 0) {
-      // The first pair to change, its gap (closing) or force (opening) at the start and at t_end.
+      // The first pair to change, its gap (closing) or force (opening) at the start and at the target.
       const int q        = std::min_element(change.begin(), change.end())->second;
       const auto value   = [&] { return s.closed(q) ? s.trial_force(q) : s.trial_gap(q); };
       const double start = s.closed(q) ? std::max(s.force(q), 0.0) : std::max(s.gap(q), 0.0);
@@ -165,9 +185,9 @@ void event_step(S& s, double t_end, int max_events) {
       solve(t_event);
       if constexpr (!S::linear_response()) {
         // Plasticity or Coulomb slip: the interpolated point is only close. Regula falsi (Illinois)
-        // between the start and t_end until the value is zero to 1e-9 of its start value.
+        // between the start and the target until the value is zero to 1e-9 of its start value.
         const double tol = std::max(1e-9 * start, s.closed(q) ? s.force_tolerance(q) : s.gap_tolerance());
-        double lo = t0, h_lo = start, hi = t_end, h = value();
+        double lo = t0, h_lo = start, hi = target, h = value();
         for (int k = 0, side = 0; k < 30 && std::abs(h) > tol; ++k) {
           if (h > 0) {
             lo = t_event, h_lo = h;
@@ -193,6 +213,7 @@ void event_step(S& s, double t_end, int max_events) {
         else
           s.close(p, 0.0);
       }
+    target = t_end;
   }
   s.fail("the contact status did not settle after " + std::to_string(max_events) +
          " changes in the step to load factor " + std::to_string(t_end));

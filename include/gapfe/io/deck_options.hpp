@@ -20,15 +20,26 @@ struct DeckOptions {
   /// legacy for elastic and gap decks, quad4bbar for decks with yield cards (plain Quad4 locks in
   /// plastic flow, tests/test_plasticity.cpp; the legacy quad's condensed centre is not in the plastic
   /// driver yet).
-  std::string element    = "auto";
-  std::string solver     = "auto";     ///< solver = auto (fastest built) | eigen | cholmod
-  bool loads_per_radian  = false;      ///< bc_loads = total (default) | per-radian (legacy decks)
-  std::string contact    = "saac";     ///< contact = saac | active-set | augmented-lagrangian (gap issue)
-  double friction        = 0.0;        ///< friction = Coulomb coefficient mu >= 0 (gap issue)
-  std::string slip       = "coulomb";  ///< slip = coulomb | extended (gap issue)
+  std::string element   = "auto";
+  std::string solver    = "auto";  ///< solver = auto (fastest built) | eigen | cholmod
+  bool loads_per_radian = false;   ///< bc_loads = total (default) | per-radian (legacy decks)
+  std::string contact   = "saac";  ///< contact = saac | active-set | augmented-lagrangian | none
+  /// friction = mu >= 0 at closed gap pairs (0: frictionless, no friction model compiled in).
+  double friction = 0.0;
+  /// slip = auto | proportional | extended | coulomb: the friction model (contact/friction.hpp). auto:
+  /// extended (the seed's section 3.2) under contact = saac, coulomb under the exact policies.
+  /// proportional and extended run under saac only, coulomb under active-set and augmented-lagrangian.
+  std::string slip       = "auto";
   double gap_penalty     = 0.0;  ///< gap_penalty = closed-gap / adjacent stiffness (0: the policy's default)
   int gap_direction      = 0;    ///< gap_direction = 0 (IJDIR per block, SAAC2) | 1 | 2 (SAAC's one LGAP)
   std::string plasticity = "tangent";  ///< plasticity = tangent | return-mapping (plasticity issue)
+
+  /// The friction model a run uses: "none" without friction, else the slip option with auto resolved.
+  std::string friction_model() const {
+    if (!(friction > 0)) return "none";
+    if (slip != "auto") return slip;
+    return contact == "saac" ? "extended" : "coulomb";
+  }
 
   /// Set one option from its text form; throws InputError naming the key and the accepted values.
   void set(const std::string& key, const std::string& value) {
@@ -63,7 +74,7 @@ struct DeckOptions {
     } else if (key == "friction") {
       friction = number(0.0);
     } else if (key == "slip") {
-      slip = one_of({"coulomb", "extended"});
+      slip = one_of({"auto", "proportional", "extended", "coulomb"});
     } else if (key == "gap_penalty") {
       gap_penalty = number(0.0);
     } else if (key == "gap_direction") {

@@ -3,6 +3,9 @@
 //  * nodes.csv     step,inc,node,i,j,r,z,u_r,u_z,u_t
 //  * elements.csv  step,inc,element,i,j,material,r,z,s_rr,s_zz,s_tt,s_rz,s_rt,s_zt,eqps (centroids)
 //  * gaps.csv      step,inc,element,pair,status,gap,f_n,f_t per gap node pair (decks with gap elements)
+//  * reactions.csv step,inc,node,i,j,r,z,R_r,R_z,R_t at every node with a prescribed component (BC card
+//                  code != 0): the total ring reaction force, 0 in the free components; R_t is a force
+//                  along theta (its torque about the axis is R_t r)
 //  * result.pvd    one step_NNNN.vtu per completed step (step_NNNN_split_K.vtu at the points where a
 //                  contact policy split the step), for ParaView
 //  * deformed.svg  the last increment's deformed mesh (magnified), gap elements coloured open/closed
@@ -109,6 +112,10 @@ class StepFiles {
   StepFiles(std::string dir, const DeckScene& scene) : dir_(std::move(dir)), scene_(scene) {
     nodes_ = detail::open_output(dir_ + "/nodes.csv");
     nodes_ << "step,inc,node,i,j,r,z,u_r,u_z,u_t\n";
+    reactions_ = detail::open_output(dir_ + "/reactions.csv");
+    reactions_ << "step,inc,node,i,j,r,z,R_r,R_z,R_t\n";
+    prescribed_.assign(static_cast<std::size_t>(scene.grid.node_count()), 0);
+    for (const NodalCondition& c : scene.conditions) prescribed_[static_cast<std::size_t>(c.node)] |= c.code;
     elements_ = detail::open_output(dir_ + "/elements.csv");
     elements_ << "step,inc,element,i,j,material,r,z,s_rr,s_zz,s_tt,s_rz,s_rt,s_zt,eqps\n";
   }
@@ -136,6 +143,22 @@ class StepFiles {
     nodes_ << s;
     nodes_.flush();
 
+    s.clear();
+    for (int n = 0; n < g.node_count(); ++n) {
+      const int code = prescribed_[static_cast<std::size_t>(n)];
+      if (code == 0) continue;
+      s += prefix;
+      for (const int k : {n + 1, g.node_ij[n][0], g.node_ij[n][1]})
+        detail::append_number(s, static_cast<long long>(k)), s += ',';
+      detail::csv_number(s, g.nodes[n](0)), detail::csv_number(s, g.nodes[n](1));
+      for (int c = 0; c < 3; ++c) {
+        detail::append_number(s, (code >> c) & 1 ? solution.reaction(n, c) : 0.0);
+        s += c < 2 ? ',' : '\n';
+      }
+    }
+    reactions_ << s;
+    reactions_.flush();
+
     // Centroid values come cells first, then triangles: put them in element order.
     std::vector<const PointValues*> by_element(g.cells.size(), nullptr);
     for (const auto& v : values)
@@ -156,7 +179,8 @@ class StepFiles {
     }
     elements_ << s;
     elements_.flush();
-    if (!nodes_ || !elements_) throw InputError("error while writing the CSV files in " + dir_);
+    if (!nodes_ || !elements_ || !reactions_)
+      throw InputError("error while writing the CSV files in " + dir_);
 
     char name[48];
     split_ = step == last_step_ ? split_ + 1 : 0, last_step_ = step;
@@ -239,17 +263,20 @@ class StepFiles {
   const DeckScene& scene_;
   Eigen::Matrix<double, Eigen::Dynamic, 3> last_displacement_;
   std::vector<double> last_gap_state_;
-  std::ofstream nodes_, elements_;
+  std::ofstream nodes_, elements_, reactions_;
+  std::vector<int> prescribed_;  ///< per node: the OR of its BC codes (1 u_r, 2 u_z, 4 u_theta)
   std::vector<std::pair<double, std::string>> steps_;
   int last_step_ = 0, split_ = 0;
 };
 
-/// gaps.csv: one row per gap node pair per increment; status open | closed, gap [length] (negative:
-/// overlap), f_n the normal force (total ring force, compressive positive), f_t the tangential force
-/// (0: frictionless). Element numbers are the deck's, pair 1 | 2 the seed's contact states 2 | 3.
+/// gaps.csv: one row per gap node pair per increment; status open | closed, or with friction open |
+/// stick | slip; gap [length] (negative: overlap), f_n the normal force and f_t the resultant tangential
+/// (friction) force |t| (total ring forces, f_n compressive positive; f_t 0 without friction). Element
+/// numbers are the deck's, pair 1 | 2 the seed's contact states 2 | 3.
 class GapFile {
  public:
-  GapFile(const std::string& dir, const DeckScene& scene) : scene_(scene) {
+  GapFile(const std::string& dir, const DeckScene& scene, bool friction = false)
+      : scene_(scene), friction_(friction) {
     out_ = detail::open_output(dir + "/gaps.csv");
     out_ << "step,inc,element,pair,status,gap,f_n,f_t\n";
   }
@@ -269,8 +296,10 @@ class GapFile {
       detail::append_number(s, static_cast<long long>(step)), s += ',';
       detail::csv_number(s, inc);
       detail::append_number(s, static_cast<long long>(p.element + 1)), s += ',';
-      detail::append_number(s, static_cast<long long>(p.pair + 1)), s += st.closed ? ",closed," : ",open,";
-      detail::csv_number(s, st.gap), detail::csv_number(s, st.normal_force), s += "0\n";
+      detail::append_number(s, static_cast<long long>(p.pair + 1));
+      s += !st.closed ? ",open," : !friction_ ? ",closed," : st.slipping ? ",slip," : ",stick,";
+      detail::csv_number(s, st.gap), detail::csv_number(s, st.normal_force);
+      detail::append_number(s, st.tangential_force.norm()), s += '\n';
       if (state.values[e] == 0) state.values[e] = 1, size.values[e] = st.gap;
       size.values[e] = std::min(size.values[e], st.gap);
       if (st.closed) state.values[e] += p.pair == 0 ? 1 : 2;  // 1 none, 2 first, 3 second, 4 both
@@ -283,6 +312,7 @@ class GapFile {
 
  private:
   const DeckScene& scene_;
+  bool friction_;
   std::ofstream out_;
 };
 

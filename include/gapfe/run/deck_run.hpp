@@ -122,27 +122,28 @@ void run_deck_plastic(const Deck& d, const DeckScene& s, OnIncrement&& on_increm
   }
 }
 
-/// Run every load step of a deck with gap elements under contact policy P. The load factor t runs from
-/// 0 to the number of steps; within step k it moves the totals linearly from those of step k - 1 to
-/// those of step k. `on_increment(step, inc, const ContactStatic<M, P>&)` sees every accepted increment,
-/// inc = t (fractional where a step was split).
-template <class M, ContactPolicy P, class OnIncrement>
+/// Run every load step of a deck with gap elements under contact policy P and friction model F (mu from
+/// the deck's `friction` option). The load factor t runs from 0 to the number of steps; within step k it
+/// moves the totals linearly from those of step k - 1 to those of step k.
+/// `on_increment(step, inc, const ContactStatic<M, P, F>&)` sees every accepted increment, inc = t
+/// (fractional where a step was split).
+template <class M, ContactPolicy P, FrictionModel F = NoFriction, class OnIncrement>
 void run_deck_contact(const Deck& d, const DeckScene& s, double penalty_factor, OnIncrement&& on_increment) {
+  using Run = ContactStatic<M, P, F>;
   ContactOptions options;
   options.penalty_factor = penalty_factor;
+  options.friction       = F::kFriction ? d.options.friction : 0.0;
   if (s.gap_material >= 0) options.gap_materials.push_back(s.gap_material);
-  ContactStatic<M, P> fe(deck_problem<M>(d, s, 1), s.gaps.pairs, options);
+  Run fe(deck_problem<M>(d, s, 1), s.gaps.pairs, options);
   StepTotals before, after;
-  int cached                                           = -1;  // the step whose end totals are in `after`
-  const typename ContactStatic<M, P>::LoadsAt loads_at = [&](Problem<M>& p, double t) {
+  int cached                           = -1;  // the step whose end totals are in `after`
+  const typename Run::LoadsAt loads_at = [&](Problem<M>& p, double t) {
     const int step = std::clamp(static_cast<int>(std::ceil(t - 1e-12)), 1, d.steps());
     if (step != cached) before = step_totals(d, s, step - 1), after = step_totals(d, s, step), cached = step;
     set_loads(p, interpolate(before, after, t - (step - 1)), s);
   };
-  int step                                               = 1;
-  const typename ContactStatic<M, P>::OnIncrement report = [&](double t, const ContactStatic<M, P>& c) {
-    on_increment(step, t, c);
-  };
+  int step                               = 1;
+  const typename Run::OnIncrement report = [&](double t, const Run& c) { on_increment(step, t, c); };
   for (; step <= d.steps(); ++step) fe.advance(step, loads_at, report);
 }
 
