@@ -117,8 +117,8 @@ def main():
         out = tmp / f"example_{slip}_{contact}"
         seconds, log = run(args.gapfe, text, out, 1)
         if seconds is None:
-            print(f"{slip}/{contact}: gapfe failed: {log}", file=sys.stderr)
-            return 3
+            print(f"{slip}/{contact}: gapfe failed: {log.strip().splitlines()[-1][:300]}", file=sys.stderr)
+            continue
         xs, ys = zip(*curve(out))
         ax.plot([1000 * x for x in xs], [y / 1000 for y in ys], marker=".", label=f"{slip} ({contact})")
         if slip == "coulomb" and contact == "augmented-lagrangian":
@@ -126,7 +126,7 @@ def main():
     ax.axhline(F / 1000, color="k", ls="--", lw=1, label=f"mu p 2 pi b L = {F / 1000:.1f} kN (nu = 0 closed form)")
     ax.set_xlabel("push of the hub's top face [um]")
     ax.set_ylabel("push-out force [kN]")
-    ax.set_ylim(0, 2.5 * F / 1000)
+    ax.set_ylim(0, 3.0 * F / 1000)
     ax.set_title("examples/decks/press_fit.deck: stick, slip, and the plateau at mu N")
     ax.legend(fontsize=8)
     fig.tight_layout()
