@@ -263,8 +263,8 @@ TEST_CASE_TEMPLATE("friction: pressed and pushed in the same step, then pushed o
   // examples/decks/press_fit.deck: the pressure and the first push increment ramp together, so pairs
   // close one by one while the fit already slides. Newton must get through the closures (damped when
   // stick/slip switching makes it cycle, the interval halved when it does not converge) and reach the
-  // plateau mu sum P. (The deck itself, legacy quads in mm, still stalls under the augmented Lagrangian:
-  // issue 12's note.)
+  // plateau mu sum P. Under the augmented Lagrangian this passes only here: the same path stalls with
+  // Quad4BBar or LegacyQuad, or a gap material 1000x stiffer (so does the deck itself; issue 12's note).
   PressFit fit;
   fit.drive = PressFit::Drive::ends;
   std::vector<GapPair> pairs;
