@@ -448,7 +448,7 @@ TEST_CASE("Friction input errors: one line naming the key, a non-zero exit, no r
     std::vector<std::string> args = {"run", deck.string(), "--out", out.string(), "--quiet"};
     for (const auto& s : set) args.push_back("--set"), args.push_back(s);
     std::ostringstream o, e;
-    const int code = gapfe::cli::main(args, o, e);
+    const int code            = gapfe::cli::main(args, o, e);
     const std::string message = e.str();
     CAPTURE(message);
     CHECK(code == 1);
