@@ -96,12 +96,12 @@ struct Proportional {
 struct Extended {
   static constexpr std::string_view kName = "extended";
   static constexpr bool kFriction = true, kIterative = false, kStressCheck = true;
+  /// Proportional's linear spring with S = k_t in stick and 0 in slip (the seed's Eq. 14-15).
   static TangentialResponse respond(const TangentialInput& in) {
-    TangentialResponse out;
-    const double s = in.slipping ? 0.0 : in.spring;
-    out.force      = in.base_force - s * in.slide_increment;
-    out.stiffness  = s * Mat<2, 2>::Identity();
-    out.slipping   = in.slipping;
+    TangentialInput spring = in;
+    spring.spring          = in.slipping ? 0.0 : in.spring;
+    TangentialResponse out = Proportional::respond(spring);
+    out.slipping           = in.slipping;
     return out;
   }
   template <class P>

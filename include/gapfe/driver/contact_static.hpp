@@ -75,6 +75,10 @@ class ContactStatic {
   using LoadsAt     = std::function<void(Problem<M>&, double)>;
   using OnIncrement = std::function<void(double, const ContactStatic&)>;
 
+  // Not copyable: Coulomb over NonlinearStatic hands the driver a callback into this object.
+  ContactStatic(const ContactStatic&)            = delete;
+  ContactStatic& operator=(const ContactStatic&) = delete;
+
   ContactStatic(Problem<M> problem, std::vector<GapPair> pairs, ContactOptions options = {})
       : pairs_(std::move(pairs)),
         opt_(std::move(options)),
