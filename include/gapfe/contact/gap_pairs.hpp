@@ -33,8 +33,10 @@ struct GapPair {
   Vec2 normal        = Vec2::Zero();  ///< N = (sin beta, cos beta), closure direction from A to B
   double initial_gap = 0;             ///< g0 = N . (x_b - x_a) [length], >= 0
 
-  /// Gap under the nodal displacements u_a, u_b (r, z components) [length].
-  double gap(const Vec2& u_a, const Vec2& u_b) const { return initial_gap + normal.dot(u_b - u_a); }
+  /// Gap under the relative displacement u_b - u_a (r, z components) [length].
+  double gap(const Vec2& relative) const { return initial_gap + normal.dot(relative); }
+  /// T = (-cos beta, sin beta) in (r, z): along the gap, the in-plane direction friction acts in.
+  Vec2 tangent() const { return {-normal(1), normal(0)}; }
   /// The gap angle beta of Eq. 3 [rad].
   double beta() const { return std::atan2(normal(0), normal(1)); }
 };

@@ -421,14 +421,14 @@ class ContactStatic {
       PairResponse& r  = response_[p];
       const Vec3 n(g.normal(0), g.normal(1), 0.0);
       r.relative     = relative(p);
-      s.gap          = g.initial_gap + n.dot(r.relative);
+      s.gap          = g.gap(r.relative.template head<2>());
       s.normal_force = s.closed ? s.multiplier - stiffness_[p] * (s.gap - s.reference_gap) : 0.0;
       r.tangential   = Vec3::Zero();
       r.coupling     = Mat33::Zero();
       r.stiffness    = s.closed ? Mat33(stiffness_[p] * n * n.transpose()) : Mat33::Zero();
       if constexpr (Friction::kFriction) {
         Mat<3, 2> e;  // E = [T, S]: along the gap and theta
-        e << -n(1), 0, n(0), 0, 0, 1;
+        e << g.tangent()(0), 0, g.tangent()(1), 0, 0, 1;
         s.slide = e.transpose() * r.relative;
         if (!s.closed) continue;
         TangentialResponse t = Friction::respond({s.slide - history_.committed(p).slide, s.tangential_base,
@@ -498,7 +498,9 @@ class ContactStatic {
       for (const int c : around_[p])
         sigma += voigt::stress_tensor(values[static_cast<std::size_t>(c)].stress);
       sigma /= static_cast<double>(around_[p].size());
-      const Vec3 n(pairs_[p].normal(0), pairs_[p].normal(1), 0.0), t(-n(1), n(0), 0.0), theta(0, 0, 1);
+      const Vec2 tangent = pairs_[p].tangent();
+      const Vec3 n(pairs_[p].normal(0), pairs_[p].normal(1), 0.0), t(tangent(0), tangent(1), 0.0),
+          theta(0, 0, 1);
       const double normal = n.dot(sigma * n);
       const double shear  = std::hypot(t.dot(sigma * n), theta.dot(sigma * n));
       const bool stick    = normal < 0 && shear < opt_.friction * -normal;
