@@ -219,7 +219,7 @@ def projectile_deck(steps=10, g_load=20000.0):
 
 
 def press_fit_deck(ns=6, nh=8, nz=10, a=12.5, b=25.0, w=0.001, c=50.0, length=50.0, q=75.0, push=0.001,
-                   steps=40, mu=0.15, contact="active-set", slip="coulomb", nu=0.0):
+                   steps=40, mu=0.15, contact="active-set", slip="coulomb", nu=0.0, events=None):
     """A hub clamped on a hollow shaft and pushed along it (issue 12's example; units mm, N, MPa).
 
     Shaft a..b (ns cells), a column of gap elements b..b + w (material 2, IJDIR = 1), hub b + w..c (nh
@@ -227,12 +227,15 @@ def press_fit_deck(ns=6, nh=8, nz=10, a=12.5, b=25.0, w=0.001, c=50.0, length=50
     (INCF = 1: its own pressure cards; the later steps' cards are zero); every step moves the hub's top
     face down by `push` (BC increments) while the shaft's bottom face is held. E = 200000 and nu = 0: with
     Poisson's ratio the hub's axial growth under the pressure, held at its pushed face, would already slide
-    the whole fit in step 1 (nu = 0.3: 11 um), and the closed form is exact.
+    the whole fit in step 1 (nu = 0.3: 11 um), and the closed form is exact. `events` (locate or step-end)
+    adds that option line.
     Closed form (plane stress Lame, one material): contact pressure p = (q - q_c) c^2 (b^2 - a^2) /
     (b^2 (c^2 - a^2)), q_c = w E (c^2 - b^2) / (2 b c^2) closing the gap; slip force mu p 2 pi b L."""
     ni, nj = ns + nh + 2, nz + 1
     node = lambda I, J: (J - 1) * ni + I
-    lines = [f"$ contact = {contact}", f"$ friction = {mu:g}", f"$ slip = {slip}",
+    lines = [f"$ contact = {contact}", f"$ friction = {mu:g}", f"$ slip = {slip}"]
+    lines += [f"$ events = {events}"] if events else []
+    lines += [
              f"HUB {b + w:g}-{c:g} PRESSED ON SHAFT {a:g}-{b:g} BY {q:g} ON ITS OD, PUSHED DOWN {push:g} PER STEP",
              control(nummat=2, numpc=nz, nlinc=steps, incf=1), mesh_control(ni, nj, 8, 2, 3),
              segment([(1, 1, a, 0.0), (ns + 1, 1, b, 0.0)], 1), segment([(ns + 2, 1, b + w, 0.0), (ni, 1, c, 0.0)], 1),

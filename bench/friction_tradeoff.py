@@ -34,8 +34,12 @@ import deckgen  # noqa: E402
 
 A, B, W, C, L, E, Q, MU = 12.5, 25.0, 0.001, 50.0, 50.0, 200000.0, 75.0, 0.15
 PUSH = 0.04
-MODELS = [("proportional", "saac"), ("extended", "saac"), ("coulomb", "active-set"),
-          ("coulomb", "augmented-lagrangian")]
+MODELS = [("proportional", "saac", None), ("extended", "saac", None), ("coulomb", "active-set", None),
+          ("coulomb", "active-set", "step-end"), ("coulomb", "augmented-lagrangian", None)]
+
+
+def label(slip, contact, events):
+    return f"{slip} ({contact}{', ' + events if events else ''})"
 
 
 def closed_form():
@@ -112,15 +116,16 @@ def main():
     tmp = pathlib.Path(tempfile.mkdtemp(prefix="friction_"))
     # The example's picture: the 40-step deck as shipped (nu = 0.3), every model.
     fig, ax = plt.subplots(figsize=(7, 4.5))
-    for slip, contact in MODELS:
-        text = deckgen.press_fit_deck(slip=slip, contact=contact)
-        out = tmp / f"example_{slip}_{contact}"
+    for slip, contact, events in MODELS:
+        text = deckgen.press_fit_deck(slip=slip, contact=contact, events=events)
+        out = tmp / f"example_{slip}_{contact}_{events}"
         seconds, log = run(args.gapfe, text, out, 1)
         if seconds is None:
-            print(f"{slip}/{contact}: gapfe failed: {log.strip().splitlines()[-1][:300]}", file=sys.stderr)
+            print(f"{label(slip, contact, events)}: gapfe failed: {log.strip().splitlines()[-1][:300]}",
+                  file=sys.stderr)
             continue
         xs, ys = zip(*curve(out))
-        ax.plot([1000 * x for x in xs], [y / 1000 for y in ys], marker=".", label=f"{slip} ({contact})")
+        ax.plot([1000 * x for x in xs], [y / 1000 for y in ys], marker=".", label=label(slip, contact, events))
         if slip == "coulomb" and contact == "augmented-lagrangian":
             ax.axhline(friction_sum(out) / 1000, color="k", ls=":", lw=1, label="mu sum f_n (coulomb, a-l)")
     ax.axhline(F / 1000, color="k", ls="--", lw=1, label=f"mu p 2 pi b L = {F / 1000:.1f} kN (nu = 0 closed form)")
@@ -136,33 +141,37 @@ def main():
         return 0
 
     rows = []
-    for slip, contact in MODELS:
+    for slip, contact, events in MODELS:
         for n in [int(s) for s in args.steps.split(",")]:
-            text = deckgen.press_fit_deck(slip=slip, contact=contact, steps=n, push=PUSH / n, nu=args.nu)
-            out = tmp / f"{slip}_{contact}_{n}"
+            text = deckgen.press_fit_deck(slip=slip, contact=contact, steps=n, push=PUSH / n, nu=args.nu,
+                                          events=events)
+            out = tmp / f"{slip}_{contact}_{events}_{n}"
             seconds, log = run(args.gapfe, text, out, args.repeat)
             if seconds is None:
-                rows.append(dict(model=slip, contact=contact, steps=n, force=float("nan"), error=float("nan"),
+                rows.append(dict(model=slip, contact=contact, events=events or "locate", steps=n,
+                                 force=float("nan"), error=float("nan"),
                                  self_error=float("nan"), solves=-1, seconds=float("nan")))
-                print(f"{slip:12s} {contact:22s} {n:4d}  failed: {log.strip().splitlines()[-1]}")
+                print(f"{label(slip, contact, events):40s} {n:4d}  failed: {log.strip().splitlines()[-1]}")
                 continue
             force = curve(out)[-1][1]
-            rows.append(dict(model=slip, contact=contact, steps=n, force=force, error=(force - F) / F,
+            rows.append(dict(model=slip, contact=contact, events=events or "locate", steps=n, force=force,
+                             error=(force - F) / F,
                              self_error=(force - friction_sum(out)) / friction_sum(out), solves=solves(log),
                              seconds=seconds))
             r = rows[-1]
-            print(f"{slip:12s} {contact:22s} {n:4d}  F {force:10.1f}  err {100 * r['error']:8.3f} %  "
+            print(f"{label(slip, contact, events):40s} {n:4d}  F {force:10.1f}  err {100 * r['error']:8.3f} %  "
                   f"vs mu sum P {100 * r['self_error']:8.3f} %  solves {r['solves']:5d}  {seconds:.3f} s")
     with open(here / "friction_tradeoff.csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)
     fig, ax = plt.subplots(figsize=(7, 4.5))
-    for slip, contact in MODELS:
+    for slip, contact, events in MODELS:
         pts = [(r["seconds"], abs(r["error"])) for r in rows
-               if r["model"] == slip and r["contact"] == contact and r["seconds"] == r["seconds"]]
+               if r["model"] == slip and r["contact"] == contact and r["events"] == (events or "locate")
+               and r["seconds"] == r["seconds"]]
         if pts:
-            ax.loglog(*zip(*pts), marker="o", label=f"{slip} ({contact})")
+            ax.loglog(*zip(*pts), marker="o", label=label(slip, contact, events))
     ax.set_xlabel("gapfe run wall time [s] (5 to 200 steps)")
     ax.set_ylabel("|push-out force error| vs mu p 2 pi b L")
     ax.set_title(f"press fit, nu = {args.nu:g}: friction models, error against cost")

@@ -70,8 +70,9 @@ void run_contact(const RunRequest& r, RunTimes& times) {
   run_deck_contact<M, P, F>(
       r.deck, r.scene, r.deck.options.gap_penalty,
       [&](int step, double inc, const ContactStatic<M, P, F>& c) {
-        const auto& t = c.fe().timings();
-        times.assemble += t.assemble, times.factorize += t.factorize, times.solve += t.solve + t.reactions;
+        // Every solve of the increment (Newton, Uzawa, split points), not only its last.
+        const auto& t  = c.fe().total_timings();
+        times.assemble = t.assemble, times.factorize = t.factorize, times.solve = t.solve + t.reactions;
         times.contact = c.counters(), ++times.increments, times.penalty = c.penalty_factor();
         times.pairs = static_cast<int>(c.pairs().size()), times.closed = 0;
         for (const auto& st : c.states()) times.closed += st.closed;

@@ -50,6 +50,10 @@ void run_deck_request(const RunRequest& r, RunTimes& times) {
                        "plastic flow converge together in its Newton iterations; tangent solves once "
                        "per step)");
   }
+  if (o.events == "step-end" && o.contact != "active-set" && o.contact != "augmented-lagrangian")
+    throw InputError("events = step-end: contact = " + o.contact +
+                     " does not locate status changes to begin with; it applies to contact = active-set "
+                     "and augmented-lagrangian");
   if (plastic && r.element == "legacy")
     throw InputError(
         "element = legacy with yield cards: the legacy quad's condensed centre node is not in the "

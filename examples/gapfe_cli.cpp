@@ -205,14 +205,18 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) 
         << ", largest drift off the yield surface " << times.drift << "; " << times.plastic_points
         << " plastic points at the end\n";
   if (!s.needs.gaps.empty())
-    log << "contact: " << times.increments << " increments (" << times.contact.splits << " split points), "
-        << times.contact.solves << " linear solves, " << times.contact.factorizations << " factorizations, "
-        << times.contact.multiplier_updates << " multiplier updates; penalty " << times.penalty
-        << " x adjacent; " << times.closed << " of " << times.pairs << " pairs closed at the end"
+    log << "contact: " << times.increments << " increments ("
+        << (d.options.events == "step-end" ? "statuses settled at step ends: " +
+                                                 std::to_string(times.contact.status_rounds) + " re-solves"
+                                           : std::to_string(times.contact.splits) + " split points")
+        << (times.contact.cuts > 0 ? ", " + std::to_string(times.contact.cuts) + " intervals halved" : "")
+        << "), " << times.contact.solves << " linear solves, " << times.contact.factorizations
+        << " factorizations, " << times.contact.multiplier_updates << " multiplier updates; penalty "
+        << times.penalty << " x adjacent; " << times.closed << " of " << times.pairs
+        << " pairs closed at the end"
         << (times.contact.friction_iterations > 0
                 ? "; friction: " + std::to_string(times.contact.friction_iterations) + " Newton re-solves, " +
-                      std::to_string(times.contact.friction_stalls) + " stalled below 1e-4, " +
-                      std::to_string(times.contact.cuts) + " intervals halved"
+                      std::to_string(times.contact.friction_stalls) + " stalled below 1e-4"
                 : std::string())
         << "\n";
   log << "wrote " << a.out << "/nodes.csv, elements.csv, reactions.csv"

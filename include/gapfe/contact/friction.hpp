@@ -6,7 +6,9 @@
 // (r, z, theta), T = (-cos beta, sin beta, 0) along the gap and S = e_theta. Its force on node b in the
 // tangent plane is t [force, total ring], on node a -t:
 //
-//     t_trial = t_base - k_t (s - s_n),     s_n the slide at the accepted state,
+//     t_trial = t_base - k_t (s - s_n),     s_n the slide the increment starts from (PairState::
+//                                           slide_start: the accepted slide, or where a pair closing
+//                                           inside a step settled at its end closed),
 //
 // with t_base the accepted tangential force (augmented-Lagrangian runs replace it by the tangential
 // multiplier, which Uzawa updates drive to exact stick). The models differ in k_t and in the limit:
@@ -44,7 +46,7 @@ struct TangentialResponse {
   double excess           = 0;  ///< |t_trial| - mu P while slipping [force], 0 in stick
 };
 
-/// What a model needs of a closed pair: the trial slide measured from the accepted one, the normal force
+/// What a model needs of a closed pair: the trial slide measured from s_n, the normal force
 /// at the iterate, the base force, the spring and mu.
 struct TangentialInput {
   Vec2 slide_increment = Vec2::Zero();  ///< s - s_n [length]
@@ -52,7 +54,7 @@ struct TangentialInput {
   double normal_force  = 0;             ///< P [force], compressive positive
   double spring        = 0;             ///< k_t [force/length]
   double mu            = 0;             ///< [-]
-  bool slipping        = false;         ///< the status fixed for this step (Extended)
+  bool slipping        = false;         ///< Extended: the status fixed for this step; Coulomb: the last one
 };
 
 template <class F>
@@ -121,7 +123,11 @@ struct Coulomb {
     const Vec2 trial   = in.base_force - in.spring * in.slide_increment;
     const double limit = in.mu * std::max(in.normal_force, 0.0);
     const double size  = trial.norm();
-    if (size <= limit) {  // stick (a pair without normal force carries nothing: limit 0, trial 0)
+    // Stick inside the cone (a pair without normal force carries nothing: limit 0, trial 0). On its
+    // boundary, to 1e-12, the pair keeps the status it had: a step starts from the accepted force, on
+    // the cone when the pair slipped, and its first linearization is then the slip tangent (one solve
+    // per step while a fit slides on) instead of the stick spring.
+    if (size < limit * (1 - 1e-12) || (size <= limit && !in.slipping)) {
       out.force     = trial;
       out.stiffness = in.spring * Mat<2, 2>::Identity();
       return out;
@@ -129,7 +135,7 @@ struct Coulomb {
     // Slip: back to the cone along the trial direction nu. dt/ds = (mu P / |t_trial|) (I - nu nu^T)
     // (-k_t), dt/dP = mu nu (THEORY.md 6). With P <= 0 the pair carries nothing and stiffens nothing.
     out.slipping = true;
-    out.excess   = size - limit;
+    out.excess   = std::max(size - limit, 0.0);
     if (limit <= 0) return out;
     const Vec2 nu          = trial / size;
     out.force              = limit * nu;

@@ -16,7 +16,11 @@ struct PairState {
   double reference_gap = 0;   ///< g_ref: the penalty acts on g - g_ref [length]
   double closed_at     = -1;  ///< load factor at which it last closed (-1: never)
   // Friction (contact/friction.hpp); zero without it.
-  Vec2 slide            = Vec2::Zero();  ///< s = (T, S) components of u_b - u_a [length]
+  Vec2 slide = Vec2::Zero();  ///< s = (T, S) components of u_b - u_a [length]
+  /// s_n: the slide the tangential spring of this increment starts from: the accepted slide, or, for a
+  /// pair that closes inside a step whose statuses settle at its end, the slide at its interpolated
+  /// closure point [length]
+  Vec2 slide_start      = Vec2::Zero();
   Vec2 tangential_force = Vec2::Zero();  ///< t on node b [force]
   Vec2 tangential_base  = Vec2::Zero();  ///< t_base: accepted force, or the tangential multiplier [force]
   bool slipping         = false;         ///< the step's status (Coulomb: the return mapping's answer)
@@ -29,6 +33,7 @@ struct ContactCounters {
   int friction_iterations = 0;  ///< Newton iterations of the pair forces (Coulomb), over all solves
   int friction_stalls     = 0;  ///< solves whose pair Newton stopped stalled (below 1e-4, not 1e-10)
   int cuts                = 0;  ///< solves that did not converge and were retried over half the interval
+  int status_rounds       = 0;  ///< events = step-end: re-solves at a step's end after statuses flipped
 };
 
 }  // namespace gapfe

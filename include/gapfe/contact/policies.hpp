@@ -10,6 +10,12 @@
 //   ActiveSet            re-solve until no open pair overlaps and no closed pair pulls, splitting the
 //                        step at every status change, so closure loads are exact to round-off; the
 //                        closed pairs are penalty springs (constraint error ~ 1 / penalty factor).
+//                        With events = step-end (ContactOptions::locate_events false) the step is not
+//                        split: the statuses settle at its end by active-set rounds (every overlapping
+//                        pair closed, every pulling one opened, re-solved), as CalculiX and most codes do.
+//                        The end state of an elastic frictionless step is the same; a path-dependent one
+//                        (friction, plasticity) sees each closure at the step's end instead of where it
+//                        happened, an O(step) error that the friction benchmarks measure.
 //   AugmentedLagrangian  ActiveSet with Uzawa multiplier updates at every solve, to a penetration
 //                        tolerance, with the moderate penalty 100 (capped at 1e6): exact without
 //                        ill-conditioning.
@@ -42,13 +48,17 @@ struct StepperArchetype {
   double gap_tolerance() const;        ///< below -this an open pair overlaps [length]
   double force_tolerance(int pair) const;
   static constexpr bool linear_response() { return true; }  ///< linear in the load between status changes
+  bool locate_events() const;  ///< true: split at every status change; false: settle at the step's end
   void solve_at(double load_factor);
   void settle_multipliers();
   void close(int pair, double reference_gap);
   void open(int pair);
   void accept(double load_factor);
+  void flip(int pair);  ///< change a pair's status in the trial only (settling at the end; restart undoes it)
+  void restart();       ///< back to the accepted statuses and state
   void count_split();
-  void count_cut();  ///< a solve that did not converge, retried over half the interval
+  void count_round();  ///< a re-solve after flips (settling at the end)
+  void count_cut();    ///< a solve that did not converge, retried over half the interval
   [[noreturn]] void fail(const std::string& why) const;
 };
 
@@ -127,11 +137,60 @@ struct Saac {
 
 namespace detail {
 
+/// The pairs whose status the last solve contradicts: open ones that overlap, closed ones that pull.
+template <class S>
+bool contradicted(const S& s, int p) {
+  return s.closed(p) ? s.trial_force(p) < -s.force_tolerance(p) : s.trial_gap(p) < -s.gap_tolerance();
+}
+
+/// events = step-end: solve to the target, flip every contradicted pair (in the trial only) and re-solve
+/// at the same target until none is left, then accept. Rounds that do not settle within `max_rounds`,
+/// or a solve that fails, restart from the accepted state over half the interval (down to 1/1024 of
+/// the step), growing back to the step's end after every accepted piece.
+template <bool kMultipliers, class S>
+void settle_at_end(S& s, double t_end, int max_rounds) {
+  const double step = t_end - s.load_factor();
+  double target     = t_end;
+  for (;;) {
+    const double t0 = s.load_factor();
+    bool settled    = false;
+    try {
+      for (int round = 0; round <= max_rounds && !settled; ++round) {
+        if (round > 0) s.count_round();
+        s.solve_at(target);
+        if constexpr (kMultipliers) s.settle_multipliers();
+        std::vector<int> flips;
+        for (int p = 0; p < s.pair_count(); ++p)
+          if (contradicted(s, p)) flips.push_back(p);
+        for (const int p : flips) s.flip(p);
+        settled = flips.empty();
+      }
+    } catch (const SolveError&) {
+      if (target - t0 < step / 1024) throw;
+    }
+    if (settled) {
+      s.accept(target);
+      if (target >= t_end) return;
+      target = t_end;
+      continue;
+    }
+    s.restart();
+    if (target - t0 < step / 1024)
+      s.fail("the contact status did not settle in " + std::to_string(max_rounds) +
+             " rounds at the end of 1/1024 of the step to load factor " + std::to_string(t_end));
+    target = t0 + 0.5 * (target - t0);
+    s.count_cut();
+  }
+}
+
 /// ActiveSet and AugmentedLagrangian: event-driven. Solve to the step's end with the current statuses;
 /// if a pair would change status, interpolate (the response is linear while statuses hold) to the first
-/// change, accept that point, flip every pair changing there, and continue from it.
+/// change, accept that point, flip every pair changing there, and continue from it. With events =
+/// step-end, settle_at_end instead.
 template <bool kMultipliers, class S>
 void event_step(S& s, double t_end, int max_events) {
+  // Settling rounds close or open every contradicted pair at once, so a few suffice unless they cycle.
+  if (!s.locate_events()) return settle_at_end<kMultipliers>(s, t_end, std::min(max_events, 25));
   const auto solve = [&](double t) {
     s.solve_at(t);
     if constexpr (kMultipliers) s.settle_multipliers();

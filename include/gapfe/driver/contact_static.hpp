@@ -57,6 +57,11 @@ struct ContactOptions {
   /// Coulomb: leave the slip's unsymmetric coupling out of the pair tangents even when the solver reads
   /// every entry (always so for a symmetric solver). Newton then converges linearly; the tests measure it.
   bool symmetric_tangent = false;
+  /// Exact policies: split the step at every status change, so closure loads are exact (true, the
+  /// default), or let the statuses settle at the step's end by active-set rounds, without splitting
+  /// (false; deck key `events = step-end`): far fewer solves on a path with many closures, at an O(step)
+  /// error of a path-dependent response (friction, plasticity) that the friction benchmarks measure.
+  bool locate_events = true;
 };
 
 template <class M, ContactPolicy Policy, FrictionModel Friction = NoFriction>
@@ -156,7 +161,7 @@ class ContactStatic {
   /// Advance to load factor t_end under the policy; `on_increment(t, *this)` sees every accepted
   /// increment (a split step gives more than one).
   void advance(double t_end, const LoadsAt& loads_at, const OnIncrement& on_increment = {}) {
-    loads_at_ = &loads_at, on_increment_ = &on_increment;
+    loads_at_ = &loads_at, on_increment_ = &on_increment, step_end_ = t_end;
     Policy::step(*this, t_end);
     loads_at_ = nullptr, on_increment_ = nullptr;
   }
@@ -199,13 +204,28 @@ class ContactStatic {
   /// Between two status changes the response is linear in the load factor (elastic, no Coulomb slip):
   /// the policies then find an event by one interpolation, otherwise by a few more solves.
   static constexpr bool linear_response() { return M::Material::kLinear && !Friction::kIterative; }
+  bool locate_events() const { return opt_.locate_events; }
 
   void solve_at(double t) {
+    t_trial_ = t;
     (*loads_at_)(fe_.problem(), t);
     if constexpr (!M::Material::kLinear) fe_.context() = {t, t - t_};  // time = load factor
     // Coulomb: Newton starts from the accepted state, whatever a failed or rejected solve left.
-    if constexpr (Friction::kIterative)
-      evaluate_pairs_at([&](std::size_t p) { return accepted_relative_[p]; });
+    // A status flipped or restored since the last evaluation (settling at the step's end) re-evaluates
+    // the pairs' links at the last displacement.
+    // Coulomb's Newton starts from the accepted state; after flips at the same target (settling at the
+    // step's end) from the last solve instead, where the pairs just closed overlap and have slid: their
+    // normal force and slip direction are already about right there (from the accepted state they are
+    // open, and Newton cycles between stuck and slipping linearizations on the press-fit path).
+    if constexpr (Friction::kIterative) {
+      if (warm_start_)
+        evaluate_pairs();
+      else
+        evaluate_pairs_at([&](std::size_t p) { return accepted_relative_[p]; });
+    } else if (status_changed_) {
+      evaluate_pairs();
+    }
+    warm_start_ = false;
     try {
       equilibrium(true);
     } catch (const SolveError& e) {
@@ -230,8 +250,7 @@ class ContactStatic {
         const PairState& s = history_.trial(p);
         if (!s.closed) continue;
         worst = std::max(worst, std::abs(s.gap));
-        if (Friction::kFriction && !s.slipping)
-          worst = std::max(worst, (s.slide - history_.committed(p).slide).norm());
+        if (Friction::kFriction && !s.slipping) worst = std::max(worst, (s.slide - s.slide_start).norm());
       }
       if (worst <= opt_.penetration_tolerance * scale) return;
       if (it == opt_.max_multiplier_updates)
@@ -266,14 +285,36 @@ class ContactStatic {
     status_changed_ = true;
     evaluate_pairs();
   }
+  /// Settling at the step's end: pair p changes status in the trial only. A pair that closes does so
+  /// at the interpolated point of its gap, f = g_start / (g_start - g_end) of the interval (exact for a
+  /// linear response): that is its closure load, and its tangential spring starts from its slide there,
+  /// so the slide before closure does not load it.
+  void flip(int p) {
+    PairState& s             = history_.trial(p);
+    const PairState& start   = history_.committed(p);
+    const bool was_closed    = s.closed;
+    const double f           = start.closed ? 0.0 : std::clamp(detail::closure_fraction(*this, p), 0.0, 1.0);
+    const Vec2 slide_closure = start.slide + f * (s.slide - start.slide);
+    s.closed = !was_closed, s.multiplier = 0, s.reference_gap = 0;
+    clear_friction(s);
+    if (!was_closed) s.closed_at = t_ + f * (t_trial_ - t_), s.slide_start = slide_closure;
+    status_changed_ = warm_start_ = true;
+  }
+  /// Back to the accepted statuses and pair states (a settling that did not settle).
+  void restart() {
+    history_.reject();
+    status_changed_ = true, warm_start_ = false;
+  }
   void accept(double t) {
     if constexpr (!M::Material::kLinear) fe_.commit();
-    t_ = t;
+    t_       = t;
+    slip_on_ = t >= step_end_;
     if constexpr (Friction::kFriction)
       for (std::size_t p = 0; p < pairs_.size(); ++p) {
         PairState& s = history_.trial(p);
-        if (s.closed && s.slipping) s.slip += (s.slide - history_.committed(p).slide).norm();
+        if (s.closed && s.slipping) s.slip += (s.slide - s.slide_start).norm();
         rebase(s);
+        s.slide_start = s.slide;
       }
     history_.commit();
     if constexpr (Friction::kIterative)
@@ -285,6 +326,7 @@ class ContactStatic {
   }
   void count_split() { ++count_.splits; }
   void count_cut() { ++count_.cuts; }
+  void count_round() { ++count_.status_rounds; }
   [[noreturn]] void fail(const std::string& why) const {
     throw SolveError("contact (" + std::string(Policy::kName) + "): " + why);
   }
@@ -325,10 +367,13 @@ class ContactStatic {
   /// solve with the links linearized at the last iterate is a full Newton step.
   void equilibrium(bool assemble) {
     set_links();
+    // The factorization is reused while no pair changed status and, for Coulomb, no link stiffness
+    // changed: a fit slipping on in 2D keeps its slip tangent from one push step to the next.
+    const bool same_links = Friction::kIterative ? !links_changed() : true;
     if (assemble)
-      fe_.solve(!status_changed_ && !Friction::kIterative);
+      fe_.solve(!status_changed_ && same_links);
     else
-      fe_.resolve_links(!Friction::kIterative);
+      fe_.resolve_links(same_links);
     status_changed_ = false;
     ++count_.solves;
     evaluate_pairs();
@@ -375,7 +420,7 @@ class ContactStatic {
         }
         keep_point();
         set_links();
-        fe_.resolve_links(false);
+        fe_.resolve_links(!links_changed());
         ++count_.solves, ++count_.friction_iterations;
         evaluate_pairs();
       }
@@ -383,6 +428,19 @@ class ContactStatic {
       friction_residuals_ = fe_.report().residuals;
       count_.friction_iterations += fe_.report().iterations;
     }
+  }
+  /// Whether the link stiffnesses now set differ from those of the last call (their kNd x kNd blocks,
+  /// what the assembler reads); the solve that follows refactorizes when they do.
+  bool links_changed() {
+    const auto& links = fe_.link_values();
+    bool changed      = factorized_links_.size() != links.size();
+    factorized_links_.resize(links.size());
+    for (std::size_t p = 0; p < links.size(); ++p) {
+      const Mat<kNd, kNd> k = links[p].stiffness.template topLeftCorner<kNd, kNd>();
+      if (changed || (k.array() != factorized_links_[p].array()).any())
+        changed = true, factorized_links_[p] = k;
+    }
+    return changed;
   }
   /// |f_b(d) - (force - K d)| over the closed pairs: how far the linearized links the last solve
   /// balanced are from the pair forces at its displacement (at every DOF: at a prescribed one the
@@ -431,12 +489,16 @@ class ContactStatic {
         e << g.tangent()(0), 0, g.tangent()(1), 0, 0, 1;
         s.slide = e.transpose() * r.relative;
         if (!s.closed) continue;
-        TangentialResponse t = Friction::respond({s.slide - history_.committed(p).slide, s.tangential_base,
-                                                  s.normal_force, tangential_[p], opt_.friction, s.slipping});
+        TangentialResponse t =
+            Friction::respond({s.slide - s.slide_start, s.tangential_base, s.normal_force, tangential_[p],
+                               opt_.friction, s.slipping && (!Friction::kIterative || slip_on_)});
         // A slipping pair whose slip reverses from one iterate to the next is stuck: neither direction
         // is consistent, and the slip tangent (no stiffness along the slip) cannot land within the
         // cone's width mu P / k_t. Linearize it as stuck for the next iterate (the force stays exact).
-        if (Friction::kIterative && t.slipping && s.slipping && t.force.dot(s.tangential_force) < 0) {
+        // So is a closed pair without compression (its cone is empty): linearized with the stick spring,
+        // the next iterate sees the stiffness it will have once pressed, instead of none at all.
+        if (Friction::kIterative && t.slipping &&
+            ((s.slipping && t.force.dot(s.tangential_force) < 0) || !(s.normal_force > 0))) {
           t.stiffness          = tangential_[p] * Mat<2, 2>::Identity();
           t.normal_force_slope = Vec2::Zero();
         }
@@ -524,9 +586,15 @@ class ContactStatic {
   std::vector<Vec3> accepted_relative_;   ///< Coulomb: u_b - u_a per pair at the accepted state
   std::vector<std::vector<int>> around_;  ///< Extended: real cells around each pair
   std::vector<double> friction_residuals_;
-  History<PairState> history_;  ///< committed: the accepted increment; trial: the last solve
-  double t_ = 0, size_ = 1, kappa_ = 0;
+  std::vector<Mat<kNd, kNd>> factorized_links_;  ///< Coulomb: link stiffnesses of the last solve
+  History<PairState> history_;                   ///< committed: the accepted increment; trial: the last solve
+  double t_ = 0, t_trial_ = 0, size_ = 1, kappa_ = 0;  ///< accepted and last solved load factors
   bool status_changed_ = true;
+  bool warm_start_     = false;  ///< Coulomb: the next solve's Newton starts from the last solve
+  /// Coulomb: the accepted state ends a whole step (not a split point inside one), so a pair that
+  /// slipped there is predicted to slip on: on the cone's boundary it keeps the slip linearization.
+  bool slip_on_    = false;
+  double step_end_ = 0;  ///< the load factor the current advance() goes to
   ContactCounters count_;
   int factorizations_at_reset_     = 0;
   const LoadsAt* loads_at_         = nullptr;

@@ -56,7 +56,9 @@ class LinearStatic {
   /// solve: for drivers that solve several trial systems per accepted increment (contact). solve() and
   /// resolve_links() then return a Solution whose reactions and residual are stale: read solution().
   void defer_reactions(bool defer) { defer_reactions_ = defer; }
-  const SolveTimings& timings() const { return time_; }
+  const SolveTimings& timings() const { return time_; }  ///< of the last solve
+  /// Summed over every solve so far (a contact increment's Newton and Uzawa re-solves included).
+  const SolveTimings& total_timings() const { return total_; }
   const Connectivity<2>& links() const { return assembler_.links(); }
   /// Values of the node links, parallel to links(); change them, then solve() or resolve_links().
   std::vector<NodeLink>& link_values() { return assembler_.link_values(); }
@@ -135,6 +137,8 @@ class LinearStatic {
     auto t4 = clock::now();
     time_   = {std::chrono::duration<double>(assembly).count(), seconds(t1, t2), seconds(t2, t3),
                seconds(t3, t4)};
+    total_.assemble += time_.assemble, total_.factorize += time_.factorize, total_.solve += time_.solve,
+        total_.reactions += time_.reactions;
     return sol_;
   }
   void reactions() const {
@@ -148,6 +152,7 @@ class LinearStatic {
   VecX external_, u_;     ///< all DOFs
   mutable Solution sol_;  // reactions and residual filled lazily with defer_reactions()
   mutable SolveTimings time_;
+  SolveTimings total_;
   mutable bool reactions_stale_ = false;
   bool defer_reactions_         = false;
 };

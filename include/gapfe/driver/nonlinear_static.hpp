@@ -72,7 +72,8 @@ class NonlinearStatic {
   const Solution& solution() const { return sol_; }
   const Eigen::Matrix<double, Eigen::Dynamic, 3>& displacement() const { return sol_.displacement; }
   void defer_reactions(bool) {}  // a no-op: every Newton iteration computes the internal forces
-  const SolveTimings& timings() const { return time_; }  ///< all Newton time is under `solve`
+  const SolveTimings& timings() const { return time_; }         ///< all Newton time is under `solve`
+  const SolveTimings& total_timings() const { return total_; }  ///< summed over every solve() so far
   const Connectivity<2>& links() const { return assembler_.links(); }
   std::vector<NodeLink>& link_values() { return assembler_.link_values(); }
   const std::vector<NodeLink>& link_values() const { return assembler_.link_values(); }
@@ -145,6 +146,7 @@ class NonlinearStatic {
     for (const State& s : points_.trial()) report_.plastic_points += s.plastic;
     report_.drift = drift();
     time_.solve   = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    total_.solve += time_.solve;
     return sol_;
   }
 
@@ -205,7 +207,7 @@ class NonlinearStatic {
   VecX u_, u_committed_;      ///< all DOFs
   VecX external_, internal_, predictor_;
   Solution sol_;
-  SolveTimings time_;
+  SolveTimings time_, total_;
   std::function<void(const VecX&)> link_update_;
 };
 

@@ -29,9 +29,13 @@ struct DeckOptions {
   /// slip = auto | proportional | extended | coulomb: the friction model (contact/friction.hpp). auto:
   /// extended (the seed's section 3.2) under contact = saac, coulomb under the exact policies.
   /// proportional and extended run under saac only, coulomb under active-set and augmented-lagrangian.
-  std::string slip       = "auto";
-  double gap_penalty     = 0.0;  ///< gap_penalty = closed-gap / adjacent stiffness (0: the policy's default)
-  int gap_direction      = 0;    ///< gap_direction = 0 (IJDIR per block, SAAC2) | 1 | 2 (SAAC's one LGAP)
+  std::string slip   = "auto";
+  double gap_penalty = 0.0;  ///< gap_penalty = closed-gap / adjacent stiffness (0: the policy's default)
+  /// events = locate | step-end: under the exact contact policies, split each step at every gap status
+  /// change (locate: closure loads exact) or let the statuses settle at the step's end without
+  /// splitting (step-end: fewer solves; a path-dependent response sees closures late by up to a step).
+  std::string events     = "locate";
+  int gap_direction      = 0;  ///< gap_direction = 0 (IJDIR per block, SAAC2) | 1 | 2 (SAAC's one LGAP)
   std::string plasticity = "tangent";  ///< plasticity = tangent | return-mapping (plasticity issue)
 
   /// The friction model a run uses: "none" without friction, else the slip option with auto resolved.
@@ -75,6 +79,8 @@ struct DeckOptions {
       friction = number(0.0);
     } else if (key == "slip") {
       slip = one_of({"auto", "proportional", "extended", "coulomb"});
+    } else if (key == "events") {
+      events = one_of({"locate", "step-end"});
     } else if (key == "gap_penalty") {
       gap_penalty = number(0.0);
     } else if (key == "gap_direction") {
@@ -84,7 +90,7 @@ struct DeckOptions {
     } else {
       throw InputError("unknown option '" + key +
                        "' (known: format, element, solver, bc_loads, contact, friction, slip, gap_penalty, "
-                       "gap_direction, plasticity)");
+                       "events, gap_direction, plasticity)");
     }
   }
 };

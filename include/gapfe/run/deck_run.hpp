@@ -132,6 +132,7 @@ void run_deck_contact(const Deck& d, const DeckScene& s, double penalty_factor, 
   using Run = ContactStatic<M, P, F>;
   ContactOptions options;
   options.penalty_factor = penalty_factor;
+  options.locate_events  = d.options.events != "step-end";
   options.friction       = F::kFriction ? d.options.friction : 0.0;
   if (s.gap_material >= 0) options.gap_materials.push_back(s.gap_material);
   Run fe(deck_problem<M>(d, s, 1), s.gaps.pairs, options);
