@@ -11,6 +11,7 @@
 #include "gapfe/io/deck_output.hpp"
 #include "gapfe/io/deck_scene.hpp"
 #include "gapfe/io/vtu_writer.hpp"
+#include "gapfe/material/drysdale_zak.hpp"
 #include "gapfe/material/hill.hpp"
 #include "gapfe/mesh/ij_grid.hpp"
 #include "gapfe/mesh/structured.hpp"

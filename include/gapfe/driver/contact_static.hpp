@@ -62,6 +62,9 @@ struct ContactOptions {
   /// (false; deck key `events = step-end`): far fewer solves on a path with many closures, at an O(step)
   /// error of a path-dependent response (friction, plasticity) that the friction benchmarks measure.
   bool locate_events = true;
+  /// Time one unit of load factor lasts [model time unit], for rate-dependent laws: the deck's card 0
+  /// delta t. A split or cut piece of a step lasts its fraction, so the rate stays what the load asks.
+  double step_time = 1;
 };
 
 template <class M, ContactPolicy Policy, FrictionModel Friction = NoFriction>
@@ -130,6 +133,8 @@ class ContactStatic {
         }
       }
     }
+    if (!(opt_.step_time > 0) || !std::isfinite(opt_.step_time))
+      throw InputError("contact: the time a load step lasts must be a positive number");
     if (!(opt_.friction >= 0) || !std::isfinite(opt_.friction))
       throw InputError("friction: the coefficient mu must be a number >= 0");
     if constexpr (Friction::kFriction) {
@@ -209,7 +214,7 @@ class ContactStatic {
   void solve_at(double t) {
     t_trial_ = t;
     (*loads_at_)(fe_.problem(), t);
-    if constexpr (!M::Material::kLinear) fe_.context() = {t, t - t_};  // time = load factor
+    if constexpr (!M::Material::kLinear) fe_.context() = {t * opt_.step_time, (t - t_) * opt_.step_time};
     // Coulomb: Newton starts from the accepted state, whatever a failed or rejected solve left.
     // A status flipped or restored since the last evaluation (settling at the step's end) re-evaluates
     // the pairs' links at the last displacement.
