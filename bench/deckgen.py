@@ -161,15 +161,26 @@ def two_tubes_deck(n=40, nz=80, a=1.0, b=1.5, gap=5e-4, c=2.0, h=None, p=100.0, 
     return "\n".join(lines) + "\n"
 
 
+def rate_card(dt, b, rate0, strain_rate=0.0, shear_step=0.0):
+    """Data 0 (SAAC3, SAAC3X): delta t, b, the transition strain rate, STRRATE, STRSTEP in 5E12.6."""
+    return "".join(f"{x:12.5E}" for x in (dt, b, rate0, strain_rate, shear_step))
+
+
 def plastic_tube_deck(ni=41, a=100.0, b=200.0, p=300.0, steps=15, sigma_y=400.0, plasticity="return-mapping",
-                      extension=()):
+                      extension=(), rate=None):
     """Thick tube a..b (THEORY.md V6), plane strain, one cell high, Mises (Hill with equal yields, shear
     sigma_y / sqrt 3), elastic-perfectly plastic, bore pressure ramped to p in `steps` equal steps (INCF = 0).
-    Mises first yield at about 173 and the limit (2 / sqrt 3) sigma_y ln(b / a) = 320.15 (sigma_y = 400)."""
+    Mises first yield at about 173 and the limit (2 / sqrt 3) sigma_y ln(b / a) = 320.15 (sigma_y = 400).
+    rate = (delta t, b, transition rate): a SAAC3 deck (card 0 first), Drysdale-Zak rate dependence."""
     h = (b - a) / (ni - 1)
     k = sigma_y / math.sqrt(3.0)
     lines = [f"$ plasticity = {plasticity}"] + [f"$ {e}" for e in extension]
-    lines += [f"PLASTIC TUBE {a:g} < r < {b:g}, SIGMA_Y {sigma_y:g}, PRESSURE {p:g} IN {steps} STEPS",
+    if rate:
+        lines += ["$ format = saac3", rate_card(*rate)]
+    title = f"PLASTIC TUBE {a:g} < r < {b:g}, SIGMA_Y {sigma_y:g}, PRESSURE {p:g} IN {steps} STEPS"
+    if rate:
+        title = f"RATE TUBE {a:g}-{b:g}, SIGMA_0 {sigma_y:g}, B {rate[1]:g}, {p:g} IN {steps} STEPS OF {rate[0]:g} S"
+    lines += [title,
               control(numpc=1, nlinc=steps, incf=0), mesh_control(ni, 2, 4, 1, 1),
               segment([(1, 1, a, 0.0), (ni, 1, b, 0.0)], 1), segment([(ni, 1, b, 0.0), (ni, 2, b, h)], 1),
               segment([(ni, 2, b, h), (1, 2, a, h)], 1), segment([(1, 2, a, h), (1, 1, a, 0.0)], 1),
@@ -287,6 +298,7 @@ def main():
         (out / "projectile.deck").write_text(projectile_deck())
         (out / "press_fit.deck").write_text(press_fit_deck())
         (out / "plastic_tube.deck").write_text(plastic_tube_deck())
+        (out / "rate_tube.deck").write_text(plastic_tube_deck(rate=(1e-3, 0.05, 1e-3)))
         (out / "plastic_two_tubes.deck").write_text(two_tubes_deck(n=20, nz=2, a=50.0, b=75.0, gap=0.02, c=100.0,
                                                                    p=200.0, steps=20, sigma_y=250.0,
                                                                    extension=("plasticity = return-mapping",)))

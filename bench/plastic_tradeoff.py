@@ -10,25 +10,12 @@ solve of the same mesh, and writes a CSV and, where matplotlib is installed, a P
 import argparse
 import json
 import pathlib
-import subprocess
 import sys
 
 HERE = pathlib.Path(__file__).resolve().parent
-
-
-def run(bench, repetitions):
-    out = subprocess.run([bench, "--benchmark_format=json", f"--benchmark_repetitions={repetitions}",
-                          "--benchmark_report_aggregates_only=true"], check=True, capture_output=True, text=True)
-    return json.loads(out.stdout)
-
-
-def medians(data):
-    rows = {}
-    for b in data["benchmarks"]:
-        if b.get("aggregate_name") != "median":
-            continue
-        rows[b["run_name"]] = b
-    return rows
+sys.path.insert(0, str(HERE))
+sys.dont_write_bytecode = True
+from gbench import medians, run  # noqa: E402
 
 
 def main():

@@ -9,12 +9,36 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <iomanip>
+#include <limits>
+#include <sstream>
 
 #include "gapfe/run/deck_run.hpp"
 
 #include "cli_run.hpp"
 
 namespace gapfe::cli {
+
+/// A rate-dependent law's increment for the log: lambda dt, min and max over the points that yielded
+/// in it (how stiff the step was: the relaxation ODE's lambda times the step's dt; THEORY.md 8.2).
+template <class States>
+void note_relaxation(RunTimes& times, const Deck& d, int step, double inc, const States& states) {
+  if constexpr (requires { states.front().relaxation; }) {
+    double lo = std::numeric_limits<double>::infinity(), hi = 0;
+    int n = 0;
+    for (const auto& s : states)
+      if (s.plastic && s.relaxation > 0)
+        lo = std::min(lo, s.relaxation), hi = std::max(hi, s.relaxation), ++n;
+    std::ostringstream line;
+    line << std::setprecision(3) << "  step " << step << ", inc " << inc << " (t = " << inc * d.step_time()
+         << "): ";
+    if (n > 0)
+      line << "lambda dt " << lo << " .. " << hi << " over " << n << " yielding point(s)";
+    else
+      line << "no point yielding";
+    times.relaxation.push_back(line.str());
+  }
+}
 
 template <class M>
 void run_linear(const RunRequest& r, RunTimes& times) {
@@ -45,6 +69,7 @@ void run_plastic(const RunRequest& r, RunTimes& times) {
     times.drift          = std::max(times.drift, rep.drift);
     times.worst_residual = std::max(times.worst_residual, rep.residuals.back());
     ++times.increments;
+    note_relaxation(times, r.deck, step, inc, fe.states());
     std::string row;
     detail::append_number(row, static_cast<long long>(step)), row += ',';
     detail::csv_number(row, inc);
@@ -76,6 +101,7 @@ void run_contact(const RunRequest& r, RunTimes& times) {
         times.contact = c.counters(), ++times.increments, times.penalty = c.penalty_factor();
         times.pairs = static_cast<int>(c.pairs().size()), times.closed = 0;
         for (const auto& st : c.states()) times.closed += st.closed;
+        if constexpr (!M::Material::kLinear) note_relaxation(times, r.deck, step, inc, c.fe().states());
         write_increment(r, times, files, step, inc, c.fe(), gaps.write(step, inc, c.pairs(), c.states()));
       });
   progress_done(r);

@@ -2,6 +2,7 @@
 // combination the table does not hold a clear message; and the progress line.
 #include "cli_run.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <utility>
@@ -58,8 +59,26 @@ void run_deck_request(const RunRequest& r, RunTimes& times) {
     throw InputError(
         "element = legacy with yield cards: the legacy quad's condensed centre node is not in the "
         "plastic driver yet; use element = quad4bbar (the default for plastic decks) or quad4");
-  const VariantKey key{r.variant, r.element, plastic ? o.plasticity : "elastic", gaps ? o.contact : "none",
-                       friction};
+  const bool rate = plastic && r.deck.rate_dependent();
+  if (rate) {
+    const RateCard& c = *r.deck.rate;
+    if (!(c.time_step > 0) || !std::isfinite(c.time_step))
+      throw InputError(
+          "DATA NO. 0 (rate property card): delta t must be > 0 when b != 0 (each load step lasts it)");
+    if (!(c.rate_b > 0) || !std::isfinite(c.rate_b))
+      throw InputError("DATA NO. 0 (rate property card): rate parameter b must be > 0");
+    if (!(c.rate_plastic_strain > 0) || !std::isfinite(c.rate_plastic_strain))
+      throw InputError(
+          "DATA NO. 0 (rate property card): the transition strain rate (columns 25-36) must be > 0");
+    if (gaps && o.contact != "saac" && o.contact != "none")
+      throw InputError(
+          "contact = " + o.contact +
+          " with rate-dependent plasticity (card 0, b != 0): the command offers it with contact = "
+          "saac (SAAC3 = SAAC2 + the rate law); the library's ContactStatic takes any policy");
+  }
+  const VariantKey key{r.variant, r.element,
+                       plastic ? (rate ? "rate-dependent " : "") + o.plasticity : std::string("elastic"),
+                       gaps ? o.contact : "none", friction};
   CliSolver::select(r.solver == "cholmod" ? 1 : 0);
 #ifdef GAPFE_HAS_UMFPACK
   CliLuSolver::select(r.solver == "eigen" ? 0 : 1);  // SuiteSparse in the build: UMFPACK unless told eigen

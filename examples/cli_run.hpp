@@ -35,6 +35,8 @@ struct RunTimes {
   double penalty        = 0;
   int newton_iterations = 0, cut_steps = 0, plastic_points = 0;
   double drift = 0, worst_residual = 0;
+  /// Rate-dependent laws: per accepted increment, lambda dt over the yielding points (the log prints it).
+  std::vector<std::string> relaxation;
 };
 
 /// What a run needs: the deck, its scene, where to write, and the resolved variant choices.

@@ -19,6 +19,7 @@
 
 #include "gapfe/contact/friction.hpp"
 #include "gapfe/contact/policies.hpp"
+#include "gapfe/material/drysdale_zak.hpp"
 #include "gapfe/material/elastic.hpp"
 #include "gapfe/material/hill.hpp"
 #include "gapfe/model.hpp"
@@ -82,13 +83,20 @@ using VariantTable = std::tuple<
   Variant<Axisym2, Quad4BBar, Hill<ReturnMapping>, Saac, Extended>,     Variant<Axisym3, Quad4BBar, Hill<ReturnMapping>, Saac, Extended>,
   Variant<Axisym2, Quad4BBar, Hill<ReturnMapping>, ActiveSet, Coulomb>, Variant<Axisym3, Quad4BBar, Hill<ReturnMapping>, ActiveSet, Coulomb>,
   Variant<Axisym2, Quad4BBar, Hill<ReturnMapping>, AugmentedLagrangian, Coulomb>,
-  Variant<Axisym3, Quad4BBar, Hill<ReturnMapping>, AugmentedLagrangian, Coulomb>>;
+  Variant<Axisym3, Quad4BBar, Hill<ReturnMapping>, AugmentedLagrangian, Coulomb>,
+  // Rate-dependent plasticity (SAAC3: a rate card with b != 0), with and without the seed's gaps, on the
+  // plastic default element.
+  Variant<Axisym2, Quad4BBar, DrysdaleZak<Tangent>,       NoContact>, Variant<Axisym3, Quad4BBar, DrysdaleZak<Tangent>,       NoContact>,
+  Variant<Axisym2, Quad4BBar, DrysdaleZak<ReturnMapping>, NoContact>, Variant<Axisym3, Quad4BBar, DrysdaleZak<ReturnMapping>, NoContact>,
+  Variant<Axisym2, Quad4BBar, DrysdaleZak<Tangent>,       Saac>,      Variant<Axisym3, Quad4BBar, DrysdaleZak<Tangent>,       Saac>,
+  Variant<Axisym2, Quad4BBar, DrysdaleZak<ReturnMapping>, Saac>,      Variant<Axisym3, Quad4BBar, DrysdaleZak<ReturnMapping>, Saac>>;
 // clang-format on
 
 inline constexpr std::size_t kVariantCount = std::tuple_size_v<VariantTable>;
 
 /// A row's name in the request's words: kinematics (saas | saga) and law (elastic | the `plasticity`
-/// option's tangent | return-mapping); elements by CliName, policies by their kName.
+/// option's tangent | return-mapping, prefixed "rate-dependent " for SAAC3 decks); elements by CliName,
+/// policies by their kName.
 template <class Kin>
 constexpr const char* kinematics_name() {
   return Kin::kDofsPerNode == 2 ? "saas" : "saga";
@@ -99,8 +107,12 @@ constexpr const char* law_name() {
     return "elastic";
   else if constexpr (std::is_same_v<Law, Hill<Tangent>>)
     return "tangent";
-  else
+  else if constexpr (std::is_same_v<Law, Hill<ReturnMapping>>)
     return "return-mapping";
+  else if constexpr (std::is_same_v<Law, DrysdaleZak<Tangent>>)
+    return "rate-dependent tangent";
+  else
+    return "rate-dependent return-mapping";
 }
 
 /// What a request asks of the table (resolved by run_deck_request).

@@ -156,6 +156,13 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) 
         << "\n";
   }
   if (!s.needs.plasticity.empty()) log << "  plasticity: " << s.needs.plasticity.front() << "\n";
+  if (d.rate_dependent())
+    log << "  rate: "
+        << (s.needs.plasticity.empty() ? "ignored, no yield card (elastic)"
+                                       : "rate-dependent " + d.options.plasticity)
+        << " (Drysdale-Zak, SAAC3: card 0 has b = " << detail::number_text(d.rate->rate_b)
+        << " != 0; transition rate " << detail::number_text(d.rate->rate_plastic_strain)
+        << ", each load step lasts " << detail::number_text(d.rate->time_step) << ")\n";
 
   if (a.command == "info") return ok;
   std::filesystem::create_directories(a.out);
@@ -219,6 +226,10 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) 
                       std::to_string(times.contact.friction_stalls) + " stalled below 1e-4"
                 : std::string())
         << "\n";
+  if (!times.relaxation.empty()) {
+    log << "rate-dependent increments (t = inc x delta t of card 0):\n";
+    for (const auto& line : times.relaxation) log << line << "\n";
+  }
   log << "wrote " << a.out << "/nodes.csv, elements.csv, reactions.csv"
       << (s.needs.gaps.empty() ? "" : ", gaps.csv")
       << (plastic && s.needs.gaps.empty() ? ", plasticity.csv" : "") << ", result.pvd, deformed.svg\n";

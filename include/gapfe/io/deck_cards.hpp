@@ -90,6 +90,11 @@ struct Deck {
   std::vector<LoadBlock> blocks_read;  ///< the blocks as read (one per step, or the first only)
 
   int steps() const { return control.nlinc; }
+  /// Whether the law is rate dependent (SAAC3): a rate card (Data 0) with b != 0.
+  bool rate_dependent() const { return rate && rate->rate_b != 0; }
+  /// The time one load step lasts [model time unit]: card 0's delta t for a rate-dependent deck, else 1
+  /// (time is the load factor). A cut or split piece of a step lasts its fraction of it.
+  double step_time() const { return rate_dependent() ? rate->time_step : 1.0; }
   /// Inertia increment of load step s (1-based): its own card, the first block's when INCI = 0.
   InertiaLoad inertia(int s) const {
     if (control.inert == 0) return {};

@@ -49,14 +49,19 @@ void set_step_loads(Problem<M>& p, const Deck& d, const DeckScene& s, int step) 
 }
 
 /// A deck material as law `Law`: the elastic table, and for Hill the yield card (blank or absent: elastic).
+/// For the Drysdale-Zak law also card 0's b and transition rate.
 template <class Law>
-Law deck_law(const Orthotropic& elastic, const std::optional<YieldCard>& card) {
+Law deck_law(const Orthotropic& elastic, const std::optional<YieldCard>& card,
+             const std::optional<RateCard>& rate = {}) {
   if constexpr (requires(Law l) { l.yield; }) {
-    Law law{elastic, {}};
+    Law law{};
+    law.elastic = elastic;
     if (card && !card->blank) {
       const auto& y = card->yield;
       law.yield     = {y[0], y[1], y[2], y[3], y[4], y[5], card->hardening, PragerShear::legacy};
     }
+    if constexpr (requires(Law l) { l.rate; })
+      if (rate) law.rate = {rate->rate_b, rate->rate_plastic_strain};
     return law;
   } else {
     Law law;
@@ -72,7 +77,7 @@ Problem<M> deck_problem(const Deck& d, const DeckScene& s, int step) {
   Problem<M> p;
   p.mesh = s.mesh;
   for (std::size_t k = 0; k < s.materials.size(); ++k)
-    p.materials.push_back(deck_law<typename M::Material>(s.materials[k], d.materials[k].yield));
+    p.materials.push_back(deck_law<typename M::Material>(s.materials[k], d.materials[k].yield, d.rate));
   set_step_loads(p, d, s, step);
   p.temperature           = s.temperature;
   p.reference_temperature = s.reference_temperature;
@@ -104,7 +109,7 @@ void run_deck_plastic(const Deck& d, const DeckScene& s, OnIncrement&& on_increm
     while (done < 1 - 1e-12) {
       const double to = std::min(1.0, done + size);
       set_loads(fe.problem(), interpolate(before, after, to), s);
-      fe.context() = {step - 1 + to, to - done};
+      fe.context() = {(step - 1 + to) * d.step_time(), (to - done) * d.step_time()};
       try {
         fe.solve();
       } catch (const SolveError& e) {
@@ -133,6 +138,7 @@ void run_deck_contact(const Deck& d, const DeckScene& s, double penalty_factor, 
   ContactOptions options;
   options.penalty_factor = penalty_factor;
   options.locate_events  = d.options.events != "step-end";
+  options.step_time      = d.step_time();
   options.friction       = F::kFriction ? d.options.friction : 0.0;
   if (s.gap_material >= 0) options.gap_materials.push_back(s.gap_material);
   Run fe(deck_problem<M>(d, s, 1), s.gaps.pairs, options);
