@@ -766,10 +766,10 @@ TEST_CASE_TEMPLATE(
               ", largest fall ", fall, " (", steps, " steps)");
       CHECK(rel(previous, steady) < 0.01);
       CHECK(rel(twist, twist_rate) < 0.01);
-      // The implicit return rises monotonically at every lambda dt. The seed's explicit scheme does not
-      // where a large step turns the loading away from its flow direction (the header comment): its
-      // overshoot and fall are reported above, and required only of the fine steps.
-      if (std::is_same_v<Integration, ReturnMapping> || lambda_dt <= 1e-3) {
+      // The implicit return rises monotonically at every lambda dt. The seed's explicit scheme does up to
+      // lambda dt = 1, not at 1e3, where its first axial step is tangent to the surface, goes elastic and
+      // overshoots to some 30 times the steady stress (material/drysdale_zak.hpp): reported above.
+      if (std::is_same_v<Integration, ReturnMapping> || lambda_dt <= 1) {
         CHECK(overshoot <= 1e-6);
         CHECK(fall <= 1e-9);
       }
