@@ -486,6 +486,36 @@ TEST_CASE_TEMPLATE("Solid shaft in torsion past yield (SAGA): the torque approac
 namespace gapfe::test {
 namespace {
 
+/// The SAAC scenes: an inner tube a..b inside an outer tube b + delta..c across one column of gap elements
+/// (material 1; 0 inner, 2 outer), one cell high, plane strain (u_z = 0 everywhere). The caller sets the
+/// materials; the bore is the edge from node columns() to node 0.
+struct GapTubes {
+  double a = 0.05, b = 0.075, c = 0.1, delta = 20e-6, E = 200e3, nu = 0.3, h = 0.001;
+  int n_in = 30, n_out = 30;
+  int columns() const { return n_in + n_out + 2; }
+  template <class M>
+  Problem<M> problem(std::vector<GapPair>& pairs) const {
+    std::vector<double> r;
+    for (int i = 0; i <= n_in; ++i) r.push_back(a + (b - a) * i / n_in);
+    for (int i = 0; i <= n_out; ++i) r.push_back(b + delta + (c - b - delta) * i / n_out);
+    const int ni = columns();
+    Problem<M> p;
+    for (int j = 0; j <= 1; ++j)
+      for (int i = 0; i < ni; ++i) p.mesh.nodes.push_back({r[i], j * h});
+    for (int i = 0; i + 1 < ni; ++i) {
+      const std::array<int, 4> ix{i, i + 1, ni + i + 1, ni + i};
+      p.mesh.cells.push_back(ix);
+      p.mesh.cell_tags.push_back({i < n_in ? 0 : i == n_in ? 1 : 2, {}});
+      if (i == n_in)
+        for (const auto& g :
+             gap_element_pairs(static_cast<int>(p.mesh.cells.size() - 1), ix, 1, p.mesh.nodes))
+          pairs.push_back(g);
+    }
+    for (int n = 0; n < p.mesh.node_count(); ++n) p.conditions.push_back({n, 2, {}});
+    return p;
+  }
+};
+
 TEST_CASE("SAAC = SAGAEP + gaps: a plastic tube pressed across a gap onto an elastic one, in equilibrium") {
   // Inner tube a..b (Mises sigma_y = 250 MPa) inside an elastic outer tube b + delta..c across a column of
   // soft gap elements, plane strain, bore pressure ramped past closure and past first yield of the inner
@@ -493,31 +523,16 @@ TEST_CASE("SAAC = SAGAEP + gaps: a plastic tube pressed across a gap onto an ela
   // equilibrium to 1e-8 (Newton's residual over all DOFs, contact links included); the outer tube, elastic
   // and loaded only through the closed pairs, has the bore displacement Lame gives for the contact pressure
   // those pairs carry (1%).
-  using M        = Model<Axisym2, Quad4BBar, Hill<ReturnMapping>>;
-  const double a = 0.05, b = 0.075, c = 0.1, delta = 20e-6, E = 200e3, nu = 0.3, h = 0.001;
-  const int n_in = 30, n_out = 30;
-  std::vector<double> r;
-  for (int i = 0; i <= n_in; ++i) r.push_back(a + (b - a) * i / n_in);
-  for (int i = 0; i <= n_out; ++i) r.push_back(b + delta + (c - b - delta) * i / n_out);
-  const int ni = static_cast<int>(r.size());
-  Problem<M> p;
-  for (int j = 0; j <= 1; ++j)
-    for (int i = 0; i < ni; ++i) p.mesh.nodes.push_back({r[i], j * h});
+  using M = Model<Axisym2, Quad4BBar, Hill<ReturnMapping>>;
+  const GapTubes g;
+  const double b = g.b, c = g.c, delta = g.delta, E = g.E, nu = g.nu, h = g.h;
+  const int n_in = g.n_in, ni = g.columns();
   std::vector<GapPair> pairs;
-  for (int i = 0; i + 1 < ni; ++i) {
-    const std::array<int, 4> ix{i, i + 1, ni + i + 1, ni + i};
-    p.mesh.cells.push_back(ix);
-    const int material = i < n_in ? 0 : i == n_in ? 1 : 2;
-    p.mesh.cell_tags.push_back({material, {}});
-    if (i == n_in)
-      for (const auto& g : gap_element_pairs(static_cast<int>(p.mesh.cells.size() - 1), ix, 1, p.mesh.nodes))
-        pairs.push_back(g);
-  }
+  Problem<M> p       = g.problem<M>(pairs);
   const auto elastic = [](double modulus, double poisson) {
     return Orthotropic::constant(ElasticConstants::isotropic(modulus, poisson));
   };
   p.materials = {{elastic(E, nu), HillYield::mises(250)}, {elastic(1e-9 * E, 0.0), {}}, {elastic(E, nu), {}}};
-  for (int n = 0; n < p.mesh.node_count(); ++n) p.conditions.push_back({n, 2, {}});
   ContactOptions options;
   options.gap_materials = {1};
   ContactStatic<M, Saac> contact(std::move(p), pairs, options);
@@ -905,26 +920,13 @@ TEST_CASE("SAAC3 = SAAC2 + the rate law: a rate-dependent tube pressed across a 
   // yield stress rises some 12% above the static 250 MPa. Checked: closure and rate-dependent yielding in
   // one run, every increment in equilibrium to 1e-8, the plastic points on the rate-dependent surface
   // (sqrt f = level(r), drift below 1e-6), and a yield stress above the static one.
-  using Law      = DrysdaleZak<ReturnMapping>;
-  using M        = Model<Axisym2, Quad4BBar, Law>;
-  const double a = 0.05, b = 0.075, c = 0.1, delta = 20e-6, E = 200e3, nu = 0.3, h = 0.001;
-  const int n_in = 30, n_out = 30;
-  std::vector<double> r;
-  for (int i = 0; i <= n_in; ++i) r.push_back(a + (b - a) * i / n_in);
-  for (int i = 0; i <= n_out; ++i) r.push_back(b + delta + (c - b - delta) * i / n_out);
-  const int ni = static_cast<int>(r.size());
-  Problem<M> p;
-  for (int j = 0; j <= 1; ++j)
-    for (int i = 0; i < ni; ++i) p.mesh.nodes.push_back({r[i], j * h});
+  using Law = DrysdaleZak<ReturnMapping>;
+  using M   = Model<Axisym2, Quad4BBar, Law>;
+  const GapTubes g;
+  const double E = g.E, nu = g.nu;
+  const int ni = g.columns();
   std::vector<GapPair> pairs;
-  for (int i = 0; i + 1 < ni; ++i) {
-    const std::array<int, 4> ix{i, i + 1, ni + i + 1, ni + i};
-    p.mesh.cells.push_back(ix);
-    p.mesh.cell_tags.push_back({i < n_in ? 0 : i == n_in ? 1 : 2, {}});
-    if (i == n_in)
-      for (const auto& g : gap_element_pairs(static_cast<int>(p.mesh.cells.size() - 1), ix, 1, p.mesh.nodes))
-        pairs.push_back(g);
-  }
+  Problem<M> p       = g.problem<M>(pairs);
   const auto elastic = [](double modulus, double poisson) {
     return Orthotropic::constant(ElasticConstants::isotropic(modulus, poisson));
   };
@@ -932,7 +934,6 @@ TEST_CASE("SAAC3 = SAAC2 + the rate law: a rate-dependent tube pressed across a 
   p.materials = {{elastic(E, nu), HillYield::mises(250), rate},
                  {elastic(1e-9 * E, 0.0), {}, rate},
                  {elastic(E, nu), {}, rate}};
-  for (int n = 0; n < p.mesh.node_count(); ++n) p.conditions.push_back({n, 2, {}});
   ContactOptions options;
   options.gap_materials = {1};
   options.step_time     = 1.0;
