@@ -215,13 +215,12 @@ class ContactStatic {
     t_trial_ = t;
     (*loads_at_)(fe_.problem(), t);
     if constexpr (!M::Material::kLinear) fe_.context() = {t * opt_.step_time, (t - t_) * opt_.step_time};
-    // Coulomb: Newton starts from the accepted state, whatever a failed or rejected solve left.
-    // A status flipped or restored since the last evaluation (settling at the step's end) re-evaluates
-    // the pairs' links at the last displacement.
-    // Coulomb's Newton starts from the accepted state; after flips at the same target (settling at the
-    // step's end) from the last solve instead, where the pairs just closed overlap and have slid: their
-    // normal force and slip direction are already about right there (from the accepted state they are
-    // open, and Newton cycles between stuck and slipping linearizations on the press-fit path).
+    // Coulomb's Newton starts from the accepted state, whatever a failed or rejected solve left; after
+    // flips at the same target (settling at the step's end) from the last solve instead, where the pairs
+    // just closed overlap and have slid: their normal force and slip direction are about right there
+    // (from the accepted state they are open, and Newton cycles between stuck and slipping
+    // linearizations on the press-fit path). Without Coulomb, a status flipped or restored since the
+    // last evaluation re-evaluates the links at the last displacement.
     if constexpr (Friction::kIterative) {
       if (warm_start_)
         evaluate_pairs();
