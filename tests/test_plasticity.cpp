@@ -589,6 +589,24 @@ double relaxation_time(double r, double b = kRateB) {
   return b * kSigma0 / (3 * kShearModulus * (kRate0 + r));
 }
 
+/// SAAC3X's steady state (THEORY.md 8.7): tau held, axial strain rate `rate`. sigma solves
+/// phi(sigma_bar) sigma / sigma_bar = rate (bisection), sigma_bar = sqrt(sigma^2 + 3 tau^2); then the plastic
+/// rate phi(sigma_bar) and the twist rate 3 tau phi / sigma_bar.
+struct Saac3xSteady {
+  double sigma = 0, plastic_rate = 0, twist_rate = 0;
+};
+Saac3xSteady saac3x_steady(double tau, double rate) {
+  double lo = 0, hi = 2 * kSigma0;
+  const auto excess = [&](double s) {
+    const double bar = std::hypot(s, std::sqrt(3.0) * tau);
+    return plastic_rate_at(bar / kSigma0) * s / bar - rate;
+  };
+  for (int i = 0; i < 200; ++i) (excess(0.5 * (lo + hi)) > 0 ? hi : lo) = 0.5 * (lo + hi);
+  const double sigma = 0.5 * (lo + hi), bar = std::hypot(sigma, std::sqrt(3.0) * tau);
+  const double r = plastic_rate_at(bar / kSigma0);
+  return {sigma, r, 3 * tau * r / bar};
+}
+
 /// A point pulled along z at the constant strain rate `rate` (uniaxial stress): one elastic step to
 /// `start` of the static yield strain, then steps of dt until `duration`. Returns sigma_zz per step.
 template <class Law>
@@ -746,15 +764,9 @@ TEST_CASE_TEMPLATE(
   // sigma_bar.
   const double tau0 = kSigma0 / std::sqrt(3.0);
   for (const double rate : {1e-2, 1.0}) {
-    double lo = 0, hi = 2 * kSigma0;  // the steady sigma by bisection
-    const auto excess = [&](double s) {
-      const double bar = std::hypot(s, std::sqrt(3.0) * tau0);
-      return plastic_rate_at(bar / kSigma0) * s / bar - rate;
-    };
-    for (int i = 0; i < 200; ++i) (excess(0.5 * (lo + hi)) > 0 ? hi : lo) = 0.5 * (lo + hi);
-    const double steady = 0.5 * (lo + hi), bar = std::hypot(steady, std::sqrt(3.0) * tau0);
-    const double twist_rate = 3 * tau0 * plastic_rate_at(bar / kSigma0) / bar;
-    const double lambda     = 1 / relaxation_time(plastic_rate_at(bar / kSigma0));
+    const Saac3xSteady exact = saac3x_steady(tau0, rate);
+    const double steady = exact.sigma, twist_rate = exact.twist_rate;
+    const double lambda = 1 / relaxation_time(exact.plastic_rate);
     for (const double lambda_dt : {1e-3, 1.0, 1e3}) {
       PointDriver<DrysdaleZak<Integration>> d{rate_law<Integration>().localize({}, 0, 0)};
       d.k                    = voigt::zz;
@@ -862,18 +874,12 @@ TEST_CASE_TEMPLATE(
   };
   set(p, 0, 0);
   NonlinearStatic<M> fe(p);
-  double lo = 0, hi = 2 * kSigma0;
-  const auto excess = [&](double s) {
-    const double bar = std::hypot(s, std::sqrt(3.0) * tau0);
-    return plastic_rate_at(bar / kSigma0) * s / bar - rate;
-  };
-  for (int i = 0; i < 200; ++i) (excess(0.5 * (lo + hi)) > 0 ? hi : lo) = 0.5 * (lo + hi);
-  const double steady = 0.5 * (lo + hi), bar = std::hypot(steady, std::sqrt(3.0) * tau0);
-  const double twist_rate = 3 * tau0 * plastic_rate_at(bar / kSigma0) / bar;
+  const Saac3xSteady exact = saac3x_steady(tau0, rate);
+  const double steady = exact.sigma, twist_rate = exact.twist_rate;
   // lambda dt = 1 for the implicit return; the seed's one solve per step leaves an out-of-balance that
   // the next step's residual carries, first order in dt: it gets lambda dt = 0.1.
   const double lambda_dt = std::is_same_v<Integration, ReturnMapping> ? 1.0 : 0.1;
-  const double dt        = lambda_dt * relaxation_time(plastic_rate_at(bar / kSigma0));
+  const double dt        = lambda_dt * relaxation_time(exact.plastic_rate);
   // The shear step (elastic: tau_0 is the static yield), over 1 ms.
   set(fe.problem(), tau0, 0);
   fe.context() = {1e-3, 1e-3};
