@@ -793,13 +793,15 @@ TEST_CASE_TEMPLATE(
               ", largest fall ", fall, " (", steps, " steps)");
       CHECK(rel(previous, steady) < 0.01);
       CHECK(rel(twist, twist_rate) < 0.01);
-      // The implicit return rises monotonically at every lambda dt. The seed's explicit scheme does up to
-      // lambda dt = 1, not at 1e3, where its first axial step is tangent to the surface, goes elastic and
-      // overshoots to some 30 times the steady stress (material/drysdale_zak.hpp): reported above.
-      if (std::is_same_v<Integration, ReturnMapping> || lambda_dt <= 1) {
-        CHECK(overshoot <= 1e-6);
-        CHECK(fall <= 1e-9);
-      }
+      // Required: no step above the steady value by more than 1e-6, at every lambda dt. The implicit return
+      // meets it, and so does the seed's explicit scheme up to lambda dt = 1. At 1e3 the explicit flow
+      // direction lags the turn from shear to tension: cut into pieces (material/drysdale_zak.hpp) it
+      // reaches 1.2e-5 (rate 0.01) and 1.6e-6 (rate 1), down from 30 times the steady stress in one
+      // piece; the bound below is what it reaches, not the requirement (reported in the issue).
+      const bool lagging   = std::is_same_v<Integration, Tangent> && lambda_dt > 1;
+      const double allowed = lagging ? 1e-4 : 1e-6;
+      CHECK(overshoot <= allowed);
+      CHECK(fall <= (lagging ? allowed : 1e-9));
     }
   }
   // Why the seed rewrote EPLSS: SANX's forward-Euler rate update, r_1 = r_0 + lambda dt (A - r_0), on the
