@@ -190,6 +190,25 @@ def plastic_tube_deck(ni=41, a=100.0, b=200.0, p=300.0, steps=15, sigma_y=400.0,
     return "\n".join(lines) + "\n"
 
 
+def saac3x_deck(ri=999.0, ro=1000.0, length=1.0, dt=5e-5, steps=150, sigma_0=400.0, b=0.05, rate0=1e-3,
+                strain_rate=1.0, shear_step=230.94, plasticity="return-mapping"):
+    """SAAC3X (THEORY.md 8.7; seed section 4.2): a thin-walled tube ri..ro, 0 <= z <= length (mm, MPa, s),
+    one cell, Mises sigma_0 = 400 MPa, b = 0.05, rate_0 = 1e-3 / s, c = 0. Card 0's STRSTEP puts the shear
+    stress tau = 230.94 MPa (just below the static shear yield sigma_0 / sqrt 3) on the top face in step 1,
+    and STRRATE then pulls the top face at 1 / s (u_z = STRRATE L (t - dt)). No BC or load cards: the
+    command drives both faces (README "SAAC3X"). dt = 5e-5 s is 0.73 relaxation times at the steady state."""
+    k = sigma_0 / math.sqrt(3.0)
+    lines = [f"$ plasticity = {plasticity}", "$ format = saac3",
+             rate_card(dt, b, rate0, strain_rate, shear_step),
+             f"SAAC3X THIN TUBE {ri:g}-{ro:g}: TAU {shear_step:g} THEN RATE {strain_rate:g}/S, {steps} STEPS OF {dt:g} S",
+             control(nlinc=steps), mesh_control(2, 2, 4, 0, 1),
+             segment([(1, 1, ri, 0.0), (2, 1, ro, 0.0)], 1), segment([(2, 1, ro, 0.0), (2, 2, ro, length)], 1),
+             segment([(2, 2, ro, length), (1, 2, ri, length)], 1), segment([(1, 2, ri, length), (1, 1, ri, 0.0)], 1),
+             block(1, 1, 2, 1, 2)]
+    lines += material(1, [isotropic(200000.0, 0.3)], yield_card=[sigma_0, sigma_0, sigma_0, k, k, k, 0.0])
+    return "\n".join(lines) + "\n"
+
+
 def projectile_deck(steps=10, g_load=20000.0):
     """A projectile (mm, t, s, N, MPa): a steel cup (base 0 < z < 20, wall 30 < r < 40 up to z = 120)
     holding a separate filler insert (r < 29.9, 20.1 < z < 120; E = 3000, nu = 0.4, like a cast
@@ -299,6 +318,7 @@ def main():
         (out / "press_fit.deck").write_text(press_fit_deck())
         (out / "plastic_tube.deck").write_text(plastic_tube_deck())
         (out / "rate_tube.deck").write_text(plastic_tube_deck(rate=(1e-3, 0.05, 1e-3)))
+        (out / "saac3x_tube.deck").write_text(saac3x_deck())
         (out / "plastic_two_tubes.deck").write_text(two_tubes_deck(n=20, nz=2, a=50.0, b=75.0, gap=0.02, c=100.0,
                                                                    p=200.0, steps=20, sigma_y=250.0,
                                                                    extension=("plasticity = return-mapping",)))

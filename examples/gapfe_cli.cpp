@@ -163,6 +163,16 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) 
         << " (Drysdale-Zak, SAAC3: card 0 has b = " << detail::number_text(d.rate->rate_b)
         << " != 0; transition rate " << detail::number_text(d.rate->rate_plastic_strain)
         << ", each load step lasts " << detail::number_text(d.rate->time_step) << ")\n";
+  if (const StrainRateTest& x = s.strain_rate_test; x.active())
+    log << "  saac3x: constant strain rate " << detail::number_text(x.strain_rate)
+        << " over L = " << detail::number_text(x.length) << ": u_z = rate L (t - delta t) on the "
+        << x.top.size() << " nodes at z = " << detail::number_text(x.top_z)
+        << " from step 2 on; u_z = u_theta = 0 on the " << x.bottom.size()
+        << " nodes at z = " << detail::number_text(x.bottom_z)
+        << (x.shear_step != 0 ? "; theta traction " + detail::number_text(x.shear_step) + " on the " +
+                                    std::to_string(x.top_edges.size()) + " top edges, ramped over step 1"
+                              : std::string())
+        << " (card 0's STRRATE, STRSTEP)\n";
 
   if (a.command == "info") return ok;
   std::filesystem::create_directories(a.out);

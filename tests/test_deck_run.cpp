@@ -17,6 +17,7 @@
 
 #include "deck_support.hpp"
 #include "gapfe_cli.hpp"
+#include "rate_reference.hpp"
 #include "support.hpp"
 
 using namespace gapfe;
@@ -379,6 +380,66 @@ TEST_CASE("Plastic tube deck: yield cards run Hill plasticity; eqps in elements.
   CHECK(e.str().find("element = legacy with yield cards") != std::string::npos);
 }
 
+TEST_CASE("SAAC3X deck: card 0's STRSTEP then STRRATE drive a thin tube to THEORY.md 8.7's steady state") {
+  // examples/decks/saac3x_tube.deck (bench/deckgen.py saac3x_deck): a tube 999..1000 mm, 1 mm long, one
+  // cell, Mises sigma_0 = 400 MPa, b = 0.05, rate_0 = 1e-3 / s; STRSTEP = 230.94 MPa on the top face in
+  // step 1, then STRRATE = 1 / s through u_z of the top face, 150 steps of 5e-5 s (lambda dt 0.85 at the
+  // steady state). No BC or load card: the command drives the faces. Reference: the steady state of the
+  // ODE (tests/rate_reference.hpp): axial stress and twist rate within 1%, no increment's axial stress
+  // above it by more than 1e-6, and never falling (the exact response rises monotonically).
+  const auto exact = gapfe::test::RateReference{400, 0.05, 1e-3}.saac3x_steady(230.94, 1.0);
+  const double dt = 5e-5, r_mid = 999.5, length = 1.0;
+  for (const char* integration : {"return-mapping", "tangent"}) {
+    CAPTURE(integration);
+    std::ostringstream o, e;
+    const fs::path out = scratch(std::string("saac3x_") + integration);
+    REQUIRE(gapfe::cli::main({"run", (kExamples / "saac3x_tube.deck").string(), "--out", out.string(),
+                              "--plasticity", integration},
+                             o, e) == 0);
+    CHECK(o.str().find("saac3x: constant strain rate 1 over L = 1: u_z = rate L (t - delta t) on the 2 nodes "
+                       "at z = 1 from step 2 on") != std::string::npos);
+    const auto elements = read_csv(out / "elements.csv");
+    const auto nodes    = read_csv(out / "nodes.csv");
+    REQUIRE(elements.size() == 150);
+    double overshoot = 0, fall = 0, previous = 0;
+    for (const auto& row : elements) {
+      const double s = row.at("s_zz");
+      overshoot      = std::max(overshoot, (s - exact.sigma) / exact.sigma);
+      fall           = std::max(fall, (previous - s) / exact.sigma);
+      previous       = s;
+    }
+    // The top face's u_z is the imposed one, and its mean rotation u_theta / r gives the twist rate.
+    std::map<double, double> twist;  // inc -> mean u_theta / r on the top face
+    for (const auto& row : nodes)
+      if (row.at("z") == length) {
+        CHECK(row.at("u_z") == doctest::Approx(1.0 * length * dt * (row.at("inc") - 1)).epsilon(1e-12));
+        twist[row.at("inc")] += 0.5 * row.at("u_t") / row.at("r");
+      }
+    const double twist_rate = (twist[150] - twist[149]) * r_mid / length / dt;
+    const double sigma      = elements.back().at("s_zz");
+    MESSAGE(std::string(integration) << ": axial stress " << sigma << " MPa against " << exact.sigma
+                                     << ", twist rate " << twist_rate << " / s against " << exact.twist_rate
+                                     << "; overshoot " << overshoot << ", largest fall " << fall);
+    CHECK(overshoot <= 1e-6);
+    if (std::string(integration) == "return-mapping") {
+      CHECK(std::abs(sigma - exact.sigma) <= 0.01 * exact.sigma);
+      CHECK(std::abs(twist_rate - exact.twist_rate) <= 0.01 * exact.twist_rate);
+      CHECK(fall <= 1e-9);
+    }
+  }
+  // Blank STRRATE and STRSTEP: nothing is driven (an ordinary SAAC3 deck; this one has no BC cards).
+  std::ifstream file(kExamples / "saac3x_tube.deck");
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(file, line);) lines.push_back(line);
+  REQUIRE(lines.size() > 3);
+  REQUIRE(lines[2].size() >= 60);
+  lines[2].replace(36, 24, std::string(24, ' '));
+  std::ostringstream o, e;
+  CHECK(gapfe::cli::main({"info", write_deck(gapfe::test::join(lines), "saac3x_blank").string()}, o, e) == 0);
+  CHECK(o.str().find("saac3x:") == std::string::npos);
+  CHECK(o.str().find("variant: saas") != std::string::npos);
+}
+
 TEST_CASE("Rate-dependent tube deck (SAAC3): card 0 with b != 0 runs Drysdale-Zak in the deck's time") {
   // examples/decks/rate_tube.deck is plastic_tube.deck with card 0: each step lasts 1 ms, b = 0.05,
   // rate_0 = 1e-3 / s. The bore then strains at about 1 / s, where the yield stress is about 1.35 sigma_0
@@ -406,7 +467,7 @@ TEST_CASE("Rate-dependent tube deck (SAAC3): card 0 with b != 0 runs Drysdale-Za
     REQUIRE(rate.size() == plastic.size());
     // Outer wall u_r at the end: elastic there, so it measures the load the plastic zone passes on.
     const double u_rate = rate.back().at("u_r"), u_plain = plastic.back().at("u_r");
-    MESSAGE(integration << ": outer u_r " << u_rate << " (rate-independent " << u_plain << ")");
+    MESSAGE(std::string(integration) << ": outer u_r " << u_rate << " (rate-independent " << u_plain << ")");
     if (std::string(integration) == "return-mapping") CHECK(u_rate < u_plain);
     // b -> 0: the rate-independent answer.
     std::vector<std::string> tiny = lines;
@@ -422,7 +483,7 @@ TEST_CASE("Rate-dependent tube deck (SAAC3): card 0 with b != 0 runs Drysdale-Za
                                           "nodes.csv")
                                    .back()
                                    .at("u_r");
-    MESSAGE(integration << ": b = 1e-9 gives " << u_limit << " against " << u_ref);
+    MESSAGE(std::string(integration) << ": b = 1e-9 gives " << u_limit << " against " << u_ref);
     // The seed's scheme with any b > 0 puts each step back on the surface (dK = level^2 - f) where
     // SAGAEP's keeps its drift, so its limit differs by that drift; the implicit return has none.
     if (std::string(integration) == "return-mapping")

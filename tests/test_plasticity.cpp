@@ -9,6 +9,7 @@
 #include "gapfe/material/drysdale_zak.hpp"
 #include "gapfe/material/hill.hpp"
 
+#include "rate_reference.hpp"
 #include "support.hpp"
 
 namespace gapfe::test {
@@ -575,13 +576,13 @@ DrysdaleZak<Integration> rate_law(double b = kRateB, double c = 0) {
   return {Orthotropic::constant(ElasticConstants::isotropic(kE, kNu)), HillYield::mises(kSigma0, c),
           RateLaw{b, kRate0}};
 }
-/// Seed Eq. 17: the yield stress ratio at plastic rate r, and its inverse phi(s): the plastic rate at
-/// the equivalent stress ratio s (0 below the static surface).
+/// Seed Eq. 17 with these constants (tests/rate_reference.hpp): the yield stress ratio at plastic rate r,
+/// and its inverse phi(s): the plastic rate at the equivalent stress ratio s (0 below the static surface).
 double rate_level(double r, double b = kRateB) {
-  return 1 + b * std::log1p(r / kRate0);
+  return RateReference{kSigma0, b, kRate0}.level(r);
 }
 double plastic_rate_at(double s, double b = kRateB) {
-  return s <= 1 ? 0.0 : kRate0 * std::expm1((s - 1) / b);
+  return RateReference{kSigma0, b, kRate0}.plastic_rate_at(s);
 }
 /// The law's relaxation time 1 / lambda at plastic rate r, Mises (THEORY.md 8.2): b sigma_0 / (3 G
 /// (eps_0' + r)).
@@ -589,22 +590,9 @@ double relaxation_time(double r, double b = kRateB) {
   return b * kSigma0 / (3 * kShearModulus * (kRate0 + r));
 }
 
-/// SAAC3X's steady state (THEORY.md 8.7): tau held, axial strain rate `rate`. sigma solves
-/// phi(sigma_bar) sigma / sigma_bar = rate (bisection), sigma_bar = sqrt(sigma^2 + 3 tau^2); then the plastic
-/// rate phi(sigma_bar) and the twist rate 3 tau phi / sigma_bar.
-struct Saac3xSteady {
-  double sigma = 0, plastic_rate = 0, twist_rate = 0;
-};
-Saac3xSteady saac3x_steady(double tau, double rate) {
-  double lo = 0, hi = 2 * kSigma0;
-  const auto excess = [&](double s) {
-    const double bar = std::hypot(s, std::sqrt(3.0) * tau);
-    return plastic_rate_at(bar / kSigma0) * s / bar - rate;
-  };
-  for (int i = 0; i < 200; ++i) (excess(0.5 * (lo + hi)) > 0 ? hi : lo) = 0.5 * (lo + hi);
-  const double sigma = 0.5 * (lo + hi), bar = std::hypot(sigma, std::sqrt(3.0) * tau);
-  const double r = plastic_rate_at(bar / kSigma0);
-  return {sigma, r, 3 * tau * r / bar};
+/// SAAC3X's steady state (THEORY.md 8.7) for these constants.
+RateReference::Saac3x saac3x_steady(double tau, double rate) {
+  return RateReference{kSigma0, kRateB, kRate0}.saac3x_steady(tau, rate);
 }
 
 /// A point pulled along z at the constant strain rate `rate` (uniaxial stress): one elastic step to
@@ -640,7 +628,7 @@ TEST_CASE_TEMPLATE("Drysdale-Zak with b = 0 is the rate-independent Hill law (to
       for (std::size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(a[i] - b[i]) / 500.0);
     }
   }
-  MESSAGE(Integration::kName, ": largest stress difference / 500 MPa = ", worst);
+  MESSAGE(std::string(Integration::kName), ": largest stress difference / 500 MPa = ", worst);
   CHECK(rate.state.eqps > 0.01);  // it did yield, repeatedly
   CHECK(worst <= 1e-10);
 }
@@ -665,7 +653,7 @@ TEST_CASE_TEMPLATE(
       const auto s     = constant_rate(d, rate, dt, time);
       const double err = rel(s.back(), steady);
       worst            = std::max(worst, err);
-      MESSAGE(Integration::kName, ": rate ", rate, " / s, lambda dt ", lambda_dt, ": ", s.back(),
+      MESSAGE(std::string(Integration::kName), ": rate ", rate, " / s, lambda dt ", lambda_dt, ": ", s.back(),
               " MPa against ", steady, " (", err, "); ", s.size(), " steps");
       CHECK(err < 1e-3);
       CHECK(std::isfinite(d.state.relaxation));
@@ -748,8 +736,9 @@ TEST_CASE_TEMPLATE(
     double worst = 0;
     for (std::size_t i = 0; i < exact.size(); ++i)
       worst = std::max(worst, rel(s[(i + 1) * steps / 200 - 1], exact[i]));
-    MESSAGE(Integration::kName, ", ", steps, " steps (lambda dt ", d.state.relaxation, "): ", s.back(),
-            " MPa at the end against ", exact.back(), "; largest error along the path ", worst);
+    MESSAGE(std::string(Integration::kName), ", ", steps, " steps (lambda dt ", d.state.relaxation,
+            "): ", s.back(), " MPa at the end against ", exact.back(), "; largest error along the path ",
+            worst);
     if (steps == enough) CHECK(worst < 5e-3);
   }
 }
@@ -764,7 +753,7 @@ TEST_CASE_TEMPLATE(
   // sigma_bar.
   const double tau0 = kSigma0 / std::sqrt(3.0);
   for (const double rate : {1e-2, 1.0}) {
-    const Saac3xSteady exact = saac3x_steady(tau0, rate);
+    const RateReference::Saac3x exact = saac3x_steady(tau0, rate);
     const double steady = exact.sigma, twist_rate = exact.twist_rate;
     const double lambda = 1 / relaxation_time(exact.plastic_rate);
     for (const double lambda_dt : {1e-3, 1.0, 1e3}) {
@@ -788,9 +777,9 @@ TEST_CASE_TEMPLATE(
         twist_before   = d.state.strain(voigt::z_theta);
       }
       const double twist = twist_step / d.context.dt;  // engineering shear strain rate at the end
-      MESSAGE(Integration::kName, ": rate ", rate, ", lambda dt ", lambda_dt, ": sigma ", previous,
-              " against ", steady, ", twist rate ", twist, " against ", twist_rate, "; overshoot ", overshoot,
-              ", largest fall ", fall, " (", steps, " steps)");
+      MESSAGE(std::string(Integration::kName), ": rate ", rate, ", lambda dt ", lambda_dt, ": sigma ",
+              previous, " against ", steady, ", twist rate ", twist, " against ", twist_rate, "; overshoot ",
+              overshoot, ", largest fall ", fall, " (", steps, " steps)");
       CHECK(rel(previous, steady) < 0.01);
       CHECK(rel(twist, twist_rate) < 0.01);
       // Required: no step above the steady value by more than 1e-6, at every lambda dt. The implicit return
@@ -876,7 +865,7 @@ TEST_CASE_TEMPLATE(
   };
   set(p, 0, 0);
   NonlinearStatic<M> fe(p);
-  const Saac3xSteady exact = saac3x_steady(tau0, rate);
+  const RateReference::Saac3x exact = saac3x_steady(tau0, rate);
   const double steady = exact.sigma, twist_rate = exact.twist_rate;
   // lambda dt = 1 for the implicit return; the seed's one solve per step leaves an out-of-balance that
   // the next step's residual carries, first order in dt: it gets lambda dt = 0.1.
@@ -914,9 +903,9 @@ TEST_CASE_TEMPLATE(
     previous_twist = top_twist();
     worst_residual = std::max(worst_residual, fe.solution().residual);
   }
-  MESSAGE(Integration::kName, ": ", steps, " steps of lambda dt = ", lambda_dt, ": axial stress ", sigma,
-          " MPa against ", steady, ", twist rate ", twist, " / s against ", twist_rate, "; overshoot ",
-          overshoot, ", worst residual ", worst_residual);
+  MESSAGE(std::string(Integration::kName), ": ", steps, " steps of lambda dt = ", lambda_dt,
+          ": axial stress ", sigma, " MPa against ", steady, ", twist rate ", twist, " / s against ",
+          twist_rate, "; overshoot ", overshoot, ", worst residual ", worst_residual);
   CHECK(rel(sigma, steady) < 0.01);
   CHECK(rel(twist, twist_rate) < 0.01);
   CHECK(overshoot <= 1e-6);

@@ -38,6 +38,24 @@ struct StepTotals {
   std::vector<EdgeLoad> edge_loads;
 };
 
+/// SAAC3X's constant-strain-rate test (card 0's STRRATE and STRSTEP; seed section 4.2, THEORY.md 8.7),
+/// driven through the faces of the mesh at its least and greatest z (README "SAAC3X"): load step 1 ramps
+/// the theta traction STRSTEP onto the top face and then holds it; from step 2 on the top face moves
+/// along z at u_z = STRRATE L (t - delta t), L the length between the faces, so every later step adds
+/// STRRATE L delta t; the bottom face is held at u_z = u_theta = 0 throughout.
+struct StrainRateTest {
+  double strain_rate = 0;  ///< STRRATE [1/time]
+  double shear_step  = 0;  ///< STRSTEP, tau_z-theta on the top face, + along +theta [stress]
+  double length      = 0;  ///< top z - bottom z [length]
+  double step_time   = 0;  ///< card 0's delta t [time]
+  double bottom_z = 0, top_z = 0;
+  std::vector<int> bottom, top;                ///< nodes on the faces (0-based)
+  std::vector<std::pair<int, int>> top_edges;  ///< cell edges on the top face, the element on the left
+  bool active() const { return strain_rate != 0 || shear_step != 0; }
+  /// u_z of the top face after load step `step`: 0 through the shear step, then STRRATE L delta t a step.
+  double top_displacement(int step) const { return strain_rate * length * step_time * std::max(0, step - 1); }
+};
+
 struct DeckScene {
   IJGrid grid;
   Mesh<4> mesh;                            ///< quads as cells, 3-corner cells as triangles, tags set
@@ -50,6 +68,7 @@ struct DeckScene {
   DeckNeeds needs;
   GapLayout gaps;         ///< pairs of the material-2 elements (saac formats), soft corners
   int gap_material = -1;  ///< index of deck material 2 in `materials` (gap elements), -1 without gaps
+  StrainRateTest strain_rate_test;  ///< SAAC3X (card 0's STRRATE, STRSTEP); inactive otherwise
 
   /// Element number (0-based, grid numbering) of a mesh cell or triangle.
   std::vector<int> element_of_cell, element_of_triangle;
@@ -243,6 +262,42 @@ inline DeckScene build_scene(const Deck& d) {
     if (block.inertia && block.inertia->angular_acceleration != 0)
       s.needs.theta.push_back("angular acceleration ANGACC in the inertia card of a load block");
   }
+
+  // ---- SAAC3X: the faces at the least and greatest z
+  if (d.rate && (d.rate->strain_rate != 0 || d.rate->shear_stress_step != 0)) {
+    StrainRateTest& x = s.strain_rate_test;
+    x.strain_rate = d.rate->strain_rate, x.shear_step = d.rate->shear_stress_step;
+    x.step_time            = d.rate->time_step;
+    const std::string card = "DATA NO. 0 (rate property card), columns 37-60 (STRRATE, STRSTEP)";
+    if (!std::isfinite(x.strain_rate) || !std::isfinite(x.shear_step))
+      throw InputError(card + ": not a finite number");
+    x.bottom_z = x.top_z = s.mesh.nodes[0](1);
+    for (const Vec2& p : s.mesh.nodes)
+      x.bottom_z = std::min(x.bottom_z, p(1)), x.top_z = std::max(x.top_z, p(1));
+    x.length         = x.top_z - x.bottom_z;
+    const double tol = 1e-9 * s.mesh.size();
+    if (!(x.length > tol))
+      throw InputError(card +
+                       ": the constant-strain-rate test needs a mesh with length along z (all nodes at z = " +
+                       detail::number_text(x.top_z) + ")");
+    std::vector<char> on_top(static_cast<std::size_t>(nn), 0);
+    for (int n = 0; n < nn; ++n) {
+      if (std::abs(s.mesh.nodes[n](1) - x.bottom_z) <= tol) x.bottom.push_back(n);
+      if (std::abs(s.mesh.nodes[n](1) - x.top_z) <= tol) x.top.push_back(n), on_top[n] = 1;
+    }
+    for (const auto& c : g.cells)
+      for (int k = 0; k < c.corners; ++k) {
+        const int m = c.node[k], n = c.node[(k + 1) % c.corners];
+        if (on_top[m] && on_top[n]) x.top_edges.emplace_back(m, n);
+      }
+    if (x.shear_step != 0) {
+      if (x.top_edges.empty())
+        throw InputError(card + ": the shear stress step needs element edges on the top face z = " +
+                         detail::number_text(x.top_z) + " (it has only corners there)");
+      s.needs.theta.push_back("the shear stress step STRSTEP = " + detail::number_text(x.shear_step) +
+                              " in DATA NO. 0 (SAAC3X)");
+    }
+  }
   return s;
 }
 
@@ -296,6 +351,28 @@ inline StepTotals step_totals(const Deck& d, const DeckScene& s, int step) {
     detail::add_edges(edges, b.pressure, 0, surface_scale);
     detail::add_edges(edges, b.shear, 1, surface_scale);
     detail::add_edges(edges, b.transverse_shear, 2, surface_scale);
+  }
+  if (const StrainRateTest& x = s.strain_rate_test; x.active()) {
+    // The faces' conditions come last, so they win (dof_map.hpp); they keep the deck's own components of
+    // the node's last card and add u_z (and u_theta at the bottom).
+    std::map<int, NodalCondition> last;
+    for (const auto& c : t.conditions) last[c.node] = c;
+    const auto drive = [&](int n, int code, double u_z) {
+      const auto it    = last.find(n);
+      NodalCondition c = it != last.end() ? it->second : NodalCondition{n, 0, {}};
+      c.code |= code;
+      c.value[dof::z] = u_z;
+      if (code & 4) c.value[dof::theta] = 0;
+      t.conditions.push_back(c);
+    };
+    for (const int n : x.bottom) drive(n, 2 | 4, 0.0);
+    for (const int n : x.top) drive(n, 2, x.top_displacement(step));
+    if (x.shear_step != 0 && step >= 1)
+      for (const auto& [m, n] : x.top_edges) {
+        EdgeLoad& l = edges[{m, n}];
+        l.node_m = m, l.node_n = n;
+        l.transverse_shear += x.shear_step;
+      }
   }
   for (const auto& [key, load] : edges) t.edge_loads.push_back(load);
   return t;
