@@ -29,7 +29,7 @@ is run as `GAPFE run DECK --out DIR --quiet --element quad4` (--element: quad4 =
 CAX4, is the default here; `--element deck` keeps gapfe's own default, the seed's four-CST quad),
 --repeat times, median wall time; then once more, untimed and without --quiet, for its contact
 summary line (increments, linear solves, factorizations). From gaps.csv
-(step,inc,element,pair,status,gap,f_n,f_t) the rows of the last (step, inc) are summed: a row is
+(step,inc,t,element,pair,status,gap,f_n,f_t) the rows of the last (step, inc) are summed: a row is
 one gap element's full-ring normal force at one of its two node pairs (compressive positive), and
 a node pair shared by two gap elements gets one row from each, each with that element's share,
 so the sum over all rows is the total contact force and q = sum f_n / (2 pi b h). (Checked

@@ -42,7 +42,7 @@ void note_relaxation(RunTimes& times, const Deck& d, int step, double inc, const
 
 template <class M>
 void run_linear(const RunRequest& r, RunTimes& times) {
-  StepFiles files(r.dir, r.scene);
+  StepFiles files(r.dir, r.scene, r.deck.step_time());
   run_deck<M>(r.deck, r.scene, [&](int step, double inc, const LinearStatic<M>& fe) {
     const auto& t = fe.timings();
     times.assemble += t.assemble, times.factorize += t.factorize, times.solve += t.solve + t.reactions;
@@ -54,11 +54,11 @@ void run_linear(const RunRequest& r, RunTimes& times) {
 
 template <class M>
 void run_plastic(const RunRequest& r, RunTimes& times) {
-  StepFiles files(r.dir, r.scene);
+  StepFiles files(r.dir, r.scene, r.deck.step_time());
   // plasticity.csv: the Newton record of every accepted increment (residuals: |R| / |F_int| after each
   // linear solve, separated by spaces; drift: max |sqrt f - 1| over the plastic points).
   std::ofstream record = detail::open_output(r.dir + "/plasticity.csv");
-  record << "step,inc,iterations,plastic_points,drift,residuals\n";
+  record << "step,inc,t,iterations,plastic_points,drift,residuals\n";
   int last_step = 0;
   run_deck_plastic<M>(r.deck, r.scene, [&](int step, double inc, const NonlinearStatic<M>& fe) {
     const auto& rep = fe.report();
@@ -71,8 +71,7 @@ void run_plastic(const RunRequest& r, RunTimes& times) {
     ++times.increments;
     note_relaxation(times, r.deck, step, inc, fe.states());
     std::string row;
-    detail::append_number(row, static_cast<long long>(step)), row += ',';
-    detail::csv_number(row, inc);
+    detail::csv_increment(row, step, inc, r.deck.step_time());
     detail::append_number(row, static_cast<long long>(rep.iterations)), row += ',';
     detail::append_number(row, static_cast<long long>(rep.plastic_points)), row += ',';
     detail::csv_number(row, rep.drift);
@@ -90,8 +89,8 @@ void run_plastic(const RunRequest& r, RunTimes& times) {
 
 template <class M, ContactPolicy P, FrictionModel F = NoFriction>
 void run_contact(const RunRequest& r, RunTimes& times) {
-  StepFiles files(r.dir, r.scene);
-  GapFile gaps(r.dir, r.scene, F::kFriction);
+  StepFiles files(r.dir, r.scene, r.deck.step_time());
+  GapFile gaps(r.dir, r.scene, F::kFriction, r.deck.step_time());
   run_deck_contact<M, P, F>(
       r.deck, r.scene, r.deck.options.gap_penalty,
       [&](int step, double inc, const ContactStatic<M, P, F>& c) {

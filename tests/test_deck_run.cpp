@@ -177,15 +177,15 @@ TEST_CASE(
     std::ifstream in(out / "gaps.csv");
     std::string header, line;
     std::getline(in, header);
-    CHECK(header == "step,inc,element,pair,status,gap,f_n,f_t");
+    CHECK(header == "step,inc,t,element,pair,status,gap,f_n,f_t");
     // The closure load: the last increment with every pair open, just before the first closed row.
     double last_open = 0, closed_at = -1;
     while (std::getline(in, line) && closed_at < 0) {
       std::stringstream s(line);
       std::vector<std::string> f;
       for (std::string v; std::getline(s, v, ',');) f.push_back(v);
-      REQUIRE(f.size() == 8);
-      if (f[4] == "closed")
+      REQUIRE(f.size() == 9);
+      if (f[5] == "closed")
         closed_at = last_open;
       else
         last_open = std::stod(f[1]);
@@ -321,20 +321,21 @@ TEST_CASE("Plastic tube deck: yield cards run Hill plasticity; eqps in elements.
     std::ifstream record(out / "plasticity.csv");
     std::string line;
     std::getline(record, line);
-    CHECK(line == "step,inc,iterations,plastic_points,drift,residuals");
+    CHECK(line == "step,inc,t,iterations,plastic_points,drift,residuals");
     int rows = 0;
     while (std::getline(record, line)) {
       ++rows;
       std::stringstream fields(line);
       std::vector<std::string> f;
       for (std::string v; std::getline(fields, v, ',');) f.push_back(v);
-      REQUIRE(f.size() == 6);
+      REQUIRE(f.size() == 7);
+      CHECK(std::stod(f[2]) == std::stod(f[1]));  // t = inc: no rate card, a step lasts 1
       const double last = std::stod(
-          f[5].substr(f[5].find_last_of(' ') == std::string::npos ? 0 : f[5].find_last_of(' ') + 1));
+          f[6].substr(f[6].find_last_of(' ') == std::string::npos ? 0 : f[6].find_last_of(' ') + 1));
       if (std::string(integration) == "return-mapping")
         CHECK(last <= 1e-10);
       else
-        CHECK(std::stoi(f[2]) == 1);
+        CHECK(std::stoi(f[3]) == 1);
     }
     CHECK(rows == 15);
   }
@@ -410,6 +411,13 @@ TEST_CASE("SAAC3X deck: card 0's STRSTEP then STRRATE drive a thin tube to THEOR
     }
     // The top face's u_z is the imposed one, and its mean rotation u_theta / r gives the twist rate.
     std::map<double, double> twist;  // inc -> mean u_theta / r on the top face
+    for (const auto& row : nodes) CHECK(row.at("t") == doctest::Approx(row.at("inc") * dt).epsilon(1e-12));
+    // The faces SAAC3X drives have reactions: the top's axial force is the axial stress times the area.
+    double axial_force = 0;
+    for (const auto& row : read_csv(out / "reactions.csv"))
+      if (row.at("inc") == 150 && row.at("z") == length) axial_force += row.at("R_z");
+    const double area = 0.5 * kTwoPi * (1000.0 * 1000.0 - 999.0 * 999.0);
+    CHECK(axial_force == doctest::Approx(elements.back().at("s_zz") * area).epsilon(1e-3));
     for (const auto& row : nodes)
       if (row.at("z") == length) {
         CHECK(row.at("u_z") == doctest::Approx(1.0 * length * dt * (row.at("inc") - 1)).epsilon(1e-12));

@@ -1,19 +1,20 @@
 #pragma once
 // What `gapfe run` and `gapfe mesh` leave in their output directory (the deck issue's contract):
-//  * nodes.csv     step,inc,node,i,j,r,z,u_r,u_z,u_t
-//  * elements.csv  step,inc,element,i,j,material,r,z,s_rr,s_zz,s_tt,s_rz,s_rt,s_zt,eqps (centroids)
-//  * gaps.csv      step,inc,element,pair,status,gap,f_n,f_t per gap node pair (decks with gap elements)
-//  * reactions.csv step,inc,node,i,j,r,z,R_r,R_z,R_t at every node with a prescribed component (BC card
-//                  code != 0): the total ring reaction force, 0 in the free components; R_t is a force
-//                  along theta (its torque about the axis is R_t r)
+//  * nodes.csv     step,inc,t,node,i,j,r,z,u_r,u_z,u_t
+//  * elements.csv  step,inc,t,element,i,j,material,r,z,s_rr,s_zz,s_tt,s_rz,s_rt,s_zt,eqps (centroids)
+//  * gaps.csv      step,inc,t,element,pair,status,gap,f_n,f_t per gap node pair (decks with gap elements)
+//  * reactions.csv step,inc,t,node,i,j,r,z,R_r,R_z,R_t at every node with a prescribed component (BC card
+//                  code != 0, or a face SAAC3X drives): the total ring reaction force, 0 in the free
+//                  components; R_t is a force along theta (its torque about the axis is R_t r)
 //  * result.pvd    one step_NNNN.vtu per completed step (step_NNNN_split_K.vtu at the points where a
 //                  contact policy split the step), for ParaView
 //  * deformed.svg  the last increment's deformed mesh (magnified), gap elements coloured open/closed
 //  * mesh.svg, mesh_nodes.csv, mesh_elements.csv, mesh.vtu (gapfe mesh: the grid with its numbers)
 // One header line per CSV, one block of rows per completed step, steps from 1; `inc` is the number
-// of load increments applied so far. Node and element numbers are the deck's (1-based). Stresses in
-// the deck's units, tension positive; s_rt is the theta-r shear, s_zt the z-theta shear. CSV rows are
-// flushed after each step, so the steps before a failure survive it.
+// of load increments applied so far and t = inc x the time a load step lasts (card 0's delta t in a
+// rate-dependent deck, else 1: t = inc); result.pvd's timesteps are t. Node and element numbers are the
+// deck's (1-based). Stresses in the deck's units, tension positive; s_rt is the theta-r shear, s_zt the
+// z-theta shear. CSV rows are flushed after each step, so the steps before a failure survive it.
 #include <algorithm>
 #include <array>
 #include <cstdio>
@@ -54,6 +55,13 @@ inline std::vector<VtuField> element_ids(const DeckScene& s) {
 inline void csv_number(std::string& s, double v) {
   append_number(s, v);
   s += ',';
+}
+
+/// The first three columns of every result row: step,inc,t, (t = inc x step_time, see the top).
+inline void csv_increment(std::string& s, int step, double inc, double step_time) {
+  append_number(s, static_cast<long long>(step)), s += ',';
+  csv_number(s, inc);
+  csv_number(s, inc * step_time);
 }
 
 /// An SVG picture of a meridian section: r to the right, z up, 1000 px wide, fitted to `nodes`.
@@ -109,15 +117,19 @@ inline constexpr const char* kMaterialFill[] = {"#dbe8f6", "#f6e3c9", "#d8f0d2",
 /// Writes the per-step result files of a run into `dir` (which must exist).
 class StepFiles {
  public:
-  StepFiles(std::string dir, const DeckScene& scene) : dir_(std::move(dir)), scene_(scene) {
+  /// `step_time`: how long a load step lasts (Deck::step_time()), for the t column.
+  StepFiles(std::string dir, const DeckScene& scene, double step_time = 1.0)
+      : dir_(std::move(dir)), scene_(scene), step_time_(step_time) {
     nodes_ = detail::open_output(dir_ + "/nodes.csv");
-    nodes_ << "step,inc,node,i,j,r,z,u_r,u_z,u_t\n";
+    nodes_ << "step,inc,t,node,i,j,r,z,u_r,u_z,u_t\n";
     reactions_ = detail::open_output(dir_ + "/reactions.csv");
-    reactions_ << "step,inc,node,i,j,r,z,R_r,R_z,R_t\n";
+    reactions_ << "step,inc,t,node,i,j,r,z,R_r,R_z,R_t\n";
     prescribed_.assign(static_cast<std::size_t>(scene.grid.node_count()), 0);
     for (const NodalCondition& c : scene.conditions) prescribed_[static_cast<std::size_t>(c.node)] |= c.code;
+    for (const int n : scene.strain_rate_test.bottom) prescribed_[static_cast<std::size_t>(n)] |= 2 | 4;
+    for (const int n : scene.strain_rate_test.top) prescribed_[static_cast<std::size_t>(n)] |= 2;
     elements_ = detail::open_output(dir_ + "/elements.csv");
-    elements_ << "step,inc,element,i,j,material,r,z,s_rr,s_zz,s_tt,s_rz,s_rt,s_zt,eqps\n";
+    elements_ << "step,inc,t,element,i,j,material,r,z,s_rr,s_zz,s_tt,s_rz,s_rt,s_zt,eqps\n";
   }
 
   /// One increment: the nodal solution and the centroid values (one per cell, cells then triangles, as
@@ -127,8 +139,7 @@ class StepFiles {
     const IJGrid& g = scene_.grid;
     const auto& u   = solution.displacement;
     std::string prefix;
-    detail::append_number(prefix, static_cast<long long>(step)), prefix += ',';
-    detail::csv_number(prefix, inc);
+    detail::csv_increment(prefix, step, inc, step_time_);
 
     std::string s;
     s.reserve(static_cast<std::size_t>(g.node_count()) * 96);
@@ -201,7 +212,7 @@ class StepFiles {
     }
     last_displacement_ = u;
     write_vtu(dir_ + "/" + name, g.nodes, detail::grid_cells(g), point, cell);
-    steps_.emplace_back(inc, name);
+    steps_.emplace_back(inc * step_time_, name);
     write_pvd(dir_ + "/result.pvd", steps_);
   }
 
@@ -261,6 +272,7 @@ class StepFiles {
  private:
   std::string dir_;
   const DeckScene& scene_;
+  double step_time_ = 1.0;
   Eigen::Matrix<double, Eigen::Dynamic, 3> last_displacement_;
   std::vector<double> last_gap_state_;
   std::ofstream nodes_, elements_, reactions_;
@@ -275,10 +287,10 @@ class StepFiles {
 /// numbers are the deck's, pair 1 | 2 the seed's contact states 2 | 3.
 class GapFile {
  public:
-  GapFile(const std::string& dir, const DeckScene& scene, bool friction = false)
-      : scene_(scene), friction_(friction) {
+  GapFile(const std::string& dir, const DeckScene& scene, bool friction = false, double step_time = 1.0)
+      : scene_(scene), friction_(friction), step_time_(step_time) {
     out_ = detail::open_output(dir + "/gaps.csv");
-    out_ << "step,inc,element,pair,status,gap,f_n,f_t\n";
+    out_ << "step,inc,t,element,pair,status,gap,f_n,f_t\n";
   }
   /// Writes the rows and returns the VTU cell arrays: gap_state (0 structural, -1 a gap element that
   /// stays soft, else the seed's contact state 1-4) and gap_size (smallest pair gap, 0 elsewhere).
@@ -293,8 +305,7 @@ class GapFile {
       const GapPair& p    = pairs[q];
       const PairState& st = states[q];
       const std::size_t e = static_cast<std::size_t>(p.element);
-      detail::append_number(s, static_cast<long long>(step)), s += ',';
-      detail::csv_number(s, inc);
+      detail::csv_increment(s, step, inc, step_time_);
       detail::append_number(s, static_cast<long long>(p.element + 1)), s += ',';
       detail::append_number(s, static_cast<long long>(p.pair + 1));
       s += !st.closed ? ",open," : !friction_ ? ",closed," : st.slipping ? ",slip," : ",stick,";
@@ -313,6 +324,7 @@ class GapFile {
  private:
   const DeckScene& scene_;
   bool friction_;
+  double step_time_ = 1.0;
   std::ofstream out_;
 };
 
