@@ -36,10 +36,11 @@
 // tangent scheme's flow direction is the step's start's: where a step turns the loading away from it
 // (SAAC3X's first axial step from pure shear, a . C d eps = 0) one large step would go elastic and
 // overshoot (30 times the steady stress at lambda dt = 1e3). So a step whose end is off the surface by
-// more than kDrift is cut into pieces (halved until each piece's end is on it, doubled again after),
-// each a step of the same scheme over its share of dt. That keeps SAAC3X's stress within 1e-5 of the
-// steady value at lambda dt = 1e3 (first order in the pieces; tests/test_plasticity.cpp measures it),
-// and costs nothing where the direction does not turn.
+// more than kCutAbove is cut into pieces (halved until each piece's end is on it to kDrift, doubled
+// again after), each a step of the same scheme over its share of dt. That keeps SAAC3X's stress within
+// 1e-4 of the steady value at lambda dt = 1e3 (tests/test_plasticity.cpp measures it; first order in
+// the pieces). Ordinary steps drift less than kCutAbove and stay whole: cutting every step to kDrift
+// made a thick-tube step 10 times dearer (BENCHMARKS.md).
 // Units: rates [1/time] in the deck's time unit (card 0's delta t); stresses as the moduli.
 #include <cmath>
 #include <limits>
@@ -74,9 +75,11 @@ struct RatePoint : HillPoint {
 
 template <class Integration>
 struct DrysdaleZak {
-  /// The seed's scheme in pieces (seed_scheme): how far a piece may leave the surface, relative, and the
-  /// smallest piece (a fraction of the step) and most pieces it cuts a step into.
+  /// The seed's scheme in pieces (seed_scheme): how far a piece may leave the surface, relative; how far
+  /// a whole step's end must be off it to be cut; the smallest piece (a fraction of the step) and the
+  /// most pieces in one step.
   static constexpr double kDrift         = 1e-7;
+  static constexpr double kCutAbove      = 1e-3;
   static constexpr double kSmallestPiece = 1.0 / (1 << 20);
   static constexpr int kMaxPieces        = 100000;
 
@@ -158,12 +161,12 @@ struct DrysdaleZak {
 
   /// The seed's SAAC3 update (see the header comment), in pieces where one step would leave the point off
   /// its surface: the forward-Euler flow direction is the start's, so a step that turns the loading
-  /// (SAAC3X's first axial step from pure shear) is cut until each piece's direction is right to kDrift.
+  /// (SAAC3X's first axial step from pure shear) is cut until each piece ends on the surface to kDrift.
   /// The assembler's tangent and the reported lambda dt are the whole step's.
   static PointResponse<State> seed_scheme(const Local& p, const Vec6& strain, const State& old,
                                           const detail::RateTerm& term) {
     PointResponse<State> whole = seed_piece(p, strain, old, term);
-    if (!term.active() || off_surface(p, old, whole, term) <= kDrift) return whole;
+    if (!term.active() || off_surface(p, old, whole, term) <= kCutAbove) return whole;
     Local at    = p;  // the point at a piece's end: its thermal strain interpolated like the strain
     State s     = old;
     double done = 0, part = 0.5;
