@@ -756,7 +756,11 @@ TEST_CASE_TEMPLATE(
     const RateReference::Saac3x exact = saac3x_steady(tau0, rate);
     const double steady = exact.sigma, twist_rate = exact.twist_rate;
     const double lambda = 1 / relaxation_time(exact.plastic_rate);
-    for (const double lambda_dt : {1e-3, 1.0, 1e3}) {
+    for (const double lambda_dt : {1e-3, 1.0, 1e3, 1e6}) {
+      // lambda dt = 1e6 is a step of some 40-60 in strain (both rates): the implicit return takes
+      // it monotonically; the seed's explicit scheme would need more than kMaxPieces pieces and asks the
+      // driver to cut the step (SolveError), which a point test cannot.
+      if (std::is_same_v<Integration, Tangent> && lambda_dt > 1e3) continue;
       PointDriver<DrysdaleZak<Integration>> d{rate_law<Integration>().localize({}, 0, 0)};
       d.k                    = voigt::zz;
       d.held(voigt::z_theta) = tau0;
