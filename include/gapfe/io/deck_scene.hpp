@@ -47,7 +47,7 @@ struct StrainRateTest {
   double strain_rate = 0;  ///< STRRATE [1/time]
   double shear_step  = 0;  ///< STRSTEP, tau_z-theta on the top face, + along +theta [stress]
   double length      = 0;  ///< top z - bottom z [length]
-  double step_time   = 0;  ///< card 0's delta t [time]
+  double step_time   = 0;  ///< how long a load step lasts, Deck::step_time() [time]
   double bottom_z = 0, top_z = 0;
   std::vector<int> bottom, top;                ///< nodes on the faces (0-based)
   std::vector<std::pair<int, int>> top_edges;  ///< cell edges on the top face, the element on the left
@@ -267,7 +267,7 @@ inline DeckScene build_scene(const Deck& d) {
   if (d.rate && (d.rate->strain_rate != 0 || d.rate->shear_stress_step != 0)) {
     StrainRateTest& x = s.strain_rate_test;
     x.strain_rate = d.rate->strain_rate, x.shear_step = d.rate->shear_stress_step;
-    x.step_time            = d.rate->time_step;
+    x.step_time            = d.step_time();  // delta t when b != 0; else time is the load factor
     const std::string card = "DATA NO. 0 (rate property card), columns 37-60 (STRRATE, STRSTEP)";
     if (!std::isfinite(x.strain_rate) || !std::isfinite(x.shear_step))
       throw InputError(card + ": not a finite number");
