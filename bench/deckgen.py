@@ -167,12 +167,13 @@ def rate_card(dt, b, rate0, strain_rate=0.0, shear_step=0.0):
 
 
 def plastic_tube_deck(ni=41, a=100.0, b=200.0, p=300.0, steps=15, sigma_y=400.0, plasticity="return-mapping",
-                      extension=(), rate=None):
-    """Thick tube a..b (THEORY.md V6), plane strain, one cell high, Mises (Hill with equal yields, shear
-    sigma_y / sqrt 3), elastic-perfectly plastic, bore pressure ramped to p in `steps` equal steps (INCF = 0).
-    Mises first yield at about 173 and the limit (2 / sqrt 3) sigma_y ln(b / a) = 320.15 (sigma_y = 400).
+                      extension=(), rate=None, nj=2, hardening=0.0):
+    """Thick tube a..b (THEORY.md V6), plane strain, nj - 1 square cells high (default one), Mises (Hill
+    with equal yields, shear sigma_y / sqrt 3), Prager hardening c = `hardening` (card 11's C; 0: perfectly
+    plastic), bore pressure ramped to p in `steps` equal steps (INCF = 0). Mises first yield at about 173
+    and the limit (2 / sqrt 3) sigma_y ln(b / a) = 320.15 (sigma_y = 400).
     rate = (delta t, b, transition rate): a SAAC3 deck (card 0 first), Drysdale-Zak rate dependence."""
-    h = (b - a) / (ni - 1)
+    h = (b - a) / (ni - 1) * (nj - 1)
     k = sigma_y / math.sqrt(3.0)
     lines = [f"$ plasticity = {plasticity}"] + [f"$ {e}" for e in extension]
     if rate:
@@ -180,13 +181,15 @@ def plastic_tube_deck(ni=41, a=100.0, b=200.0, p=300.0, steps=15, sigma_y=400.0,
     title = f"PLASTIC TUBE {a:g} < r < {b:g}, SIGMA_Y {sigma_y:g}, PRESSURE {p:g} IN {steps} STEPS"
     if rate:
         title = f"RATE TUBE {a:g}-{b:g}, SIGMA_0 {sigma_y:g}, B {rate[1]:g}, {p:g} IN {steps} STEPS OF {rate[0]:g} S"
+    ends = [bc(1, ni, 1, 2, 2)] if nj == 2 else [bc(1, ni, 1, 1, 2), bc(1, ni, nj, nj, 2)]  # u_z = 0
     lines += [title,
-              control(numpc=1, nlinc=steps, incf=0), mesh_control(ni, 2, 4, 1, 1),
-              segment([(1, 1, a, 0.0), (ni, 1, b, 0.0)], 1), segment([(ni, 1, b, 0.0), (ni, 2, b, h)], 1),
-              segment([(ni, 2, b, h), (1, 2, a, h)], 1), segment([(1, 2, a, h), (1, 1, a, 0.0)], 1),
-              bc(1, ni, 1, 2, 2), block(1, 1, ni, 1, 2)]
-    lines += material(1, [isotropic(200000.0, 0.3)], yield_card=[sigma_y, sigma_y, sigma_y, k, k, k, 0.0])
-    lines += [edge(ni + 1, 1, p / steps)]
+              control(numpc=nj - 1, nlinc=steps, incf=0), mesh_control(ni, nj, 4, len(ends), 1),
+              segment([(1, 1, a, 0.0), (ni, 1, b, 0.0)], 1), segment([(ni, 1, b, 0.0), (ni, nj, b, h)], 1),
+              segment([(ni, nj, b, h), (1, nj, a, h)], 1), segment([(1, nj, a, h), (1, 1, a, 0.0)], 1),
+              *ends, block(1, 1, ni, 1, nj)]
+    lines += material(1, [isotropic(200000.0, 0.3)],
+                      yield_card=[sigma_y, sigma_y, sigma_y, k, k, k, hardening])
+    lines += [edge(J * ni + 1, (J - 1) * ni + 1, p / steps) for J in range(1, nj)]
     return "\n".join(lines) + "\n"
 
 

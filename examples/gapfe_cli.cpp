@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "gapfe/io/deck_output.hpp"
+#include "gapfe/solver/threads.hpp"
 #include "gapfe/version.hpp"
 
 #include "cli_run.hpp"
@@ -25,12 +26,14 @@ constexpr const char* kUsage =
     "  --variant saas|saga      force a model variant (default: the smallest the deck needs)\n"
     "  --set KEY=VALUE          a deck extension option (README: format, element, solver, bc_loads, ...)\n"
     "  --format F, --element E, --solver S, --contact C, --plasticity P   shorthands for --set\n"
+    "  --threads N              threads for the sparse factorization and BLAS (default 1: one core)\n"
     "  --quiet                  no log on standard output\n";
 
 struct Args {
   std::string command, deck, out, variant;
   std::vector<std::pair<std::string, std::string>> options;
-  bool quiet = false;
+  bool quiet  = false;
+  int threads = 1;
 };
 
 struct UsageError : std::runtime_error {
@@ -63,6 +66,18 @@ Args parse(const std::vector<std::string>& a) {
     } else if (s == "--format" || s == "--element" || s == "--solver" || s == "--contact" ||
                s == "--plasticity") {
       r.options.emplace_back(s.substr(2), value());
+    } else if (s == "--threads") {
+      const std::string& n = value();
+      std::size_t used     = 0;
+      int count            = 0;
+      try {
+        count = std::stoi(n, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != n.size() || count < 1 || count > 1024)
+        throw UsageError("--threads: '" + n + "' is not a thread count (a whole number from 1 to 1024)");
+      r.threads = count;
     } else if (s == "--quiet") {
       r.quiet = true;
     } else if (!s.empty() && s[0] == '-') {
@@ -206,6 +221,8 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) 
           : solver == "eigen" ? std::string(EigenLdlt::kName)
                               : std::string("CHOLMOD supernodal LLT (AMD)"))
       << "; element " << element << "\n";
+  set_solver_threads(a.threads);  // CHOLMOD's OpenMP and OpenBLAS; one thread unless asked (threads.hpp)
+  log << "threads: " << a.threads << (a.threads == 1 ? " (--threads N for more)" : "") << "\n";
   RunTimes times;
   const RunRequest request{d, s, a.out, variant, element, solver, err, progress};
   t0 = Clock::now();
