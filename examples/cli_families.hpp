@@ -42,19 +42,19 @@ void note_relaxation(RunTimes& times, const Deck& d, int step, double inc, const
 
 template <class M>
 void run_linear(const RunRequest& r, RunTimes& times) {
-  StepFiles files(r.dir, r.scene, r.deck.step_time());
+  StepFiles files(r.dir, r.scene, r.deck.step_time(), r.deck.options.output == "all");
   run_deck<M>(r.deck, r.scene, [&](int step, double inc, const LinearStatic<M>& fe) {
     const auto& t = fe.timings();
     times.assemble += t.assemble, times.factorize += t.factorize, times.solve += t.solve + t.reactions;
     write_increment(r, times, files, step, inc, fe);
   });
   progress_done(r);
-  files.write_deformed(r.deck.title);
+  finish_files(times, files, r.deck.title);
 }
 
 template <class M>
 void run_plastic(const RunRequest& r, RunTimes& times) {
-  StepFiles files(r.dir, r.scene, r.deck.step_time());
+  StepFiles files(r.dir, r.scene, r.deck.step_time(), r.deck.options.output == "all");
   // plasticity.csv: the Newton record of every accepted increment (residuals: |R| / |F_int| after each
   // linear solve, separated by spaces; drift: max |sqrt f - 1| over the plastic points).
   std::ofstream record = detail::open_output(r.dir + "/plasticity.csv");
@@ -64,6 +64,7 @@ void run_plastic(const RunRequest& r, RunTimes& times) {
     const auto& rep = fe.report();
     times.solve += fe.solve_seconds();
     times.newton_iterations += rep.iterations;
+    times.factorizations = fe.factorizations();
     times.cut_steps += step == last_step || inc != std::floor(inc);
     times.plastic_points = rep.plastic_points;
     times.drift          = std::max(times.drift, rep.drift);
@@ -84,12 +85,12 @@ void run_plastic(const RunRequest& r, RunTimes& times) {
     write_increment(r, times, files, step, inc, fe);
   });
   progress_done(r);
-  files.write_deformed(r.deck.title);
+  finish_files(times, files, r.deck.title);
 }
 
 template <class M, ContactPolicy P, FrictionModel F = NoFriction>
 void run_contact(const RunRequest& r, RunTimes& times) {
-  StepFiles files(r.dir, r.scene, r.deck.step_time());
+  StepFiles files(r.dir, r.scene, r.deck.step_time(), r.deck.options.output == "all");
   GapFile gaps(r.dir, r.scene, F::kFriction, r.deck.step_time());
   run_deck_contact<M, P, F>(
       r.deck, r.scene, r.deck.options.gap_penalty,
@@ -104,7 +105,7 @@ void run_contact(const RunRequest& r, RunTimes& times) {
         write_increment(r, times, files, step, inc, c.fe(), gaps.write(step, inc, c.pairs(), c.states()));
       });
   progress_done(r);
-  files.write_deformed(r.deck.title);
+  finish_files(times, files, r.deck.title);
 }
 
 }  // namespace gapfe::cli

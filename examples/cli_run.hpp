@@ -33,7 +33,7 @@ struct RunTimes {
   ContactCounters contact;
   int increments = 0, closed = 0, pairs = 0;
   double penalty        = 0;
-  int newton_iterations = 0, cut_steps = 0, plastic_points = 0;
+  int newton_iterations = 0, cut_steps = 0, plastic_points = 0, factorizations = 0;
   double drift = 0, worst_residual = 0;
   /// Rate-dependent laws: per accepted increment, lambda dt over the yielding points (the log prints it).
   std::vector<std::string> relaxation;
@@ -100,6 +100,13 @@ void write_increment(const RunRequest& r, RunTimes& times, StepFiles& files, int
   files.write(step, inc, fe.solution(), fe.centroid_values(), std::move(extra_cells));
   times.write += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   progress_line(r, step);
+}
+
+/// The end of a run: the held increment (output = last) and deformed.svg, timed as writing.
+inline void finish_files(RunTimes& times, StepFiles& files, const std::string& title) {
+  const auto start = std::chrono::steady_clock::now();
+  files.finish(title);
+  times.write += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace gapfe::cli

@@ -25,7 +25,8 @@ constexpr const char* kUsage =
     "options:\n"
     "  --variant saas|saga      force a model variant (default: the smallest the deck needs)\n"
     "  --set KEY=VALUE          a deck extension option (README: format, element, solver, bc_loads, ...)\n"
-    "  --format F, --element E, --solver S, --contact C, --plasticity P   shorthands for --set\n"
+    "  --format F, --element E, --solver S, --contact C, --plasticity P, --output all|last\n"
+    "                           shorthands for --set (output = last: result files of the last increment only)\n"
     "  --threads N              threads for the sparse factorization and BLAS (default 1: one core)\n"
     "  --quiet                  no log on standard output\n";
 
@@ -64,7 +65,7 @@ Args parse(const std::vector<std::string>& a) {
       if (eq == std::string::npos) throw UsageError("--set needs KEY=VALUE, got '" + kv + "'");
       r.options.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
     } else if (s == "--format" || s == "--element" || s == "--solver" || s == "--contact" ||
-               s == "--plasticity") {
+               s == "--plasticity" || s == "--output") {
       r.options.emplace_back(s.substr(2), value());
     } else if (s == "--threads") {
       const std::string& n = value();
@@ -219,7 +220,7 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) 
               ? std::string(solver == "eigen" || !kHasUmfpack ? "Eigen SparseLU (COLAMD)" : "UMFPACK LU") +
                     " (the Coulomb slip tangent is unsymmetric)"
           : solver == "eigen" ? std::string(EigenLdlt::kName)
-                              : std::string("CHOLMOD supernodal LLT (AMD)"))
+                              : std::string("CHOLMOD supernodal LLT (nested dissection of the mesh)"))
       << "; element " << element << "\n";
   set_solver_threads(a.threads);  // CHOLMOD's OpenMP and OpenBLAS; one thread unless asked (threads.hpp)
   log << "threads: " << a.threads << (a.threads == 1 ? " (--threads N for more)" : "") << "\n";
@@ -235,7 +236,7 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) 
   if (plastic && s.needs.gaps.empty())
     log << "plasticity: " << d.options.plasticity << "; " << times.increments << " increments ("
         << times.cut_steps << " from cut steps), " << times.newton_iterations
-        << " linear solves; worst residual " << times.worst_residual
+        << " linear solves (" << times.factorizations << " factorizations); worst residual " << times.worst_residual
         << ", largest drift off the yield surface " << times.drift << "; " << times.plastic_points
         << " plastic points at the end\n";
   if (!s.needs.gaps.empty())

@@ -10,6 +10,7 @@
 #include <doctest/doctest.h>
 
 #include "gapfe/io/deck.hpp"
+#include "gapfe/io/deck_output.hpp"
 #include "gapfe/io/deck_scene.hpp"
 
 #include "deck_support.hpp"
@@ -403,7 +404,27 @@ TEST_CASE("The gapfe command: usage errors and unreadable decks") {
   std::ostringstream e2;
   CHECK(gapfe::cli::main({"info", "/nonexistent/deck"}, out, e2) == gapfe::cli::system);
   CHECK(e2.str().find("cannot open deck '/nonexistent/deck'") != std::string::npos);
+  for (const char* bad : {"0", "two", "2x", "-1"}) {
+    std::ostringstream e3;
+    CHECK(gapfe::cli::main({"run", "x.deck", "--out", "/tmp", "--threads", bad}, out, e3) == gapfe::cli::usage);
+    CHECK(e3.str().find("--threads: '" + std::string(bad) + "' is not a thread count") != std::string::npos);
+  }
+  std::ostringstream e4;
+  CHECK(gapfe::cli::main({"run", "x.deck", "--out", "/tmp", "--threads"}, out, e4) == gapfe::cli::usage);
   std::ostringstream help;
   CHECK(gapfe::cli::main({"--help"}, help, err) == gapfe::cli::ok);
   CHECK(help.str().find("gapfe run DECK --out DIR") != std::string::npos);
+}
+
+TEST_CASE("deformed.svg of a large mesh: the outline keeps the boundary and the material interfaces") {
+  // tube_deck(): a 5 x 3 grid, 4 x 2 cells. Its boundary has 2 (4 + 2) = 12 cell sides; a second material
+  // in the cells of I >= 3 adds the 2 sides between I = 2 and I = 3.
+  const gapfe::DeckScene s = gapfe::build_scene(gapfe::read_deck(gapfe::test::tube_deck()));
+  REQUIRE(s.grid.cells.size() == 8);
+  std::vector<int> material(8, 1);
+  CHECK(gapfe::detail::outline_edges(s.grid, material).size() == 12);
+  for (std::size_t e = 0; e < 8; ++e) material[e] = s.grid.cells[e].i >= 3 ? 2 : 1;
+  const auto edges = gapfe::detail::outline_edges(s.grid, material);
+  CHECK(edges.size() == 14);
+  for (const auto& [a, b] : edges) CHECK(a < b);
 }

@@ -374,6 +374,29 @@ TEST_CASE("Plastic tube deck: yield cards run Hill plasticity; eqps in elements.
   CHECK(difference[1] <= difference[0] / 1.8);
   CHECK(difference[2] <= difference[1] / 1.8);
 
+  // output = last: the result files hold the last increment only, the same rows the full run wrote for it;
+  // plasticity.csv still has every increment.
+  {
+    const fs::path all  = scratch("plastic_return-mapping");
+    const fs::path last = run_deck_file(kExamples / "plastic_tube.deck", "plastic_last",
+                                        {"--plasticity", "return-mapping", "--output", "last"});
+    for (const char* file : {"nodes.csv", "elements.csv", "reactions.csv"}) {
+      CAPTURE(file);
+      const auto every = read_csv(all / file), only = read_csv(last / file);
+      std::vector<std::map<std::string, double>> final_rows;
+      for (const auto& row : every)
+        if (row.at("step") == 15) final_rows.push_back(row);
+      REQUIRE(!final_rows.empty());
+      CHECK(only == final_rows);
+    }
+    CHECK(fs::exists(last / "step_0015.vtu"));
+    CHECK(!fs::exists(last / "step_0014.vtu"));
+    std::ifstream record(last / "plasticity.csv");
+    int rows = -1;
+    for (std::string line; std::getline(record, line);) ++rows;
+    CHECK(rows == 15);
+  }
+
   std::ostringstream o, e;
   CHECK(gapfe::cli::main({"run", (kExamples / "plastic_tube.deck").string(), "--out",
                           scratch("plastic_legacy").string(), "--element", "legacy"},

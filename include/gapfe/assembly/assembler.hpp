@@ -30,6 +30,7 @@
 #include "gapfe/assembly/sparsity.hpp"
 #include "gapfe/core/history.hpp"
 #include "gapfe/problem/problem.hpp"
+#include "gapfe/solver/coordinate_dissection.hpp"
 
 namespace gapfe {
 
@@ -69,6 +70,38 @@ class Assembler {
   const DofMap<kNd>& dofs() const { return dofs_; }
   /// The free DOFs' pattern in kStorage, values zero: the System copies it once.
   const SpMat& pattern() const { return pattern_; }
+  /// A fill-reducing elimination order of the free equations (order[k] = the equation eliminated k-th):
+  /// nested dissection of the nodes by their coordinates (solver/coordinate_dissection.hpp), each node's
+  /// free components together. Node links count as edges. Empty when there is no free equation.
+  std::vector<int> fill_reducing_order(const Problem<M>& p) const {
+    const int nn = p.mesh.node_count();
+    if (dofs_.free_count == 0) return {};
+    std::vector<std::vector<int>> near(static_cast<std::size_t>(nn));
+    const auto connect = [&](const auto& cells) {
+      for (const auto& c : cells)
+        for (const int a : c)
+          for (const int b : c)
+            if (a != b) near[static_cast<std::size_t>(a)].push_back(b);
+    };
+    connect(p.mesh.cells);
+    connect(p.mesh.triangles);
+    connect(links_);
+    std::vector<int> ptr(static_cast<std::size_t>(nn) + 1, 0), adj;
+    for (int n = 0; n < nn; ++n) {
+      auto& list = near[static_cast<std::size_t>(n)];
+      std::sort(list.begin(), list.end());
+      list.erase(std::unique(list.begin(), list.end()), list.end());
+      adj.insert(adj.end(), list.begin(), list.end());
+      ptr[static_cast<std::size_t>(n) + 1] = static_cast<int>(adj.size());
+      std::vector<int>().swap(list);
+    }
+    std::vector<int> order;
+    order.reserve(static_cast<std::size_t>(dofs_.free_count));
+    for (const int n : coordinate_dissection(p.mesh.nodes, ptr, adj))
+      for (int c = 0; c < kNd; ++c)
+        if (const int eq = dofs_.equation[static_cast<std::size_t>(dofs_.dof(n, c))]; eq >= 0) order.push_back(eq);
+    return order;
+  }
   const Connectivity<2>& links() const { return links_; }
   std::vector<NodeLink>& link_values() { return link_values_; }
   const std::vector<NodeLink>& link_values() const { return link_values_; }

@@ -2,6 +2,7 @@
 // The contracts every policy must meet. A wrong plug-in fails where the Model alias names it.
 #include <concepts>
 #include <string>
+#include <vector>
 
 #include "gapfe/core/material_frame.hpp"
 #include "gapfe/core/point_geometry.hpp"
@@ -86,6 +87,14 @@ concept LinearSolver = std::default_initializable<S> && requires(S s, const SpMa
   { s.factorize(K) } -> std::same_as<bool>;
   { s.solve(b) } -> std::convertible_to<VecX>;
   { s.failure() } -> std::convertible_to<std::string>;  // why factorize() returned false
+};
+
+/// A LinearSolver that can take the elimination order from the caller: analyze(K, order), order[k] =
+/// the equation eliminated k-th (a permutation of 0 .. rows - 1). The assembler knows the mesh, so it can
+/// find a better order than a solver that sees only the pattern (solver/coordinate_dissection.hpp).
+template <class S>
+concept OrderedSolver = LinearSolver<S> && requires(S s, const SpMat& K, const std::vector<int>& order) {
+  s.analyze(K, order);
 };
 
 }  // namespace gapfe

@@ -31,7 +31,10 @@ class LinearStatic {
 
   /// `links`: node pairs (a, b) that may carry node links; their values start at zero (link_values()).
   explicit LinearStatic(Problem<M> problem, Connectivity<2> links = {})
-      : p_(std::move(problem)), assembler_(p_, std::move(links)), system_(assembler_.pattern()) {}
+      : p_(std::move(problem)),
+        assembler_(p_, std::move(links)),
+        system_(assembler_.pattern(), OrderedSolver<typename M::LinearSolver> ? assembler_.fill_reducing_order(p_)
+                                                                              : std::vector<int>{}) {}
 
   /// Loads, temperatures and materials may be changed here between solves.
   Problem<M>& problem() { return p_; }

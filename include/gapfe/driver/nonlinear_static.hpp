@@ -7,7 +7,8 @@
 //   R(u) = F_ext - F_int(u),   F_int = sum_e int B^T sigma dV (+ node links),   K_t = sum_e int B^T D B dV,
 // with sigma and D from Law::update(local, eps(u), committed state, context()). Iteration 0 starts from
 // the committed displacements and takes the change of the prescribed values through K_fp (a linearized
-// predictor). Each iteration refactorizes K_t; the pattern and its analysis never change.
+// predictor). Each iteration refactorizes K_t unless it is bit for bit the last factorized one (every
+// point elastic: System::skip_unchanged); the pattern and its analysis never change.
 //   * Laws with kIterate (ReturnMapping): Newton until |R_free| <= tolerance |F_int| (over all DOFs, so
 //     reactions count and displacement-controlled steps are measured too). Every iteration's residual is
 //     kept in the report (the quadratic-convergence test reads it).
@@ -55,7 +56,8 @@ class NonlinearStatic {
   explicit NonlinearStatic(Problem<M> scene, Connectivity<2> link_pairs = {}, NewtonOptions options = {})
       : p_(std::move(scene)),
         assembler_(p_, std::move(link_pairs)),
-        system_(assembler_.pattern()),
+        system_(assembler_.pattern(), OrderedSolver<typename M::LinearSolver> ? assembler_.fill_reducing_order(p_)
+                                                                              : std::vector<int>{}),
         options_(options),
         points_(assembler_.point_count()),
         stress_(assembler_.point_count(), Vec6::Zero()),
@@ -63,6 +65,7 @@ class NonlinearStatic {
         u_committed_(u_) {
     if (!(options_.tolerance > 0) || options_.max_iterations < 1)
       throw InputError("Newton options: tolerance must be > 0 and max_iterations >= 1");
+    system_.skip_unchanged(true);  // elastic iterations reassemble the same stiffness: factorize it once
   }
 
   Problem<M>& problem() { return p_; }
@@ -77,6 +80,8 @@ class NonlinearStatic {
   const Connectivity<2>& links() const { return assembler_.links(); }
   std::vector<NodeLink>& link_values() { return assembler_.link_values(); }
   const std::vector<NodeLink>& link_values() const { return assembler_.link_values(); }
+  /// Numeric factorizations so far; an iteration whose tangent equals the last factorized one bit for bit
+  /// (every point elastic) reuses it and is not counted.
   int factorizations() const { return system_.factorizations(); }
   /// Elastic stiffness per node over the cells `keep` passes: what a contact penalty is scaled by.
   template <class Keep>

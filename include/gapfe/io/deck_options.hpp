@@ -37,6 +37,10 @@ struct DeckOptions {
   std::string events     = "locate";
   int gap_direction      = 0;  ///< gap_direction = 0 (IJDIR per block, SAAC2) | 1 | 2 (SAAC's one LGAP)
   std::string plasticity = "tangent";  ///< plasticity = tangent | return-mapping (plasticity issue)
+  /// output = all | last: nodes.csv, elements.csv, reactions.csv and the VTU files get every accepted
+  /// increment (all), or only the run's last one (last: a many-step run that is read at its end does
+  /// not spend its time writing text). plasticity.csv and gaps.csv, the run's record, always get all.
+  std::string output = "all";
 
   /// The friction model a run uses: "none" without friction, else the slip option with auto resolved.
   std::string friction_model() const {
@@ -87,10 +91,12 @@ struct DeckOptions {
       gap_direction = std::stoi(one_of({"0", "1", "2"}));
     } else if (key == "plasticity") {
       plasticity = one_of({"tangent", "return-mapping"});
+    } else if (key == "output") {
+      output = one_of({"all", "last"});
     } else {
       throw InputError("unknown option '" + key +
                        "' (known: format, element, solver, bc_loads, contact, friction, slip, gap_penalty, "
-                       "events, gap_direction, plasticity)");
+                       "events, gap_direction, plasticity, output)");
     }
   }
 };

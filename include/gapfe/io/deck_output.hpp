@@ -19,6 +19,7 @@
 #include <array>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,36 @@ inline std::vector<VtuField> element_ids(const DeckScene& s) {
   for (std::size_t e = 0; e < s.grid.cells.size(); ++e)
     f[0].values.push_back(s.material_id[e]), f[1].values.push_back(static_cast<double>(e + 1));
   return f;
+}
+
+/// The cell sides a picture of a large mesh keeps: those of one cell only (the boundary) and those between
+/// cells of different materials (`material` per cell), as node pairs (smaller node first).
+inline std::vector<std::array<int, 2>> outline_edges(const IJGrid& g, const std::vector<int>& material) {
+  struct Side {
+    std::array<int, 2> nodes;
+    int material;
+    bool operator<(const Side& o) const { return nodes < o.nodes; }
+  };
+  std::vector<Side> sides;
+  sides.reserve(4 * g.cells.size());
+  for (std::size_t e = 0; e < g.cells.size(); ++e) {
+    const GridCell& c = g.cells[e];
+    for (int k = 0; k < c.corners; ++k) {
+      const int a = c.node[k], b = c.node[(k + 1) % c.corners];
+      sides.push_back({{std::min(a, b), std::max(a, b)}, material[e]});
+    }
+  }
+  std::sort(sides.begin(), sides.end());
+  std::vector<std::array<int, 2>> out;
+  for (std::size_t k = 0; k < sides.size();) {
+    std::size_t end = k + 1;
+    bool interface = false;
+    for (; end < sides.size() && sides[end].nodes == sides[k].nodes; ++end)
+      interface = interface || sides[end].material != sides[k].material;
+    if (end - k == 1 || interface) out.push_back(sides[k].nodes);
+    k = end;
+  }
+  return out;
 }
 
 inline void csv_number(std::string& s, double v) {
@@ -117,9 +148,10 @@ inline constexpr const char* kMaterialFill[] = {"#dbe8f6", "#f6e3c9", "#d8f0d2",
 /// Writes the per-step result files of a run into `dir` (which must exist).
 class StepFiles {
  public:
-  /// `step_time`: how long a load step lasts (Deck::step_time()), for the t column.
-  StepFiles(std::string dir, const DeckScene& scene, double step_time = 1.0)
-      : dir_(std::move(dir)), scene_(scene), step_time_(step_time) {
+  /// `step_time`: how long a load step lasts (Deck::step_time()), for the t column. `every_increment`
+  /// false (the deck's output = last): write() keeps the increment and finish() writes the last one.
+  StepFiles(std::string dir, const DeckScene& scene, double step_time = 1.0, bool every_increment = true)
+      : dir_(std::move(dir)), scene_(scene), step_time_(step_time), every_increment_(every_increment) {
     nodes_ = detail::open_output(dir_ + "/nodes.csv");
     nodes_ << "step,inc,t,node,i,j,r,z,u_r,u_z,u_t\n";
     reactions_ = detail::open_output(dir_ + "/reactions.csv");
@@ -136,6 +168,26 @@ class StepFiles {
   /// a driver's centroid_values() gives them); `extra_cells` are more VTU cell arrays (GapFile's).
   void write(int step, double inc, const Solution& solution, const std::vector<PointValues>& values,
              std::vector<VtuField> extra_cells = {}) {
+    if (!every_increment_) {
+      held_ = Held{step, inc, solution, values, std::move(extra_cells)};
+      return;
+    }
+    write_now(step, inc, solution, values, std::move(extra_cells));
+  }
+
+  /// The end of a run: the held increment (output = last), then deformed.svg.
+  void finish(const std::string& title) {
+    if (held_) {
+      Held h = std::move(*held_);
+      held_.reset();
+      write_now(h.step, h.inc, h.solution, h.values, std::move(h.extra_cells));
+    }
+    write_deformed(title);
+  }
+
+ private:
+  void write_now(int step, double inc, const Solution& solution, const std::vector<PointValues>& values,
+                 std::vector<VtuField> extra_cells) {
     const IJGrid& g = scene_.grid;
     const auto& u   = solution.displacement;
     std::string prefix;
@@ -216,8 +268,15 @@ class StepFiles {
     write_pvd(dir_ + "/result.pvd", steps_);
   }
 
+ public:
+
+  /// Above this many cells deformed.svg draws the outline (boundary and material interfaces) instead
+  /// of every cell: a picture of 1e5 cells shows no cell, and writing it cost 10% of a 1e5-equation run.
+  static constexpr std::size_t kSvgCellLimit = 20000;
+
   /// deformed.svg: the last increment's deformed mesh over the undeformed outline, displacements
   /// magnified to 5% of the section (a 1-2-5 factor, printed); gap elements coloured by their state.
+  /// Meshes of more than kSvgCellLimit cells: the deformed outline over the undeformed one.
   void write_deformed(const std::string& title) const {
     const IJGrid& g = scene_.grid;
     if (last_displacement_.rows() != g.node_count()) return;  // no increment written
@@ -240,7 +299,15 @@ class StepFiles {
     detail::SvgCanvas svg(both, title + ": deformed x " + factor_text + " over the undeformed outline (grey)",
                           50);
     const bool gaps = !last_gap_state_.empty();
+    if (g.cells.size() > kSvgCellLimit) {
+      const auto edges = detail::outline_edges(g, scene_.material_id);
+      for (const std::vector<Vec2>* x : {&g.nodes, static_cast<const std::vector<Vec2>*>(&deformed)})
+        for (const auto& [a, b] : edges)
+          svg.polygon(std::array<Vec2, 2>{(*x)[a], (*x)[b]}, 2, "none", x == &g.nodes ? "#b0b0b0" : "#333",
+                      x == &g.nodes ? 0.5 : 0.8);
+    }
     for (const auto& c : g.cells) {
+      if (g.cells.size() > kSvgCellLimit) break;
       std::array<Vec2, 4> x;
       for (int k = 0; k < c.corners; ++k) x[k] = g.nodes[c.node[k]];
       svg.polygon(x, c.corners, "none", "#b0b0b0", 0.5);
@@ -250,7 +317,7 @@ class StepFiles {
     for (const bool gap_pass : {false, true})
       for (std::size_t e = 0; e < g.cells.size(); ++e) {
         const double state = gaps ? last_gap_state_[e] : 0;
-        if ((state != 0) != gap_pass) continue;
+        if ((state != 0) != gap_pass || (!gap_pass && g.cells.size() > kSvgCellLimit)) continue;
         const GridCell& c = g.cells[e];
         std::array<Vec2, 4> x;
         for (int k = 0; k < c.corners; ++k) x[k] = deformed[c.node[k]];
@@ -272,7 +339,16 @@ class StepFiles {
  private:
   std::string dir_;
   const DeckScene& scene_;
-  double step_time_ = 1.0;
+  double step_time_     = 1.0;
+  bool every_increment_ = true;
+  struct Held {
+    int step;
+    double inc;
+    Solution solution;
+    std::vector<PointValues> values;
+    std::vector<VtuField> extra_cells;
+  };
+  std::optional<Held> held_;  ///< output = last: the latest increment, written by finish()
   Eigen::Matrix<double, Eigen::Dynamic, 3> last_displacement_;
   std::vector<double> last_gap_state_;
   std::ofstream nodes_, elements_, reactions_;

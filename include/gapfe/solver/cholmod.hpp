@@ -1,11 +1,14 @@
 #pragma once
-// CholmodLlt: CHOLMOD supernodal Cholesky (SuiteSparse) through Eigen/CholmodSupport, with AMD
-// ordering forced and the symbolic analysis done once per pattern. CHOLMOD is GPL, so this header is
+// CholmodLlt: CHOLMOD supernodal Cholesky (SuiteSparse) through Eigen/CholmodSupport, the symbolic
+// analysis done once per pattern. The elimination order is the caller's when it gives one
+// (analyze(K, order): the drivers pass the mesh's coordinate nested dissection, which on the 1e6-equation
+// tube needs a third of AMD's flops, BENCHMARKS.md), else AMD. CHOLMOD is GPL, so this header is
 // opt-in: it is not in gapfe.hpp, and needs the gapfe::cholmod CMake target (GAPFE_HAS_CHOLMOD).
 // Link BLAS from OpenBLAS: the supernodal factorization is BLAS-3 bound, several times slower on the
 // reference BLAS.
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include <Eigen/CholmodSupport>
 
@@ -15,7 +18,7 @@ namespace gapfe {
 
 class CholmodLlt {
  public:
-  static constexpr const char* kName = "CHOLMOD supernodal LLT (AMD)";
+  static constexpr const char* kName = "CHOLMOD supernodal LLT";
   /// Reciprocal condition estimates below this mean a singular system.
   double singular_rcond = 1e-14;
 
@@ -28,6 +31,8 @@ class CholmodLlt {
     c.print              = 0;  // failures are reported through failure(), not printed by CHOLMOD
   }
   void analyze(const SpMat& k) { llt_.analyzePattern(k); }
+  /// The symbolic analysis in the caller's elimination order (order[k] = the equation eliminated k-th).
+  void analyze(const SpMat& k, const std::vector<int>& order) { llt_.analyze_in(k, order); }
   bool factorize(const SpMat& k) {
     failure_.clear();
     llt_.factorize(k);
@@ -48,6 +53,19 @@ class CholmodLlt {
  private:
   struct Llt : Eigen::CholmodSupernodalLLT<SpMat, Eigen::Lower> {
     cholmod_factor* factor() { return m_cholmodFactor; }
+    /// Eigen's analyzePattern with CHOLMOD_GIVEN: the same state afterwards, the order ours.
+    void analyze_in(const SpMat& k, const std::vector<int>& order) {
+      if (m_cholmodFactor) cholmod_free_factor(&m_cholmodFactor, &cholmod());
+      cholmod_sparse a = Eigen::viewAsCholmod(k.selfadjointView<Eigen::Lower>());
+      std::vector<int> perm(order);  // cholmod_analyze_p takes a non-const pointer
+      cholmod().method[0].ordering = CHOLMOD_GIVEN;
+      m_cholmodFactor              = cholmod_analyze_p(&a, perm.data(), nullptr, 0, &cholmod());
+      cholmod().method[0].ordering = CHOLMOD_AMD;
+      m_isInitialized              = true;
+      m_info                       = m_cholmodFactor ? Eigen::Success : Eigen::InvalidInput;
+      m_analysisIsOk               = m_cholmodFactor != nullptr;
+      m_factorizationIsOk          = false;
+    }
   };
   bool fail(const std::string& what) {
     failure_ = what;
@@ -56,6 +74,6 @@ class CholmodLlt {
   Llt llt_;
   std::string failure_;
 };
-static_assert(LinearSolver<CholmodLlt>);
+static_assert(OrderedSolver<CholmodLlt>);
 
 }  // namespace gapfe

@@ -5,6 +5,7 @@
 // displacements: factorize() returns false and failure() names the equation of the worst pivot.
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCholesky>
@@ -13,6 +14,21 @@
 #include "gapfe/solver/nested_dissection.hpp"
 
 namespace gapfe {
+
+/// An Eigen ordering functor that returns the caller's elimination order when one is set in `slot` (for
+/// the duration of one analyzePattern: Eigen default-constructs the functor inside it, so the order
+/// cannot travel in the object), else the Fallback's.
+template <class Fallback>
+struct GivenOrFallbackOrdering {
+  static inline thread_local const std::vector<int>* slot = nullptr;
+  template <class MatrixType, class Permutation>
+  void operator()(const MatrixType& c, Permutation& perm) const {
+    if (slot == nullptr || static_cast<Eigen::Index>(slot->size()) != c.cols()) return Fallback{}(c, perm);
+    perm.resize(c.cols());
+    for (Eigen::Index k = 0; k < c.cols(); ++k)
+      perm.indices()[k] = static_cast<typename Permutation::StorageIndex>((*slot)[static_cast<std::size_t>(k)]);
+  }
+};
 
 /// Ordering: NestedDissectionOrdering (default; fewer operations on gapfe's 2-D meshes, BENCHMARKS.md)
 /// or Eigen::AMDOrdering<int>.
@@ -26,6 +42,16 @@ class EigenLdltWith {
   double singular_pivot_ratio = 1e-13;
 
   void analyze(const SpMat& k) { ldlt_.analyzePattern(k); }
+  /// The caller's elimination order (order[k] = the equation eliminated k-th; the drivers pass the mesh's
+  /// coordinate nested dissection, solver/coordinate_dissection.hpp). The nested-dissection policy only:
+  /// the AMD one stays AMD, for comparisons.
+  void analyze(const SpMat& k, const std::vector<int>& order)
+    requires std::is_same_v<Ordering, NestedDissectionOrdering>
+  {
+    Given::slot = &order;
+    ldlt_.analyzePattern(k);
+    Given::slot = nullptr;
+  }
   bool factorize(const SpMat& k) {
     ldlt_.factorize(k);
     failure_.clear();
@@ -53,13 +79,15 @@ class EigenLdltWith {
     failed_equation_ = eq;
     return false;
   }
-  Eigen::SimplicialLDLT<SpMat, Eigen::Lower, Ordering> ldlt_;
+  using Given = GivenOrFallbackOrdering<Ordering>;
+  Eigen::SimplicialLDLT<SpMat, Eigen::Lower, Given> ldlt_;
   std::string failure_;
   int failed_equation_ = -1;
 };
 using EigenLdlt    = EigenLdltWith<NestedDissectionOrdering>;
 using EigenLdltAmd = EigenLdltWith<Eigen::AMDOrdering<int>>;
-static_assert(LinearSolver<EigenLdlt>);
+static_assert(OrderedSolver<EigenLdlt>);
+static_assert(!OrderedSolver<EigenLdltAmd>);
 static_assert(LinearSolver<EigenLdltAmd>);
 
 }  // namespace gapfe

@@ -11,6 +11,7 @@
 #include <memory>
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include "gapfe/core/concepts.hpp"
 #include "gapfe/core/error.hpp"
@@ -46,6 +47,8 @@ class RuntimeSolver {
   RuntimeSolver() : impl_(make<0>(chosen_)) {}
 
   void analyze(const SpMat& k) { impl_->analyze(k); }
+  /// The caller's elimination order, for the chosen solver if it takes one (OrderedSolver).
+  void analyze(const SpMat& k, const std::vector<int>& order) { impl_->analyze(k, order); }
   bool factorize(const SpMat& k) { return impl_->factorize(k); }
   VecX solve(const VecX& b) const { return impl_->solve(b); }
   std::string failure() const { return impl_->failure(); }
@@ -55,6 +58,7 @@ class RuntimeSolver {
   struct Interface {
     virtual ~Interface()                    = default;
     virtual void analyze(const SpMat& k)    = 0;
+    virtual void analyze(const SpMat& k, const std::vector<int>& order) = 0;
     virtual bool factorize(const SpMat& k)  = 0;
     virtual VecX solve(const VecX& b) const = 0;
     virtual std::string failure() const     = 0;
@@ -64,6 +68,12 @@ class RuntimeSolver {
   struct Impl final : Interface {
     S s;
     void analyze(const SpMat& k) override { s.analyze(k); }
+    void analyze(const SpMat& k, const std::vector<int>& order) override {
+      if constexpr (OrderedSolver<S>)
+        s.analyze(k, order);
+      else
+        s.analyze(k);
+    }
     bool factorize(const SpMat& k) override { return s.factorize(k); }
     VecX solve(const VecX& b) const override { return s.solve(b); }
     std::string failure() const override { return s.failure(); }

@@ -7,6 +7,7 @@
 // Storage: whatever the solver reads (MatrixStorage, core/concepts.hpp): the lower triangle of the free
 // DOFs for the symmetric policies (EigenLdlt, CHOLMOD), every entry for EigenLu, the unsymmetric one
 // (friction's tangent). The assembler builds the pattern in that storage; the System takes it as it is.
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -20,8 +21,16 @@ template <LinearSolver Solver>
 class System {
  public:
   /// `pattern`: the structure, values ignored. No analysis when there is no free DOF (a pure recovery).
-  explicit System(const SpMat& pattern) : k_(pattern) {
-    if (k_.rows() > 0) solver_->analyze(k_);
+  /// `order`: a fill-reducing elimination order (Assembler::fill_reducing_order) for solvers that take
+  /// one (OrderedSolver); others, or an empty order, order the pattern themselves.
+  explicit System(const SpMat& pattern, const std::vector<int>& order = {}) : k_(pattern) {
+    if (k_.rows() == 0) return;
+    if constexpr (OrderedSolver<Solver>)
+      if (static_cast<Eigen::Index>(order.size()) == k_.rows()) {
+        solver_->analyze(k_, order);
+        return;
+      }
+    solver_->analyze(k_);
   }
 
   SpMat& matrix() { return k_; }
@@ -33,11 +42,26 @@ class System {
   int factorizations() const { return factorizations_; }
   /// Whether the solver holds a factorization of the current values.
   bool factorized() const { return factorized_; }
+  /// Numeric factorizations skipped because the values were those of the last one (skip_unchanged).
+  int reuses() const { return reuses_; }
+  /// Keep a copy of the values of every factorization and skip the next one when the values are the
+  /// same bit for bit: a Newton driver that reassembles its tangent every iteration (NonlinearStatic)
+  /// then pays no factorization while every point is elastic (the tangent is the elastic stiffness).
+  /// Costs one more value array; off by default (a linear driver knows when its stiffness is unchanged).
+  void skip_unchanged(bool on) {
+    skip_unchanged_ = on;
+    if (!on) std::vector<double>().swap(factorized_values_);
+  }
 
   /// Numeric factorization; on failure a SolveError with the solver's reason and, when it names one,
   /// the equation where it broke down (`describe(equation)` says which node and component that is).
   template <class Describe>
   void factorize(Describe&& describe) {
+    if (skip_unchanged_ && factorized_ && std::equal(k_.valuePtr(), k_.valuePtr() + k_.nonZeros(),
+                                                     factorized_values_.begin(), factorized_values_.end())) {
+      ++reuses_;
+      return;
+    }
     ++factorizations_;
     if (!(factorized_ = solver_->factorize(k_))) {
       std::string where;
@@ -46,6 +70,7 @@ class System {
                        ": check that the constraints remove every rigid-body motion (axial translation; in "
                        "3-DOF also rotation about the axis) and that no element is degenerate");
     }
+    if (skip_unchanged_) factorized_values_.assign(k_.valuePtr(), k_.valuePtr() + k_.nonZeros());
   }
   VecX solve(const VecX& b) const { return solver_->solve(b); }
 
@@ -73,7 +98,10 @@ class System {
   VecX rhs_;
   std::unique_ptr<Solver> solver_ = std::make_unique<Solver>();  // solvers are not movable
   int factorizations_             = 0;
+  int reuses_                     = 0;
   bool factorized_                = false;
+  bool skip_unchanged_            = false;
+  std::vector<double> factorized_values_;  ///< skip_unchanged: the values of the last factorization
   std::vector<double> saved_values_;
   VecX saved_rhs_;
 };
