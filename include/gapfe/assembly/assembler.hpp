@@ -171,13 +171,21 @@ class Assembler {
     if constexpr (kBatchedQuad4) quad4_batched(p, values, rhs);
   }
 
-  /// K u - f of a linear law's elements and of the node links at `u` (all DOFs).
-  VecX linear_internal(const Problem<M>& p, const VecX& u) const {
+  /// K u - f of a linear law's elements and of the node links at `u` (all DOFs). `prescribed_only`: only
+  /// the cells with a prescribed DOF, so the entries at prescribed DOFs are complete (reactions) and those
+  /// at free DOFs are not: a pass over the boundary instead of the mesh.
+  VecX linear_internal(const Problem<M>& p, const VecX& u, bool prescribed_only = false) const {
     VecX internal = VecX::Zero(u.size());
     cache_.reset();
     for_each_cell<Elem>(p.mesh,
                         [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t,
                                                       const std::array<int, NPC>& cell, const CellTag& tag) {
+                          if (prescribed_only && std::none_of(cell.begin(), cell.end(), [&](int n) {
+                                for (int c = 0; c < kNd; ++c)
+                                  if (dofs_.equation[static_cast<std::size_t>(dofs_.dof(n, c))] < 0) return true;
+                                return false;
+                              }))
+                            return;
                           using Kernel = ElementKernel<Kin, E>;
                           typename Kernel::Matrix k;
                           typename Kernel::Vector f;

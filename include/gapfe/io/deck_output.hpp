@@ -194,7 +194,7 @@ class StepFiles {
     detail::csv_increment(prefix, step, inc, step_time_);
 
     std::string s;
-    s.reserve(static_cast<std::size_t>(g.node_count()) * 96);
+    s.reserve(std::max(static_cast<std::size_t>(g.node_count()) * 96, g.cells.size() * 160));  // rows below
     for (int n = 0; n < g.node_count(); ++n) {
       s += prefix;
       for (const int k : {n + 1, g.node_ij[n][0], g.node_ij[n][1]})

@@ -82,6 +82,7 @@ std::vector<PointValues> recover(const Assembler<M>& a, const Problem<M>& p, con
   using Kin  = typename M::Kinematics;
   using Elem = typename M::Element;
   std::vector<PointValues> out;
+  out.reserve(centroids ? p.mesh.cells.size() + p.mesh.triangles.size() : a.point_count());  // 232 B each
   a.reset_cache();
   for_each_cell<Elem>(p.mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
                                                             const std::array<int, NPC>& cell,
