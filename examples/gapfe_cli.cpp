@@ -26,7 +26,8 @@ constexpr const char* kUsage =
     "  --variant saas|saga      force a model variant (default: the smallest the deck needs)\n"
     "  --set KEY=VALUE          a deck extension option (README: format, element, solver, bc_loads, ...)\n"
     "  --format F, --element E, --solver S, --contact C, --plasticity P, --output all|last\n"
-    "                           shorthands for --set (output = last: result files of the last increment only)\n"
+    "                           shorthands for --set (output = last: result files of the last increment "
+    "only)\n"
     "  --threads N              threads for the sparse factorization and BLAS (default 1: one core)\n"
     "  --quiet                  no log on standard output\n";
 
@@ -235,8 +236,8 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) 
       << times.write << "\n";
   if (plastic && s.needs.gaps.empty())
     log << "plasticity: " << d.options.plasticity << "; " << times.increments << " increments ("
-        << times.cut_steps << " from cut steps), " << times.newton_iterations
-        << " linear solves (" << times.factorizations << " factorizations); worst residual " << times.worst_residual
+        << times.cut_steps << " from cut steps), " << times.newton_iterations << " linear solves ("
+        << times.factorizations << " factorizations); worst residual " << times.worst_residual
         << ", largest drift off the yield surface " << times.drift << "; " << times.plastic_points
         << " plastic points at the end\n";
   if (!s.needs.gaps.empty())

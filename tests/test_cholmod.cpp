@@ -6,18 +6,27 @@
 using namespace gapfe;
 using namespace gapfe::test;
 
-TEST_CASE("[solver] CHOLMOD and Eigen LDLT agree on the Lame tube and reuse the symbolic analysis") {
-  using Fast = Model<Axisym2, Quad4, Isotropic, CholmodLlt>;
-  using Slow = Model<Axisym2, Quad4, Isotropic, EigenLdlt>;
-  auto build = [&]<class M>(std::type_identity<M>) {
-    Problem<M> p;
-    p.mesh       = rectangle_mesh<4>(0.1, 0.2, 0, 0.05, 20, 10);
-    p.materials  = {Isotropic::constant(200e9, 0.3)};
-    p.edge_loads = bore_pressure(p.mesh, 20, 10, 100e6);
+namespace {
+/// The Lame tube 0.1 < r < 0.2 m, 0 < z < 0.05 m on nr x nz Quad4 cells, 100 MPa on the bore; `held`: u_z = 0
+/// on both ends (else nothing holds it: singular).
+template <class M>
+Problem<M> lame_tube(int nr, int nz, bool held = true) {
+  Problem<M> p;
+  p.mesh       = rectangle_mesh<4>(0.1, 0.2, 0, 0.05, nr, nz);
+  p.materials  = {Isotropic::constant(200e9, 0.3)};
+  p.edge_loads = bore_pressure(p.mesh, nr, nz, 100e6);
+  if (held) {
     fix_plane(p.conditions, p.mesh, 0.0, 2, zero3);
     fix_plane(p.conditions, p.mesh, 0.05, 2, zero3);
-    return LinearStatic<M>(std::move(p));
-  };
+  }
+  return p;
+}
+}  // namespace
+
+TEST_CASE("[solver] CHOLMOD and Eigen LDLT agree on the Lame tube and reuse the symbolic analysis") {
+  using Fast    = Model<Axisym2, Quad4, Isotropic, CholmodLlt>;
+  using Slow    = Model<Axisym2, Quad4, Isotropic, EigenLdlt>;
+  auto build    = [&]<class M>(std::type_identity<M>) { return LinearStatic<M>(lame_tube<M>(20, 10)); };
   auto fast     = build(std::type_identity<Fast>{});
   auto slow     = build(std::type_identity<Slow>{});
   const auto u1 = fast.solve().displacement, u2 = slow.solve().displacement;
@@ -33,15 +42,10 @@ TEST_CASE("[solver] CHOLMOD and Eigen LDLT agree on the Lame tube and reuse the 
 TEST_CASE("[solver] CHOLMOD in the mesh's coordinate dissection order: the solution AMD gives") {
   // The drivers hand CHOLMOD Assembler::fill_reducing_order; here the same on a 120 x 60 cell tube, against
   // CHOLMOD's own AMD on the same matrix.
-  using M = Model<Axisym2, Quad4, Isotropic, CholmodLlt>;
-  Problem<M> p;
-  p.mesh       = rectangle_mesh<4>(0.1, 0.2, 0, 0.05, 120, 60);
-  p.materials  = {Isotropic::constant(200e9, 0.3)};
-  p.edge_loads = bore_pressure(p.mesh, 120, 60, 100e6);
-  fix_plane(p.conditions, p.mesh, 0.0, 2, zero3);
-  fix_plane(p.conditions, p.mesh, 0.05, 2, zero3);
+  using M            = Model<Axisym2, Quad4, Isotropic, CholmodLlt>;
+  const Problem<M> p = lame_tube<M>(120, 60);
   LinearStatic<M> fe(p);
-  const auto u = fe.solve().displacement;
+  const auto u   = fe.solve().displacement;
   const SpMat& k = fe.stiffness();
   const VecX& b  = fe.rhs();
   Assembler<M> assembler(p, {});
@@ -58,11 +62,7 @@ TEST_CASE("[solver] CHOLMOD in the mesh's coordinate dissection order: the solut
 
 TEST_CASE("[solver] CHOLMOD reports a singular system instead of returning garbage") {
   using Fast = Model<Axisym2, Quad4, Isotropic, CholmodLlt>;
-  Problem<Fast> p;
-  p.mesh       = rectangle_mesh<4>(0.1, 0.2, 0, 0.05, 4, 2);
-  p.materials  = {Isotropic::constant(200e9, 0.3)};
-  p.edge_loads = bore_pressure(p.mesh, 4, 2, 100e6);
-  LinearStatic<Fast> fe(std::move(p));
+  LinearStatic<Fast> fe(lame_tube<Fast>(4, 2, /*held=*/false));
   CHECK_THROWS_WITH_AS(fe.solve(), doctest::Contains("singular"), SolveError);
 }
 

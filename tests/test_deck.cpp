@@ -406,7 +406,8 @@ TEST_CASE("The gapfe command: usage errors and unreadable decks") {
   CHECK(e2.str().find("cannot open deck '/nonexistent/deck'") != std::string::npos);
   for (const char* bad : {"0", "two", "2x", "-1"}) {
     std::ostringstream e3;
-    CHECK(gapfe::cli::main({"run", "x.deck", "--out", "/tmp", "--threads", bad}, out, e3) == gapfe::cli::usage);
+    CHECK(gapfe::cli::main({"run", "x.deck", "--out", "/tmp", "--threads", bad}, out, e3) ==
+          gapfe::cli::usage);
     CHECK(e3.str().find("--threads: '" + std::string(bad) + "' is not a thread count") != std::string::npos);
   }
   std::ostringstream e4;

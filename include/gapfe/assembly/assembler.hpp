@@ -99,7 +99,8 @@ class Assembler {
     order.reserve(static_cast<std::size_t>(dofs_.free_count));
     for (const int n : coordinate_dissection(p.mesh.nodes, ptr, adj))
       for (int c = 0; c < kNd; ++c)
-        if (const int eq = dofs_.equation[static_cast<std::size_t>(dofs_.dof(n, c))]; eq >= 0) order.push_back(eq);
+        if (const int eq = dofs_.equation[static_cast<std::size_t>(dofs_.dof(n, c))]; eq >= 0)
+          order.push_back(eq);
     return order;
   }
   const Connectivity<2>& links() const { return links_; }
@@ -182,7 +183,8 @@ class Assembler {
                                                       const std::array<int, NPC>& cell, const CellTag& tag) {
                           if (prescribed_only && std::none_of(cell.begin(), cell.end(), [&](int n) {
                                 for (int c = 0; c < kNd; ++c)
-                                  if (dofs_.equation[static_cast<std::size_t>(dofs_.dof(n, c))] < 0) return true;
+                                  if (dofs_.equation[static_cast<std::size_t>(dofs_.dof(n, c))] < 0)
+                                    return true;
                                 return false;
                               }))
                             return;

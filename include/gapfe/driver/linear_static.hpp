@@ -33,8 +33,9 @@ class LinearStatic {
   explicit LinearStatic(Problem<M> problem, Connectivity<2> links = {})
       : p_(std::move(problem)),
         assembler_(p_, std::move(links)),
-        system_(assembler_.pattern(), OrderedSolver<typename M::LinearSolver> ? assembler_.fill_reducing_order(p_)
-                                                                              : std::vector<int>{}) {}
+        system_(assembler_.pattern(), OrderedSolver<typename M::LinearSolver>
+                                          ? assembler_.fill_reducing_order(p_)
+                                          : std::vector<int>{}) {}
 
   /// Loads, temperatures and materials may be changed here between solves.
   Problem<M>& problem() { return p_; }

@@ -56,8 +56,9 @@ class NonlinearStatic {
   explicit NonlinearStatic(Problem<M> scene, Connectivity<2> link_pairs = {}, NewtonOptions options = {})
       : p_(std::move(scene)),
         assembler_(p_, std::move(link_pairs)),
-        system_(assembler_.pattern(), OrderedSolver<typename M::LinearSolver> ? assembler_.fill_reducing_order(p_)
-                                                                              : std::vector<int>{}),
+        system_(assembler_.pattern(), OrderedSolver<typename M::LinearSolver>
+                                          ? assembler_.fill_reducing_order(p_)
+                                          : std::vector<int>{}),
         options_(options),
         points_(assembler_.point_count()),
         stress_(assembler_.point_count(), Vec6::Zero()),

@@ -74,7 +74,7 @@ inline std::vector<std::array<int, 2>> outline_edges(const IJGrid& g, const std:
   std::vector<std::array<int, 2>> out;
   for (std::size_t k = 0; k < sides.size();) {
     std::size_t end = k + 1;
-    bool interface = false;
+    bool interface  = false;
     for (; end < sides.size() && sides[end].nodes == sides[k].nodes; ++end)
       interface = interface || sides[end].material != sides[k].material;
     if (end - k == 1 || interface) out.push_back(sides[k].nodes);
@@ -269,7 +269,6 @@ class StepFiles {
   }
 
  public:
-
   /// Above this many cells deformed.svg draws the outline (boundary and material interfaces) instead
   /// of every cell: a picture of 1e5 cells shows no cell, and writing it cost 10% of a 1e5-equation run.
   static constexpr std::size_t kSvgCellLimit = 20000;

@@ -75,9 +75,11 @@ void append_binary(std::string& s, const std::vector<T>& values) {
   const auto bytes                = static_cast<std::uint32_t>(values.size() * sizeof(T));
   unsigned char header[sizeof bytes];
   std::memcpy(header, &bytes, sizeof bytes);
-  const auto* data   = reinterpret_cast<const unsigned char*>(values.data());
+  const auto* data    = reinterpret_cast<const unsigned char*>(values.data());
   const std::size_t n = sizeof bytes + bytes;  // the encoded stream: header, then data
-  const auto at = [&](std::size_t i) -> std::uint32_t { return i < sizeof bytes ? header[i] : data[i - sizeof bytes]; };
+  const auto at       = [&](std::size_t i) -> std::uint32_t {
+    return i < sizeof bytes ? header[i] : data[i - sizeof bytes];
+  };
   const std::size_t start = s.size();
   s.resize(start + 4 * ((n + 2) / 3) + 1);
   char* out         = s.data() + start;
@@ -115,7 +117,8 @@ inline void append_array(std::string& s, const VtuField& f) {
 /// Write nodes (r, z), cells and point / cell arrays to `path`.
 inline void write_vtu(const std::string& path, const std::vector<Vec2>& nodes, const VtuCells& cells,
                       const std::vector<VtuField>& point_data, const std::vector<VtuField>& cell_data) {
-  std::size_t raw = 24 * nodes.size() + 4 * (cells.connectivity.size() + cells.offsets.size()) + cells.types.size();
+  std::size_t raw =
+      24 * nodes.size() + 4 * (cells.connectivity.size() + cells.offsets.size()) + cells.types.size();
   for (const auto* fields : {&point_data, &cell_data})
     for (const auto& f : *fields) raw += f.values.size() * (f.integer ? 4 : 8);
   std::string s;

@@ -22,7 +22,7 @@ namespace gapfe {
 inline std::vector<int> coordinate_dissection(const std::vector<Vec2>& x, const std::vector<int>& ptr,
                                               const std::vector<int>& adj) {
   constexpr std::size_t kLeaf = 64;  // parts this small keep their order: fill inside is negligible
-  const int n = static_cast<int>(x.size());
+  const int n                 = static_cast<int>(x.size());
   std::vector<int> order;
   order.reserve(x.size());
   std::vector<int> side(x.size(), 0);  // per node: 1 lower half, 2 upper half, during one split
@@ -45,7 +45,8 @@ inline std::vector<int> coordinate_dissection(const std::vector<Vec2>& x, const 
       continue;
     }
     Vec2 lo = x[static_cast<std::size_t>(v.front())], hi = lo;
-    for (const int i : v) lo = lo.cwiseMin(x[static_cast<std::size_t>(i)]), hi = hi.cwiseMax(x[static_cast<std::size_t>(i)]);
+    for (const int i : v)
+      lo = lo.cwiseMin(x[static_cast<std::size_t>(i)]), hi = hi.cwiseMax(x[static_cast<std::size_t>(i)]);
     const int axis = (hi - lo)(0) >= (hi - lo)(1) ? 0 : 1;
     key.resize(v.size());
     for (std::size_t k = 0; k < v.size(); ++k) key[k] = x[static_cast<std::size_t>(v[k])](axis);
@@ -67,7 +68,8 @@ inline std::vector<int> coordinate_dissection(const std::vector<Vec2>& x, const 
     std::vector<int> separator, rest;
     for (const int i : upper) {
       bool touches = false;
-      for (int k = ptr[static_cast<std::size_t>(i)]; k < ptr[static_cast<std::size_t>(i) + 1] && !touches; ++k)
+      for (int k = ptr[static_cast<std::size_t>(i)]; k < ptr[static_cast<std::size_t>(i) + 1] && !touches;
+           ++k)
         touches = side[static_cast<std::size_t>(adj[static_cast<std::size_t>(k)])] == 1;
       (touches ? separator : rest).push_back(i);
     }

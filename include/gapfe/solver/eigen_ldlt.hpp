@@ -26,7 +26,8 @@ struct GivenOrFallbackOrdering {
     if (slot == nullptr || static_cast<Eigen::Index>(slot->size()) != c.cols()) return Fallback{}(c, perm);
     perm.resize(c.cols());
     for (Eigen::Index k = 0; k < c.cols(); ++k)
-      perm.indices()[k] = static_cast<typename Permutation::StorageIndex>((*slot)[static_cast<std::size_t>(k)]);
+      perm.indices()[k] =
+          static_cast<typename Permutation::StorageIndex>((*slot)[static_cast<std::size_t>(k)]);
   }
 };
 
@@ -45,9 +46,8 @@ class EigenLdltWith {
   /// The caller's elimination order (order[k] = the equation eliminated k-th; the drivers pass the mesh's
   /// coordinate nested dissection, solver/coordinate_dissection.hpp). The nested-dissection policy only:
   /// the AMD one stays AMD, for comparisons.
-  void analyze(const SpMat& k, const std::vector<int>& order)
-    requires std::is_same_v<Ordering, NestedDissectionOrdering>
-  {
+  void analyze(const SpMat& k,
+               const std::vector<int>& order) requires std::is_same_v<Ordering, NestedDissectionOrdering> {
     Given::slot = &order;
     ldlt_.analyzePattern(k);
     Given::slot = nullptr;

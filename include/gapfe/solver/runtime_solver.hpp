@@ -56,13 +56,13 @@ class RuntimeSolver {
 
  private:
   struct Interface {
-    virtual ~Interface()                    = default;
-    virtual void analyze(const SpMat& k)    = 0;
+    virtual ~Interface()                                                = default;
+    virtual void analyze(const SpMat& k)                                = 0;
     virtual void analyze(const SpMat& k, const std::vector<int>& order) = 0;
-    virtual bool factorize(const SpMat& k)  = 0;
-    virtual VecX solve(const VecX& b) const = 0;
-    virtual std::string failure() const     = 0;
-    virtual int failed_equation() const     = 0;
+    virtual bool factorize(const SpMat& k)                              = 0;
+    virtual VecX solve(const VecX& b) const                             = 0;
+    virtual std::string failure() const                                 = 0;
+    virtual int failed_equation() const                                 = 0;
   };
   template <class S>
   struct Impl final : Interface {

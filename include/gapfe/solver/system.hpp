@@ -57,8 +57,9 @@ class System {
   /// the equation where it broke down (`describe(equation)` says which node and component that is).
   template <class Describe>
   void factorize(Describe&& describe) {
-    if (skip_unchanged_ && factorized_ && std::equal(k_.valuePtr(), k_.valuePtr() + k_.nonZeros(),
-                                                     factorized_values_.begin(), factorized_values_.end())) {
+    if (skip_unchanged_ && factorized_ &&
+        std::equal(k_.valuePtr(), k_.valuePtr() + k_.nonZeros(), factorized_values_.begin(),
+                   factorized_values_.end())) {
       ++reuses_;
       return;
     }
