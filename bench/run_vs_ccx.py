@@ -8,7 +8,7 @@ What an analyst runs is the deck command, so that is what is timed: the process 
 reading, meshing, assembling, solving and writing every file (CSV, VTU, PVD) included; ccx likewise as
 `ccx -i JOB` with its .dat output. Each case writes one I-J deck (bench/deckgen.py) and one ccx input on
 the same grid (CAX4, the same nodes in the same order), then runs them interleaved: ccx, every gapfe
-variant, ccx, ... (--pairs rounds). Wall time and peak resident memory (os.wait4's ru_maxrss) per run;
+variant, ccx, ... (--pairs rounds). Wall time and peak resident memory (GNU time's %M) per run;
 the table gives medians and the ratios ccx / gapfe of those medians. One thread everywhere
 (OMP_NUM_THREADS, OPENBLAS_NUM_THREADS, CCX_NPROC_EQUATION_SOLVER = 1).
 
@@ -85,16 +85,32 @@ def child_env():
     return env
 
 
+GNU_TIME = "/usr/bin/time" if os.access("/usr/bin/time", os.X_OK) else None
+
+
 def run_measured(argv, cwd, log_path):
-    """(exit code, wall seconds, peak RSS MiB) of one whole process; its output goes to log_path."""
+    """(exit code, wall seconds, peak RSS MiB) of one whole process; its output goes to log_path.
+
+    The peak comes from GNU time (`/usr/bin/time -f %M`, Debian package `time`) when it is there: a child
+    forked from this Python process inherits Python's resident set until it execs, and Linux keeps that in
+    the child's ru_maxrss, so os.wait4 alone reports the script's own size (100+ MB after it has read a
+    large CSV) for a small run. Without GNU time, os.wait4's figure is used and marked with '~'."""
+    rss_path = log_path + ".rss"
+    wrapped = [GNU_TIME, "-f", "%M", "-o", rss_path] + argv if GNU_TIME else argv
     with open(log_path, "wb") as log:
         t0 = time.perf_counter()
-        proc = subprocess.Popen(argv, cwd=cwd, env=child_env(), stdin=subprocess.DEVNULL, stdout=log,
+        proc = subprocess.Popen(wrapped, cwd=cwd, env=child_env(), stdin=subprocess.DEVNULL, stdout=log,
                                 stderr=subprocess.STDOUT)
         _, status, usage = os.wait4(proc.pid, 0)
         wall = time.perf_counter() - t0
     proc.returncode = os.waitstatus_to_exitcode(status)
-    return proc.returncode, wall, usage.ru_maxrss / 1024.0
+    rss = usage.ru_maxrss / 1024.0
+    if GNU_TIME:
+        try:
+            rss = float(open(rss_path).read().split()[-1]) / 1024.0  # KiB; GNU time may prefix a status line
+        except (OSError, ValueError, IndexError):
+            pass
+    return proc.returncode, wall, rss
 
 
 # ---------------------------------------------------------------------------------- closed forms ------

@@ -28,7 +28,7 @@ constexpr const char* kUsage =
     "  --format F, --element E, --solver S, --contact C, --plasticity P, --output all|last\n"
     "                           shorthands for --set (output = last: result files of the last increment "
     "only)\n"
-    "  --threads N              threads for the sparse factorization and BLAS (default 1: one core)\n"
+    "  --threads N              OpenBLAS threads for the factorization's dense kernels (default 1)\n"
     "  --quiet                  no log on standard output\n";
 
 struct Args {

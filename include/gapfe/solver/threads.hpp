@@ -9,9 +9,10 @@
 // issue 14). A library must not start threads its caller did not ask for, so callers that link those
 // libraries (the `gapfe` command does) call this once before the first factorization.
 //
-// n = 1: OpenMP parallel regions run on the calling thread (max-active-levels 0, which also binds
-// num_threads clauses) and OpenBLAS runs single-threaded. n > 1: one active OpenMP level with at most n
-// threads where the library leaves the count to the runtime, and n OpenBLAS threads.
+// OpenMP parallel regions always run on the calling thread (max-active-levels 0, which also binds
+// num_threads clauses): CHOLMOD's are memory-bound copies and clears. The 1e6-equation tube on 2 cores
+// (`gapfe run`, whole process): one thread of each 6.6 s; 2 OpenBLAS threads with OpenMP on one 6.25 s; 2
+// of each 10.5 s (BENCHMARKS.md, issue 14). So n goes to OpenBLAS only.
 //
 // The OpenMP and OpenBLAS entry points are weak references: when the program does not load libgomp or
 // OpenBLAS (a header-only build with Eigen's solvers, or another BLAS), the call does nothing for them,
@@ -25,14 +26,14 @@ void openblas_set_num_threads(int) __attribute__((weak));
 
 namespace gapfe {
 
-/// Threads for OpenMP (CHOLMOD) and OpenBLAS from now on; n >= 1. Returns true when at least one of the
-/// two runtimes is loaded (and so was told).
+/// From now on: OpenMP (CHOLMOD) on the calling thread, OpenBLAS on n >= 1 threads. Returns true when at
+/// least one of the two runtimes is loaded (and so was told).
 inline bool set_solver_threads(int n) {
   if (n < 1) n = 1;
   bool told = false;
   if (omp_set_max_active_levels && omp_set_num_threads) {
-    omp_set_max_active_levels(n > 1 ? 1 : 0);
-    omp_set_num_threads(n);
+    omp_set_max_active_levels(0);
+    omp_set_num_threads(1);
     told = true;
   }
   if (openblas_set_num_threads) {
