@@ -212,6 +212,46 @@ TEST_CASE("ReturnMapping's consistent tangent matches finite differences") {
   CHECK((fd - r.tangent).norm() / r.tangent.norm() < 1e-6);
 }
 
+TEST_CASE("Hill's return-map modes diagonalize E P, with one zero mode (HillModes, THEORY.md 7.3)") {
+  HillYield y        = anisotropic_yield();
+  y.hardening        = 5e3;
+  const auto p       = hill<ReturnMapping>(y).localize({0.3, 0.2}, 0.0, 0.0);
+  const HillModes& m = p.modes();
+  const Mat66 ep     = (p.stiffness + p.hardening_matrix) * p.yield_matrix;
+  CHECK((m.modes * m.inverse - Mat66::Identity()).norm() < 1e-12);
+  CHECK((ep * m.modes - m.modes * m.lambda.asDiagonal()).norm() < 1e-12 * ep.norm() * m.modes.norm());
+  const Mat66 modal = m.modes.transpose() * p.yield_matrix * m.modes;  // V^T P V = diag(lambda)
+  CHECK((modal - Mat66(m.lambda.asDiagonal())).norm() < 1e-12 * m.lambda.maxCoeff());
+  CHECK((m.inverse_c - m.inverse * p.stiffness).norm() < 1e-12 * m.inverse_c.norm());
+  // P is singular along pressure only: exactly one zero mode.
+  int zero = 0;
+  for (int i = 0; i < 6; ++i) zero += m.lambda(i) < 1e-10 * m.lambda.maxCoeff();
+  CHECK(zero == 1);
+}
+
+TEST_CASE(
+    "ReturnMapping: a point left on the surface gets the continuum tangent C_ep at an unchanged strain") {
+  // Newton's first iteration of a step evaluates the committed strain: the stress is the committed one,
+  // and a point that ended the last step plastic offers C_ep (the consistent tangent's limit as dl -> 0)
+  // so that the first solve already sees the plastic zone.
+  HillYield y  = anisotropic_yield();
+  y.hardening  = 5e3;
+  const auto p = hill<ReturnMapping>(y).localize({0.3, 0.2}, 0.0, 0.0);
+  Vec6 eps;
+  eps << 4e-3, -1e-3, -2e-3, 1e-3, 5e-4, -8e-4;
+  const auto loaded = Hill<ReturnMapping>::update(p, eps, HillState{}, {});
+  REQUIRE(loaded.state.plastic);
+  const auto again = Hill<ReturnMapping>::update(p, eps, loaded.state, {});
+  CHECK((again.stress - loaded.stress).norm() < 1e-12 * loaded.stress.norm());
+  const Vec6 xi    = loaded.stress - loaded.state.back_stress;
+  const Mat66 c_ep = detail::continuum_tangent(p.stiffness, p.hardening_matrix, 2.0 * (p.yield_matrix * xi));
+  CHECK((again.tangent - c_ep).norm() < 1e-9 * c_ep.norm());
+  // A point that was elastic keeps the elastic tangent.
+  const auto elastic = Hill<ReturnMapping>::update(p, 0.01 * eps, HillState{}, {});
+  REQUIRE(!elastic.state.plastic);
+  CHECK((Hill<ReturnMapping>::update(p, 0.01 * eps, elastic.state, {}).tangent - p.stiffness).norm() == 0.0);
+}
+
 // ------------------------------------------------------------------------------ thick tube (V6)
 
 /// Plane-strain thick tube a..b, Mises, elastic-perfectly plastic: Quad4-family mesh, one cell high,

@@ -30,10 +30,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <type_traits>
 
-#include <Eigen/LU>
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 
 #include "gapfe/core/concepts.hpp"
 #include "gapfe/core/error.hpp"
@@ -114,11 +116,49 @@ struct HillState {
   bool operator==(const HillState&) const = default;
 };
 
+/// The return map's matrix A(dl) = I + 2 dl E P (E = C + cH) taken apart once per law and element,
+/// so that a yielding point inverts it mode by mode instead of factorizing a 6 x 6 matrix per iteration
+/// (THEORY.md 7.3). With E = L L^T (Cholesky) and L^T P L = Q diag(lambda) Q^T (symmetric, positive
+/// semi-definite), the modes V = L Q and W = V^-1 = Q^T L^-1 give
+///   E P = V diag(lambda) W,   A(dl)^-1 = V diag(1 / (1 + 2 dl lambda)) W,   V^T P V = diag(lambda),
+/// so with y = W xi_trial the yield function along the return is f(dl) = sum lambda_i y_i^2 /
+/// (1 + 2 dl lambda_i)^2, a scalar function. lambda is 0 along the hydrostatic mode (P's null space).
+struct HillModes {
+  Vec6 lambda;      ///< eigenvalues of E P [-]
+  Mat66 modes;      ///< V
+  Mat66 inverse;    ///< W = V^-1
+  Mat66 inverse_c;  ///< W C, for the consistent tangent
+};
+
+/// E P's modes from C, cH and P (global axes); E = C + cH must be positive definite (C is).
+inline HillModes hill_modes(const Mat66& c, const Mat66& ch, const Mat66& p) {
+  const Eigen::LLT<Mat66> e(c + ch);
+  const Mat66 l = e.matrixL();
+  const Eigen::SelfAdjointEigenSolver<Mat66> s(Mat66(l.transpose() * p * l));
+  HillModes m;
+  m.lambda    = s.eigenvalues().cwiseMax(0.0);  // P is semi-definite: a round-off negative is a zero
+  m.modes     = l * s.eigenvectors();
+  m.inverse   = s.eigenvectors().transpose() * e.matrixL().solve(Mat66::Identity());
+  m.inverse_c = m.inverse * c;
+  return m;
+}
+
 /// The law resolved for one element: elastic data plus P, c H in global axes.
 struct HillPoint : ElasticPoint {
   Mat66 yield_matrix;            ///< P_g [1 / stress^2]
   Mat66 hardening_matrix;        ///< c H_g [stress]
   double reference_yield = 1.0;  ///< X, the stress eqps is measured with [stress]
+
+  /// E P's modes, computed at the first yielding point that asks (most cells of most steps have none,
+  /// and a temperature field resolves every cell anew); valid while stiffness, hardening_matrix and
+  /// yield_matrix stay as they were then (a point's thermal strain may change).
+  const HillModes& modes() const {
+    if (!modes_) modes_ = hill_modes(stiffness, hardening_matrix, yield_matrix);
+    return *modes_;
+  }
+
+ private:
+  mutable std::optional<HillModes> modes_;
 };
 
 /// The seed's scheme: one forward-Euler step with EPLSS's continuum tangent (see the header comment).
@@ -262,7 +302,8 @@ PointResponse<State> hill_forward_euler(const HillPoint& p, const Vec6& strain, 
 
 /// Backward-Euler closest-point projection (Hill<ReturnMapping>, THEORY.md 7.3), onto the surface
 /// f = level(r)^2 of `rate` with r = d eqps / dt = 2 dl sqrt(f) / (X dt) (THEORY.md 8.6; level 1 for
-/// the rate-independent law), with its consistent tangent.
+/// the rate-independent law), with its consistent tangent. A(dl) is inverted in E P's modes (HillModes):
+/// one scalar equation in dl, no matrix factorization per iteration.
 template <class State>
 PointResponse<State> hill_return_map(const HillPoint& p, const Vec6& strain, const State& old,
                                      const RateTerm& rate) {
@@ -272,23 +313,31 @@ PointResponse<State> hill_return_map(const HillPoint& p, const Vec6& strain, con
   const Vec6 xi_trial    = r.stress - old.back_stress;
   if (xi_trial.dot(P * xi_trial) <= 1.0) {
     r.state.plastic = false;
+    // A point that ended the last step on the surface, asked for its tangent at the same strain (the
+    // first Newton iteration of the next step, NonlinearStatic): the continuum tangent C_ep, the
+    // consistent tangent's limit as dl -> 0+, on the expectation that the loading goes on. The stress
+    // is the same either way; with the elastic tangent the first solve ignored the plastic zone (the
+    // 1e4-equation tube: 49 solves instead of 45, BENCHMARKS.md issue 14).
+    if (old.plastic && strain == old.strain && p.thermal_strain == old.thermal_strain)
+      r.tangent = continuum_tangent(c, p.hardening_matrix, Vec6(2.0 * (P * xi_trial)));
     return r;
   }
-  // phi(dl) = xi^T P xi - level(r)^2 with xi = A^-1 xi_trial, A = I + 2 dl E P, E = C + cH. The first
-  // term is convex and decreasing from phi(0) > 0; the level grows with dl. Newton from 0, kept inside
-  // the bracket [lo, hi] of the root (bisection when it would leave it): for the rate-independent law
-  // it approaches the root from below, monotonically, and never bisects.
-  const Mat66 e_mod = c + p.hardening_matrix;
-  const Mat66 e_p   = 2.0 * (e_mod * P);
-  const double to_r = rate.active() ? 2.0 / (p.reference_yield * rate.dt) : 0.0;  // r = to_r dl s
+  // phi(dl) = f(dl) - level(r)^2 with f(dl) = sum lambda_i y_i^2 d_i^2, d_i = 1 / (1 + 2 dl lambda_i),
+  // y = W xi_trial (HillModes). f is convex and decreasing from phi(0) > 0; the level grows with dl.
+  // Newton from 0, kept inside the bracket [lo, hi] of the root (bisection when it would leave it): for
+  // the rate-independent law it approaches the root from below, monotonically, and never bisects.
+  const HillModes& m = p.modes();
+  const Vec6 y       = m.inverse * xi_trial;
+  const Vec6 y2      = y.cwiseAbs2();
+  const double to_r  = rate.active() ? 2.0 / (p.reference_yield * rate.dt) : 0.0;  // r = to_r dl s
+  const auto damping = [&](double dl) {
+    return (1.0 + 2.0 * dl * m.lambda.array()).inverse().matrix().eval();
+  };
   double dl = 0.0, lo = 0.0, hi = std::numeric_limits<double>::infinity();
   double level = 1.0, level_slope = 0.0, s = 1.0;  // at the last iterate: level(r), d level / d r, sqrt f
-  Vec6 xi = xi_trial;
-  Eigen::PartialPivLU<Mat66> a_lu;
   for (int it = 0;; ++it) {
-    a_lu.compute(Mat66::Identity() + dl * e_p);
-    xi             = a_lu.solve(xi_trial);
-    const double f = xi.dot(P * xi);
+    const Vec6 d   = damping(dl);
+    const double f = (m.lambda.array() * y2.array() * d.array().square()).sum();
     s              = std::sqrt(f);
     if (rate.active()) level = rate.level(to_r * dl * s), level_slope = rate.slope(to_r * dl * s);
     const double phi = f - level * level;
@@ -297,9 +346,9 @@ PointResponse<State> hill_return_map(const HillPoint& p, const Vec6& strain, con
       throw SolveError("Hill return mapping: no convergence at a material point (|f - level^2| = " +
                        std::to_string(std::abs(phi)) + "); the driver cuts the load step");
     (phi > 0 ? lo : hi) = dl;
-    // d phi / d dl = f' - 2 level level' dr/d dl, f' = -2 xi . P A^-1 (2 E P) xi, dr/d dl = to_r (s + dl f' /
-    // (2 s)).
-    const double d_f   = -2.0 * xi.dot(P * a_lu.solve(e_p * xi));
+    // d phi / d dl = f' - 2 level level' dr/d dl, f' = -4 sum lambda_i^2 y_i^2 d_i^3 (= -2 xi . P A^-1
+    // (2 E P) xi), dr/d dl = to_r (s + dl f' / (2 s)).
+    const double d_f   = -4.0 * (m.lambda.array().square() * y2.array() * d.array().cube()).sum();
     const double d_phi = d_f - 2 * level * level_slope * to_r * (s + dl * d_f / (2 * s));
     const double step  = phi / d_phi;
     const double next  = dl - step;
@@ -307,9 +356,10 @@ PointResponse<State> hill_return_map(const HillPoint& p, const Vec6& strain, con
     // Converged to round-off in dl, or the bracket closed (never while hi is still unbounded).
     if (std::abs(step) <= 1e-15 * std::abs(dl) || (std::isfinite(hi) && hi - lo <= 1e-15 * hi)) break;
   }
-  a_lu.compute(Mat66::Identity() + dl * e_p);
-  xi           = a_lu.solve(xi_trial);
-  const Vec6 a = 2.0 * (P * xi);
+  const Vec6 d  = damping(dl);
+  const Vec6 dy = d.cwiseProduct(y);
+  const Vec6 xi = m.modes * dy;  // A^-1 xi_trial
+  const Vec6 a  = 2.0 * (P * xi);
   add_plastic_flow(p, r.state, xi, dl, a);
   r.stress        = hill_stress(p, strain, r.state.plastic_strain);
   r.state.plastic = true;
@@ -318,13 +368,17 @@ PointResponse<State> hill_return_map(const HillPoint& p, const Vec6& strain, con
   // g = kappa C A^-T a / (kappa a^T A^-1 E a + h), kappa = 1 - 2 level' dl / (X dt),
   // h = 4 s^2 level' / (X dt) (kappa = 1, h = 0 without rate dependence);
   // d xi / d eps = A^-1 (C - E a g^T), d eps_p / d eps = a g^T + 2 dl P d xi / d eps, D = C (I - ...).
+  // In the modes: V^T a = 2 lambda d y and W E = V^T, so with z = lambda d^2 y, A^-T a = 2 W^T z,
+  // A^-1 E a = 2 V z and a^T A^-1 E a = 4 sum lambda_i^2 d_i^3 y_i^2 = 2 z . (V^T a).
+  const Vec6 z        = m.lambda.cwiseProduct(d).cwiseProduct(dy);
   const double kappa  = 1 - level_slope * to_r * dl;
   const double h      = 2 * s * s * level_slope * to_r;
-  const Vec6 ai_t     = a_lu.transpose().solve(a);  // A^-T a
-  const Vec6 g        = kappa * (c * ai_t) / (kappa * ai_t.dot(e_mod * a) + h);
-  const Mat66 dxi     = a_lu.solve(c - (e_mod * a) * g.transpose());
+  const Vec6 ai_t     = 2.0 * (m.inverse.transpose() * z);       // A^-T a
+  const double a_ea   = 4.0 * z.dot(m.lambda.cwiseProduct(dy));  // a^T A^-1 E a
+  const Vec6 g        = kappa * (c * ai_t) / (kappa * a_ea + h);
+  const Mat66 dxi     = m.modes * (d.asDiagonal() * m.inverse_c) - 2.0 * (m.modes * z) * g.transpose();
   const Mat66 d_eps_p = a * g.transpose() + 2.0 * dl * (P * dxi);
-  r.tangent           = c * (Mat66::Identity() - d_eps_p);
+  r.tangent           = c - c * d_eps_p;
   r.tangent           = 0.5 * (r.tangent + r.tangent.transpose());  // symmetric up to round-off
   return r;
 }
