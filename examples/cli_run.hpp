@@ -97,7 +97,7 @@ void write_increment(const RunRequest& r, RunTimes& times, StepFiles& files, int
   if (!std::isfinite(fe.solution().residual) || !fe.solution().displacement.allFinite())
     throw SolveError("load step " + std::to_string(step) + ": the solution is not finite");
   const auto start = std::chrono::steady_clock::now();
-  files.write(step, inc, fe.solution(), fe.centroid_values(), std::move(extra_cells));
+  files.write(step, inc, fe.solution(), fe.centroid_values(Recovered::stress), std::move(extra_cells));
   times.write += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   progress_line(r, step);
 }

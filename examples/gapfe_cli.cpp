@@ -25,9 +25,9 @@ constexpr const char* kUsage =
     "options:\n"
     "  --variant saas|saga      force a model variant (default: the smallest the deck needs)\n"
     "  --set KEY=VALUE          a deck extension option (README: format, element, solver, bc_loads, ...)\n"
-    "  --format F, --element E, --solver S, --contact C, --plasticity P, --output all|last\n"
-    "                           shorthands for --set (output = last: result files of the last increment "
-    "only)\n"
+    "  --format F, --element E, --solver S, --contact C, --plasticity P, --output all|last|none\n"
+    "                           shorthands for --set (output: which increments the CSV tables and VTU\n"
+    "                           files get; output_csv, output_vtu set one kind)\n"
     "  --threads N              OpenBLAS threads for the factorization's dense kernels (default 1)\n"
     "  --quiet                  no log on standard output\n";
 
@@ -259,9 +259,11 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) 
     log << "rate-dependent increments (t = inc x delta t of card 0):\n";
     for (const auto& line : times.relaxation) log << line << "\n";
   }
-  log << "wrote " << a.out << "/nodes.csv, elements.csv, reactions.csv"
-      << (s.needs.gaps.empty() ? "" : ", gaps.csv")
-      << (plastic && s.needs.gaps.empty() ? ", plasticity.csv" : "") << ", result.pvd, deformed.svg\n";
+  const bool tables = d.options.output_csv != "none", fields = d.options.output_vtu != "none";
+  log << "wrote " << a.out << "/" << (tables ? "nodes.csv, elements.csv, reactions.csv, " : "")
+      << (s.needs.gaps.empty() ? "" : "gaps.csv, ")
+      << (plastic && s.needs.gaps.empty() ? "plasticity.csv, " : "") << (fields ? "result.pvd, " : "")
+      << "deformed.svg\n";
   return ok;
 }
 

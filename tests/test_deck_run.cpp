@@ -396,6 +396,23 @@ TEST_CASE("Plastic tube deck: yield cards run Hill plasticity; eqps in elements.
     for (std::string line; std::getline(record, line);) ++rows;
     CHECK(rows == 15);
   }
+  // Per kind: the tables of the last increment with the VTU series of every one; none writes neither,
+  // and the run's record and picture stay.
+  {
+    const fs::path mixed = run_deck_file(kExamples / "plastic_tube.deck", "plastic_mixed",
+                                         {"--plasticity", "return-mapping", "--set", "output_csv=last"});
+    CHECK(read_csv(mixed / "nodes.csv").front().at("step") == 15);
+    CHECK(fs::exists(mixed / "step_0014.vtu"));
+    CHECK(fs::exists(mixed / "step_0015.vtu"));
+    const fs::path none = run_deck_file(kExamples / "plastic_tube.deck", "plastic_none",
+                                        {"--plasticity", "return-mapping", "--output", "none"});
+    for (const char* file : {"nodes.csv", "elements.csv", "reactions.csv", "result.pvd", "step_0015.vtu"}) {
+      CAPTURE(file);
+      CHECK(!fs::exists(none / file));
+    }
+    CHECK(fs::exists(none / "plasticity.csv"));
+    CHECK(fs::exists(none / "deformed.svg"));
+  }
 
   std::ostringstream o, e;
   CHECK(gapfe::cli::main({"run", (kExamples / "plastic_tube.deck").string(), "--out",

@@ -18,6 +18,7 @@
 // (assembly/sparsity.hpp).
 #include <algorithm>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "gapfe/assembly/cells.hpp"
@@ -58,6 +59,7 @@ class Assembler {
     if constexpr (kHasTriangles<Elem>) sb.add(p.mesh.triangles);
     sb.add(links_);
     pattern_      = sb.build(kStorage);
+    nonzeros_     = pattern_.nonZeros();
     cell_offsets_ = scatter_offsets<kNd>(pattern_, dofs_.equation, p.mesh.cells, kStorage);
     if constexpr (kHasTriangles<Elem>)
       tri_offsets_ = scatter_offsets<kNd>(pattern_, dofs_.equation, p.mesh.triangles, kStorage);
@@ -68,8 +70,9 @@ class Assembler {
   }
 
   const DofMap<kNd>& dofs() const { return dofs_; }
-  /// The free DOFs' pattern in kStorage, values zero: the System copies it once.
-  const SpMat& pattern() const { return pattern_; }
+  /// The free DOFs' pattern in kStorage, values zero, handed over once to the System that will hold the
+  /// values (a second copy of the matrix was 113 MB at 1e6 equations); the assembler keeps its size.
+  SpMat take_pattern() { return std::move(pattern_); }
   /// A fill-reducing elimination order of the free equations (order[k] = the equation eliminated k-th):
   /// nested dissection of the nodes by their coordinates (solver/coordinate_dissection.hpp), each node's
   /// free components together. Node links count as edges. Empty when there is no free equation.
@@ -152,7 +155,7 @@ class Assembler {
   /// A linear law's system: element stiffness into `values` (zeroed first, no links), and
   /// rhs = F_ext (free rows) + element loads (body, thermal) - K_fp u_p.
   void linear_system(const Problem<M>& p, const VecX& external, double* values, VecX& rhs) const {
-    Eigen::Map<VecX>(values, pattern_.nonZeros()).setZero();
+    Eigen::Map<VecX>(values, nonzeros_).setZero();
     rhs = VecX::Zero(dofs_.free_count);
     cache_.reset();
     for (std::size_t d = 0; d < dofs_.equation.size(); ++d)
@@ -222,7 +225,7 @@ class Assembler {
                 VecX& predictor) const {
     static_assert(ElementKernel<Kin, Elem>::kInner == 0,
                   "laws with history need elements without condensed interior nodes (not LegacyQuad)");
-    if (values) Eigen::Map<VecX>(values, pattern_.nonZeros()).setZero();
+    if (values) Eigen::Map<VecX>(values, nonzeros_).setZero();
     internal.setZero(u.size());
     predictor.setZero(dofs_.free_count);
     cache_.reset();
@@ -243,7 +246,10 @@ class Assembler {
             const auto b    = Kernel::point_B(g, mean);
             const auto resp = Law::update(lp, Kernel::extend(b * ue), points.committed(first + q), ctx);
             f.noalias() += g.weight * (b.transpose() * Kernel::restrict(resp.stress));
-            if (values) k.noalias() += g.weight * (b.transpose() * (Kernel::restrict(resp.tangent) * b));
+            if (values) {  // lazyProduct: see ElementKernel::shape_stiffness
+              const typename Kernel::StrainDisplacement d_b = Kernel::restrict(resp.tangent) * b;
+              k.noalias() += g.weight * b.transpose().lazyProduct(d_b);
+            }
             points.trial(first + q) = resp.state;
             stress[first + q]       = resp.stress;
           }
@@ -423,7 +429,8 @@ class Assembler {
   }
 
   DofMap<kNd> dofs_;
-  SpMat pattern_;
+  SpMat pattern_;              ///< until take_pattern()
+  Eigen::Index nonzeros_ = 0;  ///< stored entries of the pattern
   std::vector<int> cell_offsets_, tri_offsets_, link_offsets_;
   Connectivity<2> links_;
   std::vector<NodeLink> link_values_;

@@ -100,7 +100,9 @@ struct ElementKernel {
       const auto g                 = Elem::stiffness_point(x, q, det);
       const StrainDisplacement b   = point_B(g, mean);
       const StrainDisplacement d_b = D * b;
-      k.noalias() += g.weight * (b.transpose() * d_b);
+      // lazyProduct: Eigen sends a fixed 8 x 4 by 4 x 8 product (and larger) to its blocked GEMM, whose
+      // packing costs more than the product; coefficient-based, it unrolls (BENCHMARKS.md, issue 14).
+      k.noalias() += g.weight * b.transpose().lazyProduct(d_b);
     }
     return k;
   }

@@ -557,7 +557,7 @@ class ContactStatic {
     if (std::none_of(history_.committed().begin(), history_.committed().end(),
                      [](const PairState& s) { return s.closed; }))
       return;
-    const std::vector<PointValues> values = fe_.centroid_values();
+    const std::vector<PointValues> values = fe_.centroid_values(Recovered::stress);
     for (std::size_t p = 0; p < pairs_.size(); ++p) {
       if (!history_.committed(p).closed || around_[p].empty()) continue;
       Mat33 sigma = Mat33::Zero();

@@ -33,9 +33,9 @@ class LinearStatic {
   explicit LinearStatic(Problem<M> problem, Connectivity<2> links = {})
       : p_(std::move(problem)),
         assembler_(p_, std::move(links)),
-        system_(assembler_.pattern(), OrderedSolver<typename M::LinearSolver>
-                                          ? assembler_.fill_reducing_order(p_)
-                                          : std::vector<int>{}) {}
+        system_(assembler_.take_pattern(), OrderedSolver<typename M::LinearSolver>
+                                               ? assembler_.fill_reducing_order(p_)
+                                               : std::vector<int>{}) {}
 
   /// Loads, temperatures and materials may be changed here between solves.
   Problem<M>& problem() { return p_; }
@@ -115,8 +115,9 @@ class LinearStatic {
   }
   /// Strain and stress at every cell's centroid (LegacyQuad: the r-bar A weighted mean of its four
   /// sub-triangles, THEORY.md 2 item 4).
-  std::vector<PointValues> centroid_values() const {
-    return recover(assembler_, p_, u_, ElasticStress<Law>{}, true);
+  /// `what`: Recovered::stress leaves strain and the material-axes values out (post/recovery.hpp).
+  std::vector<PointValues> centroid_values(Recovered what = Recovered::all) const {
+    return recover(assembler_, p_, u_, ElasticStress<Law>{}, true, what);
   }
 
  private:

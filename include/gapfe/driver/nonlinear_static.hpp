@@ -56,9 +56,9 @@ class NonlinearStatic {
   explicit NonlinearStatic(Problem<M> scene, Connectivity<2> link_pairs = {}, NewtonOptions options = {})
       : p_(std::move(scene)),
         assembler_(p_, std::move(link_pairs)),
-        system_(assembler_.pattern(), OrderedSolver<typename M::LinearSolver>
-                                          ? assembler_.fill_reducing_order(p_)
-                                          : std::vector<int>{}),
+        system_(assembler_.take_pattern(), OrderedSolver<typename M::LinearSolver>
+                                               ? assembler_.fill_reducing_order(p_)
+                                               : std::vector<int>{}),
         options_(options),
         points_(assembler_.point_count()),
         stress_(assembler_.point_count(), Vec6::Zero()),
@@ -76,7 +76,9 @@ class NonlinearStatic {
   const Solution& solution() const { return sol_; }
   const Eigen::Matrix<double, Eigen::Dynamic, 3>& displacement() const { return sol_.displacement; }
   void defer_reactions(bool) {}  // a no-op: every Newton iteration computes the internal forces
-  const SolveTimings& timings() const { return time_; }         ///< all Newton time is under `solve`
+  /// Of the last solve(): `assemble` the element passes (return maps, tangent, internal forces),
+  /// `factorize` and `solve` the linear algebra, `reactions` the residual and nodal results.
+  const SolveTimings& timings() const { return time_; }
   const SolveTimings& total_timings() const { return total_; }  ///< summed over every solve() so far
   const Connectivity<2>& links() const { return assembler_.links(); }
   std::vector<NodeLink>& link_values() { return assembler_.link_values(); }
@@ -102,12 +104,20 @@ class NonlinearStatic {
   const std::vector<State>& states() const { return points_.committed(); }
   /// History after the last solve() (what commit() would keep).
   const std::vector<State>& trial_states() const { return points_.trial(); }
-  double solve_seconds() const { return time_.solve; }
 
   /// Equilibrium at the loads now in problem(), from the committed state. Throws SolveError when the
   /// iterations do not converge (the committed state is untouched: reject() and cut the step).
   const Solution& solve() {
-    const auto t0 = std::chrono::steady_clock::now();
+    // Each phase's time goes to the last solve's and to the totals as it ends, so that a solve that
+    // throws (a step the driver cuts) is counted too.
+    using clock = std::chrono::steady_clock;
+    auto lap    = [this, last = clock::now()](double SolveTimings::*phase) mutable {
+      const auto now = clock::now();
+      const double t = std::chrono::duration<double>(now - last).count();
+      time_.*phase += t, total_.*phase += t;
+      last = now;
+    };
+    time_ = {};
     assembler_.refresh(p_);
     const auto& dofs = assembler_.dofs();
     external_        = assembler_.external_forces(p_);
@@ -118,6 +128,7 @@ class NonlinearStatic {
       if (dofs.equation[d] < 0) prescribed_step(d) = dofs.prescribed(d) - u_(d);
     report_ = {};
     evaluate(true, &prescribed_step);
+    lap(&SolveTimings::assemble);
     for (int it = 0;; ++it) {
       VecX rhs = predictor_;
       for (Eigen::Index d = 0; d < u_.size(); ++d)
@@ -125,6 +136,7 @@ class NonlinearStatic {
       VecX du_free;
       if (dofs.free_count > 0) {
         system_.factorize([&](int eq) { return dofs.describe(eq); });
+        lap(&SolveTimings::factorize);
         du_free = system_.solve(rhs);
         if (!du_free.allFinite()) throw SolveError("the Newton correction has non-finite values");
       }
@@ -133,13 +145,16 @@ class NonlinearStatic {
         u_(d) += eq >= 0 ? du_free(eq) : prescribed_step(d);
       }
       prescribed_step.setZero();
+      lap(&SolveTimings::solve);
       const bool again = Law::kIterate;
       evaluate(again, nullptr);
+      lap(&SolveTimings::assemble);
       nodal_results(dofs, u_, internal_, external_, p_.mesh.node_count(), sol_);
       report_.residuals.push_back(sol_.residual);
       report_.iterations = it + 1;
       if (!std::isfinite(sol_.residual)) throw SolveError("the residual is not finite");
       if (sol_.residual <= options_.tolerance) report_.converged = true;
+      lap(&SolveTimings::reactions);
       if (!again || report_.converged) break;
       if (it + 1 >= options_.max_iterations) {
         std::ostringstream s;
@@ -151,8 +166,7 @@ class NonlinearStatic {
     }
     for (const State& s : points_.trial()) report_.plastic_points += s.plastic;
     report_.drift = drift();
-    time_.solve   = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    total_.solve += time_.solve;
+    lap(&SolveTimings::reactions);
     return sol_;
   }
 
@@ -175,7 +189,10 @@ class NonlinearStatic {
   /// Strain, stress and eqps at every stiffness point (the last solve()).
   std::vector<PointValues> point_values() const { return recover(assembler_, p_, u_, stored(), false); }
   /// Their volume-weighted mean per cell.
-  std::vector<PointValues> centroid_values() const { return recover(assembler_, p_, u_, stored(), true); }
+  /// `what`: Recovered::stress leaves strain and the material-axes values out (post/recovery.hpp).
+  std::vector<PointValues> centroid_values(Recovered what = Recovered::all) const {
+    return recover(assembler_, p_, u_, stored(), true, what);
+  }
 
  private:
   StoredStress<State> stored() const { return {stress_, points_.trial()}; }

@@ -37,10 +37,13 @@ struct DeckOptions {
   std::string events     = "locate";
   int gap_direction      = 0;  ///< gap_direction = 0 (IJDIR per block, SAAC2) | 1 | 2 (SAAC's one LGAP)
   std::string plasticity = "tangent";  ///< plasticity = tangent | return-mapping (plasticity issue)
-  /// output = all | last: nodes.csv, elements.csv, reactions.csv and the VTU files get every accepted
-  /// increment (all), or only the run's last one (last: a many-step run that is read at its end does
-  /// not spend its time writing text). plasticity.csv and gaps.csv, the run's record, always get all.
-  std::string output = "all";
+  /// Which accepted increments the result files get, per kind: output_csv for the tables nodes.csv,
+  /// elements.csv and reactions.csv, output_vtu for the VTU files and result.pvd; each all (every
+  /// increment, the default) | last (only the run's last: a many-step run read at its end does not spend
+  /// its time writing text) | none. `output = X` sets both. plasticity.csv and gaps.csv, the run's
+  /// record, and deformed.svg (the last increment) are always written.
+  std::string output_csv = "all";
+  std::string output_vtu = "all";
 
   /// The friction model a run uses: "none" without friction, else the slip option with auto resolved.
   std::string friction_model() const {
@@ -92,11 +95,15 @@ struct DeckOptions {
     } else if (key == "plasticity") {
       plasticity = one_of({"tangent", "return-mapping"});
     } else if (key == "output") {
-      output = one_of({"all", "last"});
+      output_csv = output_vtu = one_of({"all", "last", "none"});
+    } else if (key == "output_csv") {
+      output_csv = one_of({"all", "last", "none"});
+    } else if (key == "output_vtu") {
+      output_vtu = one_of({"all", "last", "none"});
     } else {
       throw InputError("unknown option '" + key +
                        "' (known: format, element, solver, bc_loads, contact, friction, slip, gap_penalty, "
-                       "events, gap_direction, plasticity, output)");
+                       "events, gap_direction, plasticity, output, output_csv, output_vtu)");
     }
   }
 };

@@ -145,21 +145,30 @@ inline constexpr const char* kMaterialFill[] = {"#dbe8f6", "#f6e3c9", "#d8f0d2",
 
 }  // namespace detail
 
+/// Which accepted increments a kind of result file gets (DeckOptions::output_csv and output_vtu).
+enum class Increments { all, last, none };
+inline Increments increments(const std::string& option) {
+  return option == "last" ? Increments::last : option == "none" ? Increments::none : Increments::all;
+}
+
 /// Writes the per-step result files of a run into `dir` (which must exist).
 class StepFiles {
  public:
-  /// `step_time`: how long a load step lasts (Deck::step_time()), for the t column. `every_increment`
-  /// false (the deck's output = last): write() keeps the increment and finish() writes the last one.
-  StepFiles(std::string dir, const DeckScene& scene, double step_time = 1.0, bool every_increment = true)
-      : dir_(std::move(dir)), scene_(scene), step_time_(step_time), every_increment_(every_increment) {
-    nodes_ = detail::open_output(dir_ + "/nodes.csv");
-    nodes_ << "step,inc,t,node,i,j,r,z,u_r,u_z,u_t\n";
-    reactions_ = detail::open_output(dir_ + "/reactions.csv");
-    reactions_ << "step,inc,t,node,i,j,r,z,R_r,R_z,R_t\n";
+  /// `step_time`: how long a load step lasts (Deck::step_time()), for the t column. `tables` (nodes.csv,
+  /// elements.csv, reactions.csv) and `fields` (the VTU files, result.pvd): every increment, the last one
+  /// (write() keeps it, finish() writes it) or none.
+  StepFiles(std::string dir, const DeckScene& scene, double step_time = 1.0,
+            Increments tables = Increments::all, Increments fields = Increments::all)
+      : dir_(std::move(dir)), scene_(scene), step_time_(step_time), tables_(tables), fields_(fields) {
     prescribed_.assign(static_cast<std::size_t>(scene.grid.node_count()), 0);
     for (const NodalCondition& c : scene.conditions) prescribed_[static_cast<std::size_t>(c.node)] |= c.code;
     for (const int n : scene.strain_rate_test.bottom) prescribed_[static_cast<std::size_t>(n)] |= 2 | 4;
     for (const int n : scene.strain_rate_test.top) prescribed_[static_cast<std::size_t>(n)] |= 2;
+    if (tables_ == Increments::none) return;
+    nodes_ = detail::open_output(dir_ + "/nodes.csv");
+    nodes_ << "step,inc,t,node,i,j,r,z,u_r,u_z,u_t\n";
+    reactions_ = detail::open_output(dir_ + "/reactions.csv");
+    reactions_ << "step,inc,t,node,i,j,r,z,R_r,R_z,R_t\n";
     elements_ = detail::open_output(dir_ + "/elements.csv");
     elements_ << "step,inc,t,element,i,j,material,r,z,s_rr,s_zz,s_tt,s_rz,s_rt,s_zt,eqps\n";
   }
@@ -168,26 +177,30 @@ class StepFiles {
   /// a driver's centroid_values() gives them); `extra_cells` are more VTU cell arrays (GapFile's).
   void write(int step, double inc, const Solution& solution, const std::vector<PointValues>& values,
              std::vector<VtuField> extra_cells = {}) {
-    if (!every_increment_) {
-      held_ = Held{step, inc, solution, values, std::move(extra_cells)};
-      return;
-    }
-    write_now(step, inc, solution, values, std::move(extra_cells));
+    last_displacement_ = solution.displacement;  // deformed.svg's
+    for (const auto& f : extra_cells)
+      if (f.name == "gap_state") last_gap_state_ = f.values;
+    const bool tables = tables_ == Increments::all, fields = fields_ == Increments::all;
+    if (tables_ == Increments::last || fields_ == Increments::last)
+      held_ = Held{step, inc, solution, values, fields ? std::vector<VtuField>{} : extra_cells};
+    if (tables) write_tables(step, inc, solution, values);
+    if (fields) write_fields(step, inc, solution, values, std::move(extra_cells));
   }
 
-  /// The end of a run: the held increment (output = last), then deformed.svg.
+  /// The end of a run: the held increment (a kind written `last`), then deformed.svg.
   void finish(const std::string& title) {
     if (held_) {
       Held h = std::move(*held_);
       held_.reset();
-      write_now(h.step, h.inc, h.solution, h.values, std::move(h.extra_cells));
+      if (tables_ == Increments::last) write_tables(h.step, h.inc, h.solution, h.values);
+      if (fields_ == Increments::last)
+        write_fields(h.step, h.inc, h.solution, h.values, std::move(h.extra_cells));
     }
     write_deformed(title);
   }
 
  private:
-  void write_now(int step, double inc, const Solution& solution, const std::vector<PointValues>& values,
-                 std::vector<VtuField> extra_cells) {
+  void write_tables(int step, double inc, const Solution& solution, const std::vector<PointValues>& values) {
     const IJGrid& g = scene_.grid;
     const auto& u   = solution.displacement;
     std::string prefix;
@@ -222,14 +235,9 @@ class StepFiles {
     reactions_ << s;
     reactions_.flush();
 
-    // Centroid values come cells first, then triangles: put them in element order.
-    std::vector<const PointValues*> by_element(g.cells.size(), nullptr);
-    for (const auto& v : values)
-      by_element[(v.triangle ? scene_.element_of_triangle : scene_.element_of_cell)[v.cell]] = &v;
     s.clear();
-    std::vector<double> stress(6 * g.cells.size()), eqps(g.cells.size());
     for (std::size_t e = 0; e < g.cells.size(); ++e) {
-      const PointValues& v = *by_element[e];
+      const PointValues& v = by_element(values, e);
       s += prefix;
       for (const int k : {static_cast<int>(e) + 1, g.cells[e].i, g.cells[e].j, scene_.material_id[e]})
         detail::append_number(s, static_cast<long long>(k)), s += ',';
@@ -237,14 +245,17 @@ class StepFiles {
       for (const int k : {voigt::rr, voigt::zz, voigt::hoop, voigt::rz, voigt::theta_r, voigt::z_theta})
         detail::csv_number(s, v.stress(k));
       detail::append_number(s, v.eqps), s += '\n';
-      for (int k = 0; k < 6; ++k) stress[6 * e + k] = v.stress(k);
-      eqps[e] = v.eqps;
     }
     elements_ << s;
     elements_.flush();
     if (!nodes_ || !elements_ || !reactions_)
       throw InputError("error while writing the CSV files in " + dir_);
+  }
 
+  void write_fields(int step, double inc, const Solution& solution, const std::vector<PointValues>& values,
+                    std::vector<VtuField> extra_cells) {
+    const IJGrid& g = scene_.grid;
+    const auto& u   = solution.displacement;
     char name[48];
     split_ = step == last_step_ ? split_ + 1 : 0, last_step_ = step;
     if (inc < step - 1e-12)  // a split point of a contact step; the step's own file comes last
@@ -252,20 +263,30 @@ class StepFiles {
     else
       std::snprintf(name, sizeof name, "step_%04d.vtu", step);
     std::vector<VtuField> point{{"displacement", 3, {}}, {"reaction", 3, {}}};
+    point[0].values.reserve(3 * static_cast<std::size_t>(g.node_count()));
+    point[1].values.reserve(3 * static_cast<std::size_t>(g.node_count()));
     for (int n = 0; n < g.node_count(); ++n)
       for (int c = 0; c < 3; ++c)
         point[0].values.push_back(u(n, c)), point[1].values.push_back(solution.reaction(n, c));
+    std::vector<double> stress(6 * g.cells.size()), eqps(g.cells.size());
+    for (std::size_t e = 0; e < g.cells.size(); ++e) {
+      const PointValues& v = by_element(values, e);
+      for (int k = 0; k < 6; ++k) stress[6 * e + k] = v.stress(k);
+      eqps[e] = v.eqps;
+    }
     std::vector<VtuField> cell = detail::element_ids(scene_);
     cell.insert(cell.begin(), VtuField{"eqps", 1, std::move(eqps)});
     cell.insert(cell.begin(), VtuField{"stress", 6, std::move(stress)});
-    for (auto& f : extra_cells) {
-      if (f.name == "gap_state") last_gap_state_ = f.values;
-      cell.push_back(std::move(f));
-    }
-    last_displacement_ = u;
+    for (auto& f : extra_cells) cell.push_back(std::move(f));
     write_vtu(dir_ + "/" + name, g.nodes, detail::grid_cells(g), point, cell);
     steps_.emplace_back(inc * step_time_, name);
     write_pvd(dir_ + "/result.pvd", steps_);
+  }
+
+  /// The centroid values of deck element e: they come cells first, then triangles.
+  const PointValues& by_element(const std::vector<PointValues>& values, std::size_t e) const {
+    const GridCell& c = scene_.grid.cells[e];
+    return values[(c.corners == 4 ? 0 : scene_.mesh.cells.size()) + static_cast<std::size_t>(c.group_index)];
   }
 
  public:
@@ -338,8 +359,8 @@ class StepFiles {
  private:
   std::string dir_;
   const DeckScene& scene_;
-  double step_time_     = 1.0;
-  bool every_increment_ = true;
+  double step_time_ = 1.0;
+  Increments tables_, fields_;
   struct Held {
     int step;
     double inc;
@@ -347,7 +368,7 @@ class StepFiles {
     std::vector<PointValues> values;
     std::vector<VtuField> extra_cells;
   };
-  std::optional<Held> held_;  ///< output = last: the latest increment, written by finish()
+  std::optional<Held> held_;  ///< a kind written `last`: the latest increment, written by finish()
   Eigen::Matrix<double, Eigen::Dynamic, 3> last_displacement_;
   std::vector<double> last_gap_state_;
   std::ofstream nodes_, elements_, reactions_;

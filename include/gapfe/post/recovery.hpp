@@ -78,7 +78,7 @@ void nodal_results(const DofMap<DofsPerNode>& dofs, const VecX& u, const VecX& i
 /// first, then triangles.
 template <class M, class Source>
 std::vector<PointValues> recover(const Assembler<M>& a, const Problem<M>& p, const VecX& u,
-                                 const Source& source, bool centroids) {
+                                 const Source& source, bool centroids, Recovered what = Recovered::all) {
   using Kin  = typename M::Kinematics;
   using Elem = typename M::Element;
   std::vector<PointValues> out;
@@ -87,33 +87,41 @@ std::vector<PointValues> recover(const Assembler<M>& a, const Problem<M>& p, con
   for_each_cell<Elem>(p.mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
                                                             const std::array<int, NPC>& cell,
                                                             const CellTag& tag) {
-    using Kernel     = ElementKernel<Kin, E>;
-    const auto x     = cell_coords<E>(p.mesh, cell);
-    const auto& lp   = a.local(p, tag, cell);
-    const auto ue    = a.gather(cell, u);
-    const auto first = a.template first_point<E>(e);
+    using Kernel      = ElementKernel<Kin, E>;
+    const auto x      = cell_coords<E>(p.mesh, cell);
+    const auto& lp    = a.local(p, tag, cell);
+    const auto ue     = a.gather(cell, u);
+    const auto first  = a.template first_point<E>(e);
+    const bool all    = what == Recovered::all;
+    const bool strain = all || Source::kAnyPoint;  // a law's stress from the strain needs it
     typename Kernel::ShapeVector us;
     if constexpr (Kernel::kInner > 0) {  // the condensed centre, from the element's own DOFs
-      const typename Kernel::StrainMatrix d = Kernel::restrict(lp.stiffness);
-      us                                    = Kernel::expand(
-                                             Kernel::shape_stiffness(x, d),
-                                             Kernel::shape_load(x, d, Kernel::restrict(lp.thermal_strain), body_force(p.inertia, lp.density)),
-                                             ue);
+      if (strain) {
+        const typename Kernel::StrainMatrix d = Kernel::restrict(lp.stiffness);
+        us                                    = Kernel::expand(
+                                               Kernel::shape_stiffness(x, d),
+                                               Kernel::shape_load(x, d, Kernel::restrict(lp.thermal_strain), body_force(p.inertia, lp.density)),
+                                               ue);
+      }
     } else {
       us = ue;
     }
     const Mat<E::kShapeNodes, 2> xs = E::shape_coords(x);
-    const Mat66 to_strain_material  = strain_rotation(lp.to_material);
-    const auto mean_vol             = Kernel::mean_volumetric(x);
+    const Mat66 to_strain_material  = all ? strain_rotation(lp.to_material) : Mat66::Zero();
+    const auto mean_vol             = strain ? Kernel::mean_volumetric(x) : typename Kernel::VolumetricRow();
     const auto values_at = [&](const PointGeometry<E::kShapeNodes>& g, int point, std::size_t slot) {
       PointValues v;
       v.cell = static_cast<int>(e), v.triangle = !std::is_same_v<E, Elem>, v.point = point;
       v.r = g.r, v.z = g.N.dot(xs.col(1));
-      v.strain          = Kernel::strain(g, mean_vol, us);
-      v.stress          = source.stress(lp, v.strain, slot);
-      v.strain_material = to_strain_material * v.strain;
-      v.stress_material = lp.to_material * v.stress;
-      v.eqps            = source.eqps(slot);
+      v.strain = strain ? Kernel::strain(g, mean_vol, us) : Vec6::Zero();
+      v.stress = source.stress(lp, v.strain, slot);
+      v.eqps   = source.eqps(slot);
+      if (all) {
+        v.strain_material = to_strain_material * v.strain;
+        v.stress_material = lp.to_material * v.stress;
+      } else {
+        v.strain_material.setZero(), v.stress_material.setZero();
+      }
       return v;
     };
     double det = 0;

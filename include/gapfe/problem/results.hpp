@@ -32,6 +32,11 @@ struct PointValues {
   double eqps = 0.0;      ///< equivalent plastic strain (laws with history; 0 when elastic) [-]
 };
 
+/// What a recovery fills in (deal.II's update flags; post/recovery.hpp): `all` every PointValues field;
+/// `stress` the position, the global stress and eqps only (what the deck output writes), leaving strain
+/// and the material-axes values zero, so that a law with stored stresses computes no strain at all.
+enum class Recovered { all, stress };
+
 /// Wall-clock seconds of the last solve's phases.
 struct SolveTimings {
   double assemble = 0, factorize = 0, solve = 0, reactions = 0;

@@ -30,9 +30,15 @@ class CholmodLlt {
     c.supernodal         = CHOLMOD_SUPERNODAL;
     c.print              = 0;  // failures are reported through failure(), not printed by CHOLMOD
   }
-  void analyze(const SpMat& k) { llt_.analyzePattern(k); }
+  void analyze(const SpMat& k) {
+    relax_supernodes(k.rows());
+    llt_.analyzePattern(k);
+  }
   /// The symbolic analysis in the caller's elimination order (order[k] = the equation eliminated k-th).
-  void analyze(const SpMat& k, const std::vector<int>& order) { llt_.analyze_in(k, order); }
+  void analyze(const SpMat& k, const std::vector<int>& order) {
+    relax_supernodes(k.rows());
+    llt_.analyze_in(k, order);
+  }
   bool factorize(const SpMat& k) {
     failure_.clear();
     llt_.factorize(k);
@@ -67,6 +73,22 @@ class CholmodLlt {
       m_factorizationIsOk          = false;
     }
   };
+  /// Relaxed amalgamation: CHOLMOD merges a child supernode into its parent when the merged one has at
+  /// most nrelax[0] columns (any zeros), nrelax[1] (a zrelax[0] fraction of zeros), nrelax[2] (zrelax[1])
+  /// or any size (zrelax[2]). Bigger supernodes mean fewer, larger BLAS calls and fewer of CHOLMOD's
+  /// per-supernode passes, paid for with explicit zeros in L. On the tube stiffness with the coordinate
+  /// dissection (one thread, BENCHMARKS.md issue 14) CHOLMOD's defaults {4, 16, 48} factorize 1e4
+  /// equations in 13.8 ms and 1e5 in 185 ms; {16, 64, 256} takes 7.7 ms and 127 ms for 1.5x the
+  /// factor's memory, and is the best of the settings tried. Past kLargeSystem equations the factor's
+  /// memory is what limits a run, so the moderate {8, 32, 96} (1.1x memory; 1e6 equations 4.0 s instead
+  /// of 4.7 s) is used there.
+  static constexpr Eigen::Index kLargeSystem = 250000;
+  void relax_supernodes(Eigen::Index equations) {
+    cholmod_common& c = llt_.cholmod();
+    const bool large  = equations > kLargeSystem;
+    c.nrelax[0] = large ? 8 : 16, c.nrelax[1] = large ? 32 : 64, c.nrelax[2] = large ? 96 : 256;
+    c.zrelax[0] = 0.8, c.zrelax[1] = 0.1, c.zrelax[2] = 0.05;  // CHOLMOD's defaults
+  }
   bool fail(const std::string& what) {
     failure_ = what;
     return false;

@@ -23,7 +23,7 @@ class System {
   /// `pattern`: the structure, values ignored. No analysis when there is no free DOF (a pure recovery).
   /// `order`: a fill-reducing elimination order (Assembler::fill_reducing_order) for solvers that take
   /// one (OrderedSolver); others, or an empty order, order the pattern themselves.
-  explicit System(const SpMat& pattern, const std::vector<int>& order = {}) : k_(pattern) {
+  explicit System(SpMat pattern, const std::vector<int>& order = {}) : k_(std::move(pattern)) {
     if (k_.rows() == 0) return;
     if constexpr (OrderedSolver<Solver>)
       if (static_cast<Eigen::Index>(order.size()) == k_.rows()) {
