@@ -20,9 +20,17 @@ Cases (mm, MPa; a = 100, b = 200; plane strain: u_z = 0 on both ends):
                3c/2 = 15, ccx's *PLASTIC, HARDENING=KINEMATIC slope), bore pressure to 0.9 of the limit
                (2 / sqrt 3) sigma_y ln(b / a) in 20 fixed increments: return-mapping and tangent
   plastic-1e5  the same on 316 x 158 cells, return-mapping
+  contact      bench/ccx_contact.py's two tubes across a radial gap (THEORY.md V5; 40 x 80 cells each,
+               13,284 equations, bore pressure 100 in 10 increments): gapfe augmented-lagrangian with
+               Quad4 (bilinear, like CAX4), ccx node-to-surface penalty; ccx writes its U and S fields
+               (*NODE FILE, *EL FILE) every increment, as gapfe does
+
+--ccx-output fields adds *NODE FILE U and *EL FILE S (every increment, to the .frd) to the elastic and
+plastic ccx inputs, so that both codes write the whole displacement and stress fields, as gapfe does by
+default; the default (print) has ccx print one node's displacement (and the PEEQ of one row) only.
 
 Accuracy is judged against the closed forms, not between the codes: the Lame bore displacement for the
-elastic cases; for the plastic ones the bore u_r of both codes (and their difference) and the
+elastic cases; the contact pressure q against the compound-cylinder closed form for the contact case; for the plastic ones the bore u_r of both codes (and their difference) and the
 elastic-plastic radius against THEORY.md V6's Mises plane-strain formula (valid for nu = 1/2, so a
 guide to about 1%: p = (2 / sqrt 3) sigma_y [ln(rho / a) + (b^2 - rho^2) / (2 b^2)]).
 
@@ -43,9 +51,11 @@ import time
 
 sys.dont_write_bytecode = True
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import ccx_contact  # noqa: E402
 import deckgen  # noqa: E402
 
 A, B, E_MOD, NU = 100.0, 200.0, 200000.0, 0.3
+CONTACT_SLOPE = 100 * ccx_contact.E_MOD / ((ccx_contact.B - ccx_contact.A) / ccx_contact.N)  # ccx_contact's K
 SIGMA_Y, HARDENING_C = 400.0, 10.0
 P_LIMIT = 2 / math.sqrt(3) * SIGMA_Y * math.log(B / A)
 
@@ -56,8 +66,10 @@ class Case:
         self.p, self.steps, self.nodal = p, steps, nodal
 
     @property
-    def equations(self):  # u_z fixed on both ends
-        return 2 * self.ni * self.nj - 2 * self.ni
+    def equations(self):
+        if self.kind == "contact":  # two tubes, u_z = 0 everywhere
+            return 2 * self.ni * self.nj
+        return 2 * self.ni * self.nj - 2 * self.ni  # u_z fixed on both ends
 
 
 CASES = {
@@ -70,6 +82,9 @@ CASES = {
                          ("tangent", ["--plasticity", "tangent"])], p=0.9 * P_LIMIT, steps=20),
     "plastic-1e5": Case("plastic-1e5", 317, 159, "plastic",
                         [("return-mapping", ["--plasticity", "return-mapping"])], p=0.9 * P_LIMIT, steps=20),
+    "contact": Case("contact", ccx_contact.N + 1, ccx_contact.NZ + 1, "contact",
+                    [("augmented-lagrangian", ["--element", "quad4"])], p=ccx_contact.P,
+                    steps=ccx_contact.STEPS),
 }
 
 
@@ -145,9 +160,18 @@ def ids(lines, values, per_line=16):
         lines.append(", ".join(str(v) for v in values[k:k + per_line]) + ",")
 
 
-def write_inputs(case, work):
+def write_inputs(case, work, ccx_fields=False):
     """The gapfe deck and the ccx input of `case` in `work`; returns (deck path, ccx job name)."""
     ni, nj = case.ni, case.nj
+    if case.kind == "contact":
+        deck_path, job = os.path.join(work, "contact.deck"), "ccx_contact"
+        with open(deck_path, "w") as f:
+            f.write(deckgen.two_tubes_deck(n=ccx_contact.N, nz=ccx_contact.NZ, steps=ccx_contact.STEPS,
+                                           contact="augmented-lagrangian"))
+        text, _ = ccx_contact.ccx_deck(CONTACT_SLOPE, 1e-3)
+        with open(os.path.join(work, job + ".inp"), "w") as f:
+            f.write(text)
+        return deck_path, job
     if case.kind == "elastic":
         deck = deckgen.tube_deck(ni, nj, a=A, b=B, p=case.p, nodal=case.nodal)
     else:
@@ -185,6 +209,8 @@ def write_inputs(case, work):
     else:
         out += ["*STEP", "*STATIC"]
     out += ["*DLOAD", "EBORE, P4, %.17g" % case.p, "*NODE PRINT, NSET=NBORE", "U"]
+    if ccx_fields:
+        out += ["*NODE FILE", "U", "*EL FILE", "S" + (", PEEQ" if case.kind == "plastic" else "")]
     if case.kind == "plastic":
         out += ["*EL PRINT, ELSET=EROW", "PEEQ"]
     out += ["*END STEP"]
@@ -197,7 +223,12 @@ def write_inputs(case, work):
 # ---------------------------------------------------------------------------------------- results ------
 
 def ccx_results(case, work, job):
-    """(bore u_r, plastic radius or None) from the last blocks of the .dat."""
+    """(bore u_r, plastic radius or None) from the last blocks of the .dat; for the contact case
+    (contact pressure q, None)."""
+    if case.kind == "contact":
+        _, press = ccx_contact.parse_ccx_dat(os.path.join(work, job + ".dat"),
+                                             ccx_contact.ccx_deck(CONTACT_SLOPE, 1e-3)[1])
+        return (statistics.fmean(press) if press else None), None
     lines = open(os.path.join(work, job + ".dat"), errors="replace").read().splitlines()
     u, peeq, block = None, {}, None
     bore = node(0, (case.nj - 1) // 2, case.ni)
@@ -230,7 +261,12 @@ def ccx_results(case, work, job):
 
 
 def gapfe_results(case, out):
-    """(bore u_r, plastic radius or None, phase line) from the last increment of nodes.csv / elements.csv."""
+    """(bore u_r, plastic radius or None) from the last increment of nodes.csv / elements.csv; for the
+    contact case (contact pressure q, None) from gaps.csv (bench/ccx_contact.py: the f_n rows sum to
+    the total contact force)."""
+    if case.kind == "contact":
+        _, gaps = ccx_contact.read_csv_last_increment(os.path.join(out, "gaps.csv"))
+        return sum(float(r["f_n"]) for r in gaps) / (2 * math.pi * ccx_contact.B * ccx_contact.H), None
     bore = node(0, (case.nj - 1) // 2, case.ni)
     u = None
     with open(os.path.join(out, "nodes.csv")) as f:
@@ -282,13 +318,15 @@ def fmt_ratio(x):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0], epilog=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--cases", default="tube-1e5,plastic-1e4,plastic-1e5,tube-1e6",
+    ap.add_argument("--cases", default="tube-1e5,plastic-1e4,plastic-1e5,tube-1e6,contact",
                     help="comma-separated, from: " + ", ".join(CASES))
     ap.add_argument("--pairs", type=int, default=3, help="interleaved rounds (ccx, gapfe variants); >= 1")
     ap.add_argument("--gapfe", default="build/bench/examples/gapfe", help="the gapfe command")
     ap.add_argument("--ccx", default="ccx")
     ap.add_argument("--work", default=None, help="work directory (default: a new temporary one, kept)")
     ap.add_argument("--write", default=None, help="put the table into this Markdown file between the markers")
+    ap.add_argument("--ccx-output", choices=["print", "fields"], default="print",
+                    help="what ccx writes in the elastic and plastic cases (see above)")
     args = ap.parse_args()
     names = [c for c in args.cases.split(",") if c]
     for c in names:
@@ -306,7 +344,7 @@ def main():
     rows = []
     for name in names:
         case = CASES[name]
-        deck, job = write_inputs(case, work)
+        deck, job = write_inputs(case, work, args.ccx_output == "fields")
         timing = {"ccx": []}
         timing.update({v: [] for v, _ in case.variants})
         answers, phase = {}, {}
@@ -333,22 +371,25 @@ def main():
         rows.append((case, med, answers, phase))
 
     u_lame = {name: lame_bore(CASES[name].p) for name in names}
+    q_contact = ccx_contact.closed_form()["q"]
     lines = ["| case | equations | code | wall s (median of %d) | peak MiB | ccx / gapfe time | ccx / gapfe memory "
-             "| bore u_r | error | plastic radius (closed form) |" % args.pairs,
+             "| bore u_r (contact: q) | error | plastic radius (closed form) |" % args.pairs,
              "|---|---|---|---|---|---|---|---|---|---|"]
     for case, med, answers, phase in rows:
-        ref_u = u_lame[case.name] if case.kind == "elastic" else None
+        ref_u = u_lame[case.name] if case.kind == "elastic" else q_contact if case.kind == "contact" else None
         rho = plastic_radius_closed_form(case.p) if case.kind == "plastic" else None
         for key in ["ccx"] + [v for v, _ in case.variants]:
             wall, rss = med[key]
             u, radius = answers[key]
             if ref_u is not None:
-                err = "%.1e vs Lame" % ((u - ref_u) / ref_u) if u is not None else "?"
+                err = "%.1e vs %s" % ((u - ref_u) / ref_u, "closed form" if case.kind == "contact" else "Lame") \
+                    if u is not None else "?"
             else:
                 uc = answers["ccx"][0]
                 err = "%+.1e vs ccx" % ((u - uc) / uc) if key != "ccx" and u and uc else ""
             rad = ("%.2f (%.2f)" % (radius, rho) if radius else "") if rho else ""
-            label = "ccx 2.20 (CAX4)" if key == "ccx" else "gapfe, " + key
+            label = ("ccx 2.20 (CAX4%s)" % (", U and S fields" if args.ccx_output == "fields" or case.kind == "contact"
+                                            else "") if key == "ccx" else "gapfe, " + key)
             ratio_t = "" if key == "ccx" else fmt_ratio(med["ccx"][0] / wall)
             ratio_m = "" if key == "ccx" else "%.1fx" % (med["ccx"][1] / rss)
             lines.append("| %s | %d | %s | %.3g | %.0f | %s | %s | %s | %s | %s |" % (
