@@ -200,58 +200,86 @@ class StepFiles {
   }
 
  private:
+  /// The tables' rows, written in chunks (a 1e6-node table is 100 MB of text). Every row starts with the
+  /// increment's step,inc,t and the mesh's part of the row (node,i,j,r,z or element,i,j,material,r,z),
+  /// which is formatted once, at the second increment written, and copied from then on.
   void write_tables(int step, double inc, const Solution& solution, const std::vector<PointValues>& values) {
     const IJGrid& g = scene_.grid;
     const auto& u   = solution.displacement;
     std::string prefix;
     detail::csv_increment(prefix, step, inc, step_time_);
-
+    if (++tables_written_ == 2) {
+      for (int n = 0; n < g.node_count(); ++n)
+        node_head(node_heads_, n), node_head_end_.push_back(node_heads_.size());
+      for (std::size_t e = 0; e < g.cells.size(); ++e)
+        element_head(element_heads_, e, by_element(values, e)),
+            element_head_end_.push_back(element_heads_.size());
+    }
+    const auto head = [](std::string& s, const std::string& heads, const std::vector<std::size_t>& end,
+                         std::size_t k) {
+      s.append(heads, k == 0 ? 0 : end[k - 1], end[k] - (k == 0 ? 0 : end[k - 1]));
+    };
     std::string s;
-    s.reserve(std::max(static_cast<std::size_t>(g.node_count()) * 96, g.cells.size() * 160));  // rows below
+    constexpr std::size_t kChunk = std::size_t(1) << 20;
+    s.reserve(kChunk + 512);
+    const auto row_end = [&](std::ofstream& out) {
+      s += '\n';
+      if (s.size() >= kChunk) out.write(s.data(), static_cast<std::streamsize>(s.size())), s.clear();
+    };
+    const auto flush = [&](std::ofstream& out) {
+      out.write(s.data(), static_cast<std::streamsize>(s.size())), s.clear();
+      out.flush();
+    };
+    const bool cached = !node_heads_.empty();
     for (int n = 0; n < g.node_count(); ++n) {
       s += prefix;
-      for (const int k : {n + 1, g.node_ij[n][0], g.node_ij[n][1]})
-        detail::append_number(s, static_cast<long long>(k)), s += ',';
-      detail::csv_number(s, g.nodes[n](0)), detail::csv_number(s, g.nodes[n](1));
+      cached ? head(s, node_heads_, node_head_end_, static_cast<std::size_t>(n)) : node_head(s, n);
       detail::csv_number(s, u(n, 0)), detail::csv_number(s, u(n, 1)), detail::append_number(s, u(n, 2));
-      s += '\n';
+      row_end(nodes_);
     }
-    nodes_ << s;
-    nodes_.flush();
-
-    s.clear();
+    flush(nodes_);
     for (int n = 0; n < g.node_count(); ++n) {
       const int code = prescribed_[static_cast<std::size_t>(n)];
       if (code == 0) continue;
       s += prefix;
-      for (const int k : {n + 1, g.node_ij[n][0], g.node_ij[n][1]})
-        detail::append_number(s, static_cast<long long>(k)), s += ',';
-      detail::csv_number(s, g.nodes[n](0)), detail::csv_number(s, g.nodes[n](1));
+      cached ? head(s, node_heads_, node_head_end_, static_cast<std::size_t>(n)) : node_head(s, n);
       for (int c = 0; c < 3; ++c) {
         detail::append_number(s, (code >> c) & 1 ? solution.reaction(n, c) : 0.0);
-        s += c < 2 ? ',' : '\n';
+        if (c < 2) s += ',';
       }
+      row_end(reactions_);
     }
-    reactions_ << s;
-    reactions_.flush();
-
-    s.clear();
+    flush(reactions_);
     for (std::size_t e = 0; e < g.cells.size(); ++e) {
       const PointValues& v = by_element(values, e);
       s += prefix;
-      for (const int k : {static_cast<int>(e) + 1, g.cells[e].i, g.cells[e].j, scene_.material_id[e]})
-        detail::append_number(s, static_cast<long long>(k)), s += ',';
-      detail::csv_number(s, v.r), detail::csv_number(s, v.z);
+      cached ? head(s, element_heads_, element_head_end_, e) : element_head(s, e, v);
       for (const int k : {voigt::rr, voigt::zz, voigt::hoop, voigt::rz, voigt::theta_r, voigt::z_theta})
         detail::csv_number(s, v.stress(k));
-      detail::append_number(s, v.eqps), s += '\n';
+      detail::append_number(s, v.eqps);
+      row_end(elements_);
     }
-    elements_ << s;
-    elements_.flush();
+    flush(elements_);
     if (!nodes_ || !elements_ || !reactions_)
       throw InputError("error while writing the CSV files in " + dir_);
   }
+  /// "node,i,j,r,z," of node n (0-based; the table's node numbers are the deck's, 1-based).
+  void node_head(std::string& s, int n) const {
+    const IJGrid& g = scene_.grid;
+    for (const int k : {n + 1, g.node_ij[n][0], g.node_ij[n][1]})
+      detail::append_number(s, static_cast<long long>(k)), s += ',';
+    detail::csv_number(s, g.nodes[n](0)), detail::csv_number(s, g.nodes[n](1));
+  }
+  /// "element,i,j,material,r,z," of element e at its centroid value v.
+  void element_head(std::string& s, std::size_t e, const PointValues& v) const {
+    const GridCell& c = scene_.grid.cells[e];
+    for (const int k : {static_cast<int>(e) + 1, c.i, c.j, scene_.material_id[e]})
+      detail::append_number(s, static_cast<long long>(k)), s += ',';
+    detail::csv_number(s, v.r), detail::csv_number(s, v.z);
+  }
 
+  /// A VTU file of the increment. The mesh and the element ids are the same in every file: from the second
+  /// file on they are encoded once and copied.
   void write_fields(int step, double inc, const Solution& solution, const std::vector<PointValues>& values,
                     std::vector<VtuField> extra_cells) {
     const IJGrid& g = scene_.grid;
@@ -274,11 +302,17 @@ class StepFiles {
       for (int k = 0; k < 6; ++k) stress[6 * e + k] = v.stress(k);
       eqps[e] = v.eqps;
     }
-    std::vector<VtuField> cell = detail::element_ids(scene_);
-    cell.insert(cell.begin(), VtuField{"eqps", 1, std::move(eqps)});
-    cell.insert(cell.begin(), VtuField{"stress", 6, std::move(stress)});
+    std::vector<VtuField> cell{{"stress", 6, std::move(stress)}, {"eqps", 1, std::move(eqps)}};
     for (auto& f : extra_cells) cell.push_back(std::move(f));
-    write_vtu(dir_ + "/" + name, g.nodes, detail::grid_cells(g), point, cell);
+    if (vtu_mesh_) {
+      write_vtu(dir_ + "/" + name, *vtu_mesh_, point, cell, vtu_ids_);
+    } else {
+      VtuMesh mesh(g.nodes, detail::grid_cells(g));
+      std::string ids;
+      for (const VtuField& f : detail::element_ids(scene_)) detail::append_array(ids, f);
+      write_vtu(dir_ + "/" + name, mesh, point, cell, ids);
+      if (++fields_written_ == 2) vtu_mesh_.emplace(std::move(mesh)), vtu_ids_ = std::move(ids);
+    }
     steps_.emplace_back(inc * step_time_, name);
     write_pvd(dir_ + "/result.pvd", steps_);
   }
@@ -373,6 +407,11 @@ class StepFiles {
   std::vector<double> last_gap_state_;
   std::ofstream nodes_, elements_, reactions_;
   std::vector<int> prescribed_;  ///< per node: the OR of its BC codes (1 u_r, 2 u_z, 4 u_theta)
+  int tables_written_ = 0, fields_written_ = 0;
+  std::string node_heads_, element_heads_;  ///< the rows' mesh parts, from the second increment on
+  std::vector<std::size_t> node_head_end_, element_head_end_;
+  std::optional<VtuMesh> vtu_mesh_;  ///< the VTU files' mesh, from the second file on
+  std::string vtu_ids_;              ///< and their element ids
   std::vector<std::pair<double, std::string>> steps_;
   int last_step_ = 0, split_ = 0;
 };

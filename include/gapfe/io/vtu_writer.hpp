@@ -114,40 +114,61 @@ inline void append_array(std::string& s, const VtuField& f) {
 
 }  // namespace detail
 
-/// Write nodes (r, z), cells and point / cell arrays to `path`.
-inline void write_vtu(const std::string& path, const std::vector<Vec2>& nodes, const VtuCells& cells,
-                      const std::vector<VtuField>& point_data, const std::vector<VtuField>& cell_data) {
-  std::size_t raw =
-      24 * nodes.size() + 4 * (cells.connectivity.size() + cells.offsets.size()) + cells.types.size();
+/// The mesh part of a VTU file (its <Points> and <Cells> sections, encoded), which a run's files share:
+/// a series of files of one mesh encodes it once.
+struct VtuMesh {
+  std::size_t points = 0, cells = 0;
+  std::string xml;
+
+  VtuMesh(const std::vector<Vec2>& nodes, const VtuCells& c) : points(nodes.size()), cells(c.size()) {
+    xml.reserve(
+        (24 * nodes.size() + 4 * (c.connectivity.size() + c.offsets.size()) + c.types.size()) / 3 * 4 + 512);
+    xml += "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"binary\">\n";
+    std::vector<double> xyz;
+    xyz.reserve(3 * nodes.size());
+    for (const auto& x : nodes) xyz.insert(xyz.end(), {x(0), x(1), 0.0});
+    detail::append_binary(xml, xyz);
+    xml += "</DataArray></Points>\n<Cells>\n";
+    const auto ints = [&](const char* name, const auto& v) {
+      xml += std::string("<DataArray type=\"Int32\" Name=\"") + name + "\" format=\"binary\">\n";
+      detail::append_binary(xml, std::vector<std::int32_t>(v.begin(), v.end()));
+      xml += "</DataArray>\n";
+    };
+    ints("connectivity", c.connectivity);
+    ints("offsets", c.offsets);
+    xml += "<DataArray type=\"UInt8\" Name=\"types\" format=\"binary\">\n";
+    detail::append_binary(xml, c.types);
+    xml += "</DataArray>\n</Cells>\n";
+  }
+};
+
+/// Point and cell arrays on `mesh` to `path`; `cell_xml` is more cell arrays already encoded
+/// (detail::append_array), for arrays a series of files repeats unchanged.
+inline void write_vtu(const std::string& path, const VtuMesh& mesh, const std::vector<VtuField>& point_data,
+                      const std::vector<VtuField>& cell_data, const std::string& cell_xml = {}) {
+  std::size_t raw = 0;
   for (const auto* fields : {&point_data, &cell_data})
     for (const auto& f : *fields) raw += f.values.size() * (f.integer ? 4 : 8);
   std::string s;
-  s.reserve(raw / 3 * 4 + 4096);  // base64 grows 3 bytes to 4 characters: one allocation
+  s.reserve(mesh.xml.size() + cell_xml.size() + raw / 3 * 4 + 4096);  // base64: 3 bytes to 4 characters
   s += "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
        "byte_order=\"LittleEndian\">\n";
-  s += "<UnstructuredGrid><Piece NumberOfPoints=\"" + std::to_string(nodes.size()) + "\" NumberOfCells=\"" +
-       std::to_string(cells.size()) + "\">\n";
-  s += "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"binary\">\n";
-  std::vector<double> xyz;
-  xyz.reserve(3 * nodes.size());
-  for (const auto& x : nodes) xyz.insert(xyz.end(), {x(0), x(1), 0.0});
-  detail::append_binary(s, xyz);
-  s += "</DataArray></Points>\n<Cells>\n";
-  const auto ints = [&](const char* name, const auto& v) {
-    s += std::string("<DataArray type=\"Int32\" Name=\"") + name + "\" format=\"binary\">\n";
-    detail::append_binary(s, std::vector<std::int32_t>(v.begin(), v.end()));
-    s += "</DataArray>\n";
-  };
-  ints("connectivity", cells.connectivity);
-  ints("offsets", cells.offsets);
-  s += "<DataArray type=\"UInt8\" Name=\"types\" format=\"binary\">\n";
-  detail::append_binary(s, std::vector<std::uint8_t>(cells.types.begin(), cells.types.end()));
-  s += "</DataArray>\n</Cells>\n<PointData>\n";
+  s += "<UnstructuredGrid><Piece NumberOfPoints=\"" + std::to_string(mesh.points) + "\" NumberOfCells=\"" +
+       std::to_string(mesh.cells) + "\">\n";
+  s += mesh.xml;
+  s += "<PointData>\n";
   for (const auto& f : point_data) detail::append_array(s, f);
   s += "</PointData>\n<CellData>\n";
   for (const auto& f : cell_data) detail::append_array(s, f);
+  s += cell_xml;
   s += "</CellData>\n</Piece></UnstructuredGrid></VTKFile>\n";
   detail::write_file_atomically(path, s);
+}
+
+/// Write nodes (r, z), cells and point / cell arrays to `path`.
+inline void write_vtu(const std::string& path, const std::vector<Vec2>& nodes, const VtuCells& cells,
+                      const std::vector<VtuField>& point_data, const std::vector<VtuField>& cell_data) {
+  write_vtu(path, VtuMesh(nodes, cells), point_data, cell_data);
 }
 
 /// A ParaView collection: one dataset per (time, file) pair; `time` is the load increment count.
