@@ -7,7 +7,9 @@
 //   R(u) = F_ext - F_int(u),   F_int = sum_e int B^T sigma dV (+ node links),   K_t = sum_e int B^T D B dV,
 // with sigma and D from Law::update(local, eps(u), committed state, context()). Iteration 0 starts from
 // the committed displacements and takes the change of the prescribed values through K_fp (a linearized
-// predictor). Each iteration refactorizes K_t unless it is bit for bit the last factorized one (every
+// predictor), or, for laws with kIterate after a first accepted step, from the last step's displacement
+// change extrapolated (NewtonOptions::extrapolate; no solve at all when that start is already in
+// equilibrium). Each iteration refactorizes K_t unless it is bit for bit the last factorized one (every
 // point elastic: System::skip_unchanged); the pattern and its analysis never change.
 //   * Laws with kIterate (ReturnMapping): Newton until |R_free| <= tolerance |F_int| (over all DOFs, so
 //     reactions count and displacement-controlled steps are measured too). Every iteration's residual is
@@ -35,10 +37,16 @@
 
 namespace gapfe {
 
-/// Newton's stopping rule.
+/// Newton's stopping rule and starting point.
 struct NewtonOptions {
   double tolerance   = 1e-10;  ///< |R_free| / |F_int| to stop at [-]
   int max_iterations = 30;     ///< a SolveError beyond this (the caller may cut the step)
+  /// Laws with kIterate: start a step from the last accepted step's displacement change, scaled by the
+  /// ratio of the steps' dt (context()), instead of from the committed displacements (the prescribed
+  /// values are then set at once). On the plastic tube of BENCHMARKS.md (issue 14) the first residual
+  /// falls from about 1e-1 to 5e-3 and 45 solves become 38; the converged answer is the same to the
+  /// tolerance. No extrapolation before a first accepted step, or when either dt is zero.
+  bool extrapolate = true;
 };
 
 template <class M>
@@ -108,6 +116,51 @@ class NonlinearStatic {
   /// Equilibrium at the loads now in problem(), from the committed state. Throws SolveError when the
   /// iterations do not converge (the committed state is untouched: reject() and cut the step).
   const Solution& solve() {
+    const bool extrapolate = Law::kIterate && options_.extrapolate && previous_dt_ > 0 && context_.dt > 0 &&
+                             u_previous_.size() > 0;
+    if (!extrapolate) return newton(false);
+    try {
+      return newton(true);
+    } catch (const SolveError&) {
+      // The trend broke (a new load program, as SAAC3X's switch from stress to strain rate): start again
+      // from the committed state, the linearized predictor's start, before the caller cuts the step.
+      const int spent = report_.iterations;
+      points_.reject();
+      newton(false);
+      report_.iterations += spent;
+      return sol_;
+    }
+  }
+
+  /// The LinearStatic calls of a contact driver: both iterate from the committed state (the
+  /// stiffness changes anyway).
+  const Solution& solve(bool /*same_stiffness*/) { return solve(); }
+  const Solution& resolve_links(bool /*same_link_stiffness*/) { return solve(); }
+
+  /// Accept the last solve(): its history becomes the committed state.
+  void commit() {
+    points_.commit();
+    u_previous_  = std::move(u_committed_);
+    u_committed_ = u_;
+    previous_dt_ = context_.dt;
+  }
+  /// Forget the last solve(): back to the committed state.
+  void reject() {
+    points_.reject();
+    u_ = u_committed_;
+  }
+
+  /// Strain, stress and eqps at every stiffness point (the last solve()).
+  std::vector<PointValues> point_values() const { return recover(assembler_, p_, u_, stored(), false); }
+  /// Their volume-weighted mean per cell.
+  /// `what`: Recovered::stress leaves strain and the material-axes values out (post/recovery.hpp).
+  std::vector<PointValues> centroid_values(Recovered what = Recovered::all) const {
+    return recover(assembler_, p_, u_, stored(), true, what);
+  }
+
+ private:
+  /// Newton from the committed state (extrapolate: from the extrapolated trend, NewtonOptions).
+  const Solution& newton(bool extrapolate) {
     // Each phase's time goes to the last solve's and to the totals as it ends, so that a solve that
     // throws (a step the driver cuts) is counted too.
     using clock = std::chrono::steady_clock;
@@ -124,12 +177,25 @@ class NonlinearStatic {
     assembler_.add_body_forces(p_, external_);
     u_                   = u_committed_;
     VecX prescribed_step = VecX::Zero(u_.size());  // change of the prescribed values over the step
+    if (extrapolate) u_ += (context_.dt / previous_dt_) * (u_committed_ - u_previous_);
     for (Eigen::Index d = 0; d < u_.size(); ++d)
-      if (dofs.equation[d] < 0) prescribed_step(d) = dofs.prescribed(d) - u_(d);
+      if (dofs.equation[d] < 0) {
+        if (extrapolate)
+          u_(d) = dofs.prescribed(d);
+        else
+          prescribed_step(d) = dofs.prescribed(d) - u_(d);
+      }
     report_ = {};
     evaluate(true, &prescribed_step);
     lap(&SolveTimings::assemble);
-    for (int it = 0;; ++it) {
+    if (extrapolate) {  // the extrapolated start may already be in equilibrium (a proportional elastic step)
+      nodal_results(dofs, u_, internal_, external_, p_.mesh.node_count(), sol_);
+      if (!std::isfinite(sol_.residual)) throw SolveError("the residual is not finite");
+      report_.converged = sol_.residual <= options_.tolerance;
+      if (report_.converged) report_.residuals.push_back(sol_.residual);
+      lap(&SolveTimings::reactions);
+    }
+    for (int it = 0; !report_.converged; ++it) {
       VecX rhs = predictor_;
       for (Eigen::Index d = 0; d < u_.size(); ++d)
         if (const int eq = dofs.equation[d]; eq >= 0) rhs(eq) += external_(d) - internal_(d);
@@ -170,31 +236,6 @@ class NonlinearStatic {
     return sol_;
   }
 
-  /// The LinearStatic calls of a contact driver: both iterate from the committed state (the
-  /// stiffness changes anyway).
-  const Solution& solve(bool /*same_stiffness*/) { return solve(); }
-  const Solution& resolve_links(bool /*same_link_stiffness*/) { return solve(); }
-
-  /// Accept the last solve(): its history becomes the committed state.
-  void commit() {
-    points_.commit();
-    u_committed_ = u_;
-  }
-  /// Forget the last solve(): back to the committed state.
-  void reject() {
-    points_.reject();
-    u_ = u_committed_;
-  }
-
-  /// Strain, stress and eqps at every stiffness point (the last solve()).
-  std::vector<PointValues> point_values() const { return recover(assembler_, p_, u_, stored(), false); }
-  /// Their volume-weighted mean per cell.
-  /// `what`: Recovered::stress leaves strain and the material-axes values out (post/recovery.hpp).
-  std::vector<PointValues> centroid_values(Recovered what = Recovered::all) const {
-    return recover(assembler_, p_, u_, stored(), true, what);
-  }
-
- private:
   StoredStress<State> stored() const { return {stress_, points_.trial()}; }
   void evaluate(bool tangent, const VecX* prescribed_step) {
     if (link_update_) link_update_(u_);
@@ -228,6 +269,8 @@ class NonlinearStatic {
   History<State> points_;     ///< per stiffness point, cells then triangles (Assembler::first_point)
   std::vector<Vec6> stress_;  ///< at the last evaluation, global axes
   VecX u_, u_committed_;      ///< all DOFs
+  VecX u_previous_;           ///< committed before the last commit() (extrapolation)
+  double previous_dt_ = 0;    ///< the last accepted step's dt
   VecX external_, internal_, predictor_;
   Solution sol_;
   SolveTimings time_, total_;

@@ -44,7 +44,8 @@ struct SolveTimings {
 
 /// What the last nonlinear step did.
 struct StepReport {
-  std::vector<double> residuals;  ///< |R_free| / |F_int| after each linear solve
+  std::vector<double> residuals;  ///< |R_free| / |F_int| after each linear solve (or at an extrapolated
+                                  ///< start already in equilibrium, when no solve was needed)
   int iterations     = 0;         ///< linear solves (1 for Tangent)
   bool converged     = false;     ///< residual <= tolerance (Tangent: never required)
   int plastic_points = 0;         ///< points on the yield surface at the end of the step
