@@ -16,6 +16,13 @@
 // P^T r is the coarse correction equation. Smoothing: two red-black Gauss-Seidel sweeps before, two in the
 // reverse colour order after, which keeps the V-cycle symmetric, as a CG preconditioner must be. The coarsest
 // lattice (about 2,000 points) is solved directly. Both coordinates are solved together (Vec2 per point).
+//
+// Precision: CG runs in double (its residual is what the tolerance measures); the V-cycle, a
+// preconditioner, in single precision. The V-cycle is memory-bound, so halving its arrays halves its
+// cost (BENCHMARKS.md, issue 14), and a preconditioner needs only to reduce the error by a good factor:
+// the operator's coefficients (0 to 4, 1/deg) are the same, and CG, measuring in double, still reaches
+// 1e-13. The symmetry CG needs holds in exact arithmetic; single-precision rounding in it is far below
+// the reduction per cycle.
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -103,14 +110,16 @@ class GridLaplace {
   int levels() const { return static_cast<int>(levels_.size()); }
 
  private:
-  /// A lattice with a one-point border of absent points, so that neighbours need no bounds checks.
+  using Vec2f = Eigen::Vector2f;
+  /// A lattice with a one-point border of absent points, so that neighbours need no bounds checks. The
+  /// V-cycle's arrays are single precision (see the top).
   struct Level {
     int ni = 0, nj = 0, stride = 0;
     std::vector<char> state;
-    std::vector<double> diag;      ///< deg_p for unknowns, 0 elsewhere
-    std::vector<double> inv_diag;  ///< 1 / deg_p for unknowns, 0 elsewhere
-    std::vector<double> mask;  ///< 1 for unknowns, 0 elsewhere (branch-free loops: off-unknown values stay 0)
-    std::vector<Vec2> e, f, res;
+    std::vector<float> diag;      ///< deg_p for unknowns, 0 elsewhere
+    std::vector<float> inv_diag;  ///< 1 / deg_p for unknowns, 0 elsewhere
+    std::vector<float> mask;  ///< 1 for unknowns, 0 elsewhere (branch-free loops: off-unknown values stay 0)
+    std::vector<Vec2f> e, f, res;
     std::size_t at(int i, int j) const { return static_cast<std::size_t>(j + 1) * stride + (i + 1); }
   };
 
@@ -128,34 +137,37 @@ class GridLaplace {
     const std::size_t s = static_cast<std::size_t>(L.stride);
     for (std::size_t k = 0; k < n; ++k) {
       if (L.state[k] != unknown) continue;
-      L.diag[k] = coarse ? 4.0
-                         : (L.state[k - 1] != absent) + (L.state[k + 1] != absent) +
-                               (L.state[k - s] != absent) + (L.state[k + s] != absent);
+      L.diag[k] = coarse ? 4.0f
+                         : static_cast<float>((L.state[k - 1] != absent) + (L.state[k + 1] != absent) +
+                                              (L.state[k - s] != absent) + (L.state[k + s] != absent));
       if (L.diag[k] == 0) L.state[k] = fixed;  // isolated on this lattice: no coarse correction there
     }
-    L.inv_diag.assign(n, 0.0), L.mask.assign(n, 0.0);
+    L.inv_diag.assign(n, 0.0f), L.mask.assign(n, 0.0f);
     for (std::size_t k = 0; k < n; ++k)
-      if (L.state[k] == unknown) L.inv_diag[k] = 1.0 / L.diag[k], L.mask[k] = 1.0;
-    L.e.assign(n, Vec2::Zero()), L.f.assign(n, Vec2::Zero()), L.res.assign(n, Vec2::Zero());
+      if (L.state[k] == unknown) L.inv_diag[k] = 1.0f / L.diag[k], L.mask[k] = 1.0f;
+    L.e.assign(n, Vec2f::Zero()), L.f.assign(n, Vec2f::Zero()), L.res.assign(n, Vec2f::Zero());
     return L;
   }
 
   /// y = b - A x over the unknowns of a level (0 elsewhere; without b: y = A x); returns x . y per
-  /// component. x and b must be 0 off the unknowns. One pass for the product and its dot product.
-  static Vec2 apply(const Level& L, const std::vector<Vec2>& xv, std::vector<Vec2>& yv,
-                    const std::vector<Vec2>* bv = nullptr) {
+  /// component. x and b must be 0 off the unknowns. One pass for the product and its dot product. In
+  /// double for CG, in single precision inside the V-cycle (V = Vec2 or Vec2f).
+  template <class V>
+  static Vec2 apply(const Level& L, const std::vector<V>& xv, std::vector<V>& yv,
+                    const std::vector<V>* bv = nullptr) {
+    using T             = typename V::Scalar;
     const std::size_t s = static_cast<std::size_t>(L.stride), n = L.state.size();
-    const double* x = xv.data()->data();
-    const double* b = bv ? bv->data()->data() : nullptr;
-    double* y       = yv.data()->data();
-    const double *d = L.diag.data(), *m = L.mask.data();
+    const T* x     = xv.data()->data();
+    const T* b     = bv ? bv->data()->data() : nullptr;
+    T* y           = yv.data()->data();
+    const float *d = L.diag.data(), *m = L.mask.data();
     double dot[2] = {0, 0};
     for (std::size_t k = s; k + s < n; ++k)
       for (int c = 0; c < 2; ++c) {
         const std::size_t a = 2 * k + c;
-        const double ax     = m[k] * (d[k] * x[a] - x[a - 2] - x[a + 2] - x[a - 2 * s] - x[a + 2 * s]);
+        const T ax          = T(m[k]) * (T(d[k]) * x[a] - x[a - 2] - x[a + 2] - x[a - 2 * s] - x[a + 2 * s]);
         y[a]                = b ? b[a] - ax : ax;
-        dot[c] += x[a] * y[a];
+        dot[c] += double(x[a]) * double(y[a]);
       }
     return {dot[0], dot[1]};
   }
@@ -165,16 +177,16 @@ class GridLaplace {
   /// depend on each other, so each half-sweep pipelines; e stays 0 off the unknowns.
   static void gauss_seidel(Level& L, bool forward) {
     const std::size_t s  = static_cast<std::size_t>(L.stride);
-    double* e            = L.e.data()->data();
-    const double* f      = L.f.data()->data();
-    const double* w      = L.inv_diag.data();
+    float* e             = L.e.data()->data();
+    const float* f       = L.f.data()->data();
+    const float* w       = L.inv_diag.data();
     const auto relax_row = [&](int j, int colour) {
       const std::size_t row = L.at(0, j);
       for (int i = (colour + j) % 2; i < L.ni; i += 2) {
         const std::size_t k = row + static_cast<std::size_t>(i), a = 2 * k;
-        const double wk = w[k];
-        e[a]            = wk * (f[a] + e[a - 2] + e[a + 2] + e[a - 2 * s] + e[a + 2 * s]);
-        e[a + 1]        = wk * (f[a + 1] + e[a - 1] + e[a + 3] + e[a + 1 - 2 * s] + e[a + 1 + 2 * s]);
+        const float wk = w[k];
+        e[a]           = wk * (f[a] + e[a - 2] + e[a + 2] + e[a - 2 * s] + e[a + 2 * s]);
+        e[a + 1]       = wk * (f[a + 1] + e[a - 1] + e[a + 3] + e[a + 1 - 2 * s] + e[a + 1 + 2 * s]);
       }
     };
     // Both colours in one pass over memory: the second colour trails the first by one row, which is
@@ -196,7 +208,7 @@ class GridLaplace {
   /// Visit the fine points around coarse point (I, J) with their full-weighting weights.
   template <class F>
   static void stencil(const Level& fine, int I, int J, F&& visit) {
-    static constexpr double w[3] = {0.5, 1.0, 0.5};
+    static constexpr float w[3] = {0.5f, 1.0f, 0.5f};
     for (int dj = -1; dj <= 1; ++dj)
       for (int di = -1; di <= 1; ++di) {
         const int i = 2 * I + di, j = 2 * J + dj;
@@ -213,15 +225,15 @@ class GridLaplace {
       coarsest_solve();
       return;
     }
-    std::fill(L.e.begin(), L.e.end(), Vec2::Zero());
+    std::fill(L.e.begin(), L.e.end(), Vec2f::Zero());
     for (int sweep = 0; sweep < kSweeps; ++sweep) gauss_seidel(L, true);
     apply(L, L.e, L.res, &L.f);  // res = f - A e, 0 off the unknowns
     Level& C = levels_[l + 1];
     for (int J = 0; J < C.nj; ++J)
       for (int I = 0; I < C.ni; ++I) {
         const std::size_t kc = C.at(I, J);
-        Vec2 sum             = Vec2::Zero();
-        if (C.state[kc] == unknown) stencil(L, I, J, [&](std::size_t k, double wt) { sum += wt * L.res[k]; });
+        Vec2f sum            = Vec2f::Zero();
+        if (C.state[kc] == unknown) stencil(L, I, J, [&](std::size_t k, float wt) { sum += wt * L.res[k]; });
         C.f[kc] = sum;
       }
     v_cycle(l + 1);
@@ -229,18 +241,17 @@ class GridLaplace {
       for (int I = 0; I < C.ni; ++I) {
         const std::size_t kc = C.at(I, J);
         if (C.state[kc] == unknown)
-          stencil(L, I, J, [&](std::size_t k, double wt) { L.e[k] += wt * C.e[kc]; });
+          stencil(L, I, J, [&](std::size_t k, float wt) { L.e[k] += wt * C.e[kc]; });
       }
     for (int sweep = 0; sweep < kSweeps; ++sweep) gauss_seidel(L, false);
   }
 
-  /// z = V-cycle(r). r and z are swapped in and out of the level's buffers instead of copied.
-  void precondition(std::vector<Vec2>& r, std::vector<Vec2>& z) {
+  /// z = V-cycle(r): r rounded to single precision, the cycle, z widened back.
+  void precondition(const std::vector<Vec2>& r, std::vector<Vec2>& z) {
     Level& L = levels_.front();
-    std::swap(L.f, r);
+    for (std::size_t k = 0; k < r.size(); ++k) L.f[k] = r[k].cast<float>();
     v_cycle(0);
-    std::swap(L.f, r);
-    std::swap(L.e, z);
+    for (std::size_t k = 0; k < z.size(); ++k) z[k] = L.e[k].cast<double>();
   }
 
   void build_coarsest() {
@@ -253,7 +264,7 @@ class GridLaplace {
     const std::size_t s = static_cast<std::size_t>(L.stride);
     for (std::size_t k = 0; k < L.state.size(); ++k) {
       if (coarse_index_[k] < 0) continue;
-      t.emplace_back(coarse_index_[k], coarse_index_[k], L.diag[k]);
+      t.emplace_back(coarse_index_[k], coarse_index_[k], static_cast<double>(L.diag[k]));
       for (const std::size_t q : {k - 1, k + 1, k - s, k + s})
         if (coarse_index_[q] >= 0) t.emplace_back(coarse_index_[k], coarse_index_[q], -1.0);
     }
@@ -269,15 +280,15 @@ class GridLaplace {
 
   void coarsest_solve() {
     Level& L = levels_.back();
-    std::fill(L.e.begin(), L.e.end(), Vec2::Zero());
+    std::fill(L.e.begin(), L.e.end(), Vec2f::Zero());
     const int n = static_cast<int>(coarse_.rows());
     if (n == 0) return;
     Eigen::Matrix<double, Eigen::Dynamic, 2> b(n, 2);
     for (std::size_t k = 0; k < L.state.size(); ++k)
-      if (coarse_index_[k] >= 0) b.row(coarse_index_[k]) = L.f[k].transpose();
+      if (coarse_index_[k] >= 0) b.row(coarse_index_[k]) = L.f[k].cast<double>().transpose();
     const Eigen::Matrix<double, Eigen::Dynamic, 2> x = coarse_.solve(b);
     for (std::size_t k = 0; k < L.state.size(); ++k)
-      if (coarse_index_[k] >= 0) L.e[k] = x.row(coarse_index_[k]).transpose();
+      if (coarse_index_[k] >= 0) L.e[k] = x.row(coarse_index_[k]).transpose().cast<float>();
   }
 
   Vec2 dots(const std::vector<Vec2>& a, const std::vector<Vec2>& b) const {
