@@ -14,9 +14,11 @@ namespace {
 /// virtual machines we measure on a fault costs microseconds, and on the 1e5-equation tube the faults
 /// were a third of the wall time (BENCHMARKS.md, issue 14). glibc (2.35 and later) advises the kernel
 /// to back its large blocks with huge pages when the tunable glibc.malloc.hugetlb=1 is set, and reads
-/// tunables only at start-up, so the command re-executes itself once with it added to GLIBC_TUNABLES.
-/// Nothing changes when the kernel has transparent huge pages off; GAPFE_HUGE_PAGES=0 skips this, and a
-/// failed exec just goes on without.
+/// tunables only at start-up, so the command re-executes itself once with it added to GLIBC_TUNABLES,
+/// when the deck it has just read is large (gapfe::cli::kLargeModel grid points; below that the exec's
+/// start-up, 13 ms with OpenBLAS and SuiteSparse to load, costs more than the faults). Nothing changes
+/// when the kernel has transparent huge pages off; GAPFE_HUGE_PAGES=0 skips this, and a failed exec just
+/// goes on without.
 void use_huge_pages(char** argv) {
   if (const char* off = std::getenv("GAPFE_HUGE_PAGES"); off && std::string(off) == "0") return;
   const char* set          = std::getenv("GLIBC_TUNABLES");
@@ -34,7 +36,7 @@ void use_huge_pages(char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  use_huge_pages(argv);
   std::vector<std::string> args(argv + 1, argv + argc);
-  return gapfe::cli::main(args, std::cout, std::cerr, isatty(STDERR_FILENO) != 0);
+  return gapfe::cli::main(args, std::cout, std::cerr, isatty(STDERR_FILENO) != 0,
+                          [argv] { use_huge_pages(argv); });
 }

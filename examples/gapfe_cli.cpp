@@ -143,17 +143,21 @@ void describe(std::ostream& out, const Deck& d, const DeckScene& s) {
   out << "\n";
 }
 
-int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) {
+int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
+            const std::function<void()>& large_model) {
   std::ostringstream null_stream;
   std::ostream& log = a.quiet ? null_stream : out;
   log << std::setprecision(3);
   auto t0                = Clock::now();
   const std::string text = read_file(a.deck);
   const Deck d           = read_deck(text, a.options);
-  const double t_read    = since(t0);
-  t0                     = Clock::now();
-  const DeckScene s      = build_scene(d);
-  const double t_mesh    = since(t0);
+  if (large_model && a.command != "info" &&
+      static_cast<long>(d.mesh.max_i) * static_cast<long>(d.mesh.max_j) >= kLargeModel)
+    large_model();
+  const double t_read = since(t0);
+  t0                  = Clock::now();
+  const DeckScene s   = build_scene(d);
+  const double t_mesh = since(t0);
   describe(log, d, s);
 
   std::string why;
@@ -269,7 +273,8 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress) 
 
 }  // namespace
 
-int main(const std::vector<std::string>& args, std::ostream& out, std::ostream& err, bool progress) {
+int main(const std::vector<std::string>& args, std::ostream& out, std::ostream& err, bool progress,
+         const std::function<void()>& large_model) {
   if (!args.empty() && (args[0] == "--help" || args[0] == "-h" || args[0] == "help")) {
     out << kUsage;
     return ok;
@@ -286,7 +291,7 @@ int main(const std::vector<std::string>& args, std::ostream& out, std::ostream& 
     return usage;
   }
   try {
-    return execute(a, out, err, progress);
+    return execute(a, out, err, progress, large_model);
   } catch (const InputError& e) {
     err << "gapfe: error in " << a.deck << ": " << e.what() << "\n";
     return input;

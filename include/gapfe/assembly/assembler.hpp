@@ -232,17 +232,16 @@ class Assembler {
     for_each_cell<Elem>(
         p.mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
                                               const std::array<int, NPC>& cell, const CellTag& tag) {
-          using Kernel              = ElementKernel<Kin, E>;
-          const auto x              = cell_coords<E>(p.mesh, cell);
-          const auto& lp            = local(p, tag, cell);
-          const auto mean           = Kernel::mean_volumetric(x);
-          const auto ue             = gather(cell, u);
-          const std::size_t first   = first_point<E>(e);
-          typename Kernel::Matrix k = Kernel::Matrix::Zero();
-          typename Kernel::Vector f = Kernel::Vector::Zero();
-          double det                = 0;
+          using Kernel                           = ElementKernel<Kin, E>;
+          const typename Kernel::Points geometry = Kernel::stiffness_points(cell_coords<E>(p.mesh, cell));
+          const auto& lp                         = local(p, tag, cell);
+          const auto mean                        = Kernel::mean_volumetric(geometry);
+          const auto ue                          = gather(cell, u);
+          const std::size_t first                = first_point<E>(e);
+          typename Kernel::Matrix k              = Kernel::Matrix::Zero();
+          typename Kernel::Vector f              = Kernel::Vector::Zero();
           for (int q = 0; q < E::kStiffnessPoints; ++q) {
-            const auto g    = E::stiffness_point(x, q, det);
+            const auto& g   = geometry[q];
             const auto b    = Kernel::point_B(g, mean);
             const auto resp = Law::update(lp, Kernel::extend(b * ue), points.committed(first + q), ctx);
             f.noalias() += g.weight * (b.transpose() * Kernel::restrict(resp.stress));

@@ -6,6 +6,8 @@
 // element's nodes followed by its interior (condensed) nodes, so the first kDofs entries of a
 // shape-level vector are the element's own DOFs. Strain vectors have Kin::kStrain entries, the
 // rows Kin::kVoigt of the global Voigt-6 vector.
+#include <array>
+
 #include <Eigen/Cholesky>
 
 #include "gapfe/core/concepts.hpp"
@@ -64,13 +66,22 @@ struct ElementKernel {
   /// relieves the volumetric locking of near-incompressible (and plastic) flow.
   static constexpr bool kMeanDilatation = requires { requires Elem::kMeanDilatation; };
 
+  /// The geometry of every stiffness point, for passes that visit them more than once (B-bar's mean,
+  /// then each point): computed once per element.
+  using Points = std::array<PointGeometry<Elem::kShapeNodes>, Elem::kStiffnessPoints>;
+  static Points stiffness_points(const Coords& x) {
+    Points p;
+    double det = 0;
+    for (int q = 0; q < Elem::kStiffnessPoints; ++q) p[q] = Elem::stiffness_point(x, q, det);
+    return p;
+  }
+
   /// (1/V) int (B_rr + B_zz + B_hoop) dV over the stiffness points; zero when kMeanDilatation is off.
-  static VolumetricRow mean_volumetric(const Coords& x) {
+  static VolumetricRow mean_volumetric(const Points& points) {
     VolumetricRow mean = VolumetricRow::Zero();
     if constexpr (kMeanDilatation) {
-      double volume = 0, det = 0;
-      for (int q = 0; q < Elem::kStiffnessPoints; ++q) {
-        const auto g               = Elem::stiffness_point(x, q, det);
+      double volume = 0;
+      for (const auto& g : points) {
         const StrainDisplacement b = Kin::B(g);
         mean += g.weight * b.template topRows<3>().colwise().sum();
         volume += g.weight;
@@ -78,6 +89,12 @@ struct ElementKernel {
       mean /= volume;
     }
     return mean;
+  }
+  static VolumetricRow mean_volumetric(const Coords& x) {
+    if constexpr (kMeanDilatation)
+      return mean_volumetric(stiffness_points(x));
+    else
+      return VolumetricRow::Zero();
   }
   /// B at a point; with B-bar, B + (1/3) m (mean_vol - B_vol), m = 1 on the normal rows rr, zz, hoop
   /// (the first three rows of both kinematics).
@@ -94,10 +111,9 @@ struct ElementKernel {
   /// K_s = sum_q B^T D B 2 pi r |J| w over the stiffness points (before condensation).
   static ShapeMatrix shape_stiffness(const Coords& x, const StrainMatrix& D) {
     ShapeMatrix k            = ShapeMatrix::Zero();
-    double det               = 0;
-    const VolumetricRow mean = mean_volumetric(x);
-    for (int q = 0; q < Elem::kStiffnessPoints; ++q) {
-      const auto g                 = Elem::stiffness_point(x, q, det);
+    const Points points      = stiffness_points(x);
+    const VolumetricRow mean = mean_volumetric(points);
+    for (const auto& g : points) {
       const StrainDisplacement b   = point_B(g, mean);
       const StrainDisplacement d_b = D * b;
       // lazyProduct: Eigen sends a fixed 8 x 4 by 4 x 8 product (and larger) to its blocked GEMM, whose
