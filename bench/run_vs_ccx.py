@@ -21,9 +21,9 @@ Cases (mm, MPa; a = 100, b = 200; plane strain: u_z = 0 on both ends):
                (2 / sqrt 3) sigma_y ln(b / a) in 20 fixed increments: return-mapping and tangent
   plastic-1e5  the same on 316 x 158 cells, return-mapping
   contact      bench/ccx_contact.py's two tubes across a radial gap (THEORY.md V5; 40 x 80 cells each,
-               13,284 equations, bore pressure 100 in 10 increments): gapfe augmented-lagrangian with
-               Quad4 (bilinear, like CAX4), ccx node-to-surface penalty; ccx writes its U and S fields
-               (*NODE FILE, *EL FILE) every increment, as gapfe does
+               6,642 equations: u_r only, u_z = 0 on every node; bore pressure 100 in 10 increments):
+               gapfe augmented-lagrangian with Quad4 (bilinear, like CAX4), ccx node-to-surface penalty;
+               ccx writes its U and S fields (*NODE FILE, *EL FILE) every increment, as gapfe does
 
 --ccx-output fields adds *NODE FILE U and *EL FILE S (every increment, to the .frd) to the elastic and
 plastic ccx inputs, so that both codes write the whole displacement and stress fields, as gapfe does by
