@@ -285,6 +285,51 @@ TEST_CASE_TEMPLATE("[verification] uniform temperature rise on a free tube: zero
   CHECK(rel(s.displacement(nearest_node(m, 0.1, 0.0), 0), 0.12e-3) < 1e-9);
 }
 
+TEST_CASE_TEMPLATE(
+    "[verification] one LinearStatic re-solved after load, law and temperature changes: each answer its "
+    "closed form (the stiffness re-assembled only when a law or a temperature changed)",
+    M, Model<Axisym2, LegacyQuad, Isotropic>, Model<Axisym2, Quad4, Isotropic>) {
+  // Plane-strain tube a = 0.1, b = 0.2 m, height h, u_z prescribed on both end planes. Closed forms:
+  // bore pressure p gives Lame's u_r (THEORY.md V1); a uniform rise dT with free radial surfaces and an
+  // imposed axial strain eps_z gives sigma_r = sigma_theta = 0, sigma_z = E (eps_z - alpha dT), so
+  // u_r = [(1 + nu) alpha dT - nu eps_z] r; the three superpose.
+  const int nr = 8, nz = 2;
+  const double a = 0.1, b = 0.2, h = (b - a) / nr * nz, alpha = 12e-6, dT = 50, p0 = 100e6;
+  auto fe        = lame_tube<M>(nr, nz);
+  auto& prob     = fe.problem();
+  prob.materials = {Isotropic::constant(kE, kNu, alpha)};
+  const int bore = nearest_node(prob.mesh, a, 0.0), outer = nearest_node(prob.mesh, b, h);
+  const auto lame_bore = [&](double p, double E) { return Lame{a, b, p, E, kNu}.displacement(a); };
+  const auto free_ur   = [&](double rise, double eps_z, double r) {
+    return ((1 + kNu) * alpha * rise - kNu * eps_z) * r;
+  };
+  const auto ends = [&](double top) {  // u_z = 0 at z = 0, u_z = top at z = h
+    prob.conditions.clear();
+    fix_plane(prob.conditions, prob.mesh, 0.0, 2, zero3);
+    fix_plane(prob.conditions, prob.mesh, h, 2, [&](const Vec2&) { return Vec3(0, top, 0); });
+  };
+  ends(0);
+  CHECK(rel(fe.solve().displacement(bore, 0), lame_bore(p0, kE)) < 0.005);
+  prob.edge_loads = bore_pressure(prob.mesh, nr, nz, 2 * p0);  // loads only: the right-hand side
+  CHECK(rel(fe.solve(true).displacement(bore, 0), lame_bore(2 * p0, kE)) < 0.005);
+  prob.materials = {Isotropic::constant(kE / 2, kNu, alpha)};  // a law changed: the stiffness too
+  CHECK(rel(fe.solve().displacement(bore, 0), lame_bore(2 * p0, kE / 2)) < 0.005);
+  prob.edge_loads.clear();  // a temperature changed: thermal loads and (tables) stiffness
+  prob.temperature           = VecX::Constant(prob.mesh.node_count(), 20 + dT);
+  prob.reference_temperature = 20;
+  CHECK(std::abs(fe.solve().displacement(outer, 0) - free_ur(dT, 0, b)) < 1e-9 * free_ur(dT, 0, b));
+  // Loads only again, now with thermal element loads and a non-zero prescribed u_z (K_fp u_p).
+  const double eps_z = 2e-4;
+  ends(eps_z * h);
+  prob.edge_loads   = bore_pressure(prob.mesh, nr, nz, p0);
+  const Solution& s = fe.solve();
+  CHECK(rel(s.displacement(bore, 0), lame_bore(p0, kE / 2) + free_ur(dT, eps_z, a)) < 0.005);
+  CHECK(rel(s.displacement(outer, 1), eps_z * h) < 1e-12);
+  CHECK(s.residual < 1e-10);
+  prob.edge_loads.clear();
+  CHECK(std::abs(fe.solve(true).displacement(outer, 0) - free_ur(dT, eps_z, b)) < 1e-9 * free_ur(dT, 0, b));
+}
+
 namespace {
 /// For the EigenLu checks: a plane-strain tube r in [0.1, 0.2] under bore pressure p [Pa] (Lame, THEORY.md
 /// V1), on 16 x 2 cells.

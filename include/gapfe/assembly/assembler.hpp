@@ -175,32 +175,70 @@ class Assembler {
     if constexpr (kBatchedQuad4) quad4_batched(p, values, rhs);
   }
 
-  /// K u - f of a linear law's elements and of the node links at `u` (all DOFs). `prescribed_only`: only
-  /// the cells with a prescribed DOF, so the entries at prescribed DOFs are complete (reactions) and those
-  /// at free DOFs are not: a pass over the boundary instead of the mesh.
-  VecX linear_internal(const Problem<M>& p, const VecX& u, bool prescribed_only = false) const {
-    VecX internal = VecX::Zero(u.size());
+  /// linear_system's right-hand side alone, for a stiffness assembled from the same mesh, materials and
+  /// temperatures (so the same element loads but for body forces): F_ext (free rows) + element loads -
+  /// K_fp u_p. Only cells with a body or thermal load or a non-zero prescribed value compute their element
+  /// system; for pressures and card forces alone this is a scan of the cells (issue 14: a contact run's
+  /// increments and a linear deck's later steps re-assembled the whole stiffness for their loads).
+  void linear_rhs(const Problem<M>& p, const VecX& external, VecX& rhs) const {
+    rhs = VecX::Zero(dofs_.free_count);
     cache_.reset();
+    for (std::size_t d = 0; d < dofs_.equation.size(); ++d)
+      if (dofs_.equation[d] >= 0) rhs(dofs_.equation[d]) += external(static_cast<Eigen::Index>(d));
     for_each_cell<Elem>(p.mesh,
                         [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t,
                                                       const std::array<int, NPC>& cell, const CellTag& tag) {
-                          if (prescribed_only && std::none_of(cell.begin(), cell.end(), [&](int n) {
-                                for (int c = 0; c < kNd; ++c)
-                                  if (dofs_.equation[static_cast<std::size_t>(dofs_.dof(n, c))] < 0)
-                                    return true;
-                                return false;
-                              }))
-                            return;
                           using Kernel = ElementKernel<Kin, E>;
+                          if (!has_element_load<E>(p, local(p, tag, cell)) && !moves_prescribed(cell)) return;
                           typename Kernel::Matrix k;
                           typename Kernel::Vector f;
                           element_system<E>(p, cell, tag, k, f);
+                          add_element_rhs(
+                              cell, f, [&](int i, int j) { return k(i, j); }, rhs);
+                        });
+  }
+
+  /// K u - f of a linear law's elements and of the node links at `u` (all DOFs). `prescribed_only`: only
+  /// the cells with a prescribed DOF, so the entries at prescribed DOFs are complete (reactions) and those
+  /// at free DOFs are not: a pass over the boundary instead of the mesh. Those cells' element stiffnesses
+  /// are kept from the first such pass (when they fit in kKeptBytes) and reused until
+  /// forget_kept_stiffness(): a contact run reads reactions every increment, and with u_z prescribed at
+  /// every node its "boundary" is the whole mesh (issue 14: 11 element passes of the two-tube run).
+  VecX linear_internal(const Problem<M>& p, const VecX& u, bool prescribed_only = false) const {
+    VecX internal = VecX::Zero(u.size());
+    cache_.reset();
+    const bool reuse        = prescribed_only && kept_.valid;
+    const std::size_t bytes = prescribed_only && !reuse ? kept_bytes(p) : 0;
+    const bool keep         = prescribed_only && !reuse && bytes <= kKeptBytes;
+    if (keep) kept_.values.clear(), kept_.values.reserve(bytes / sizeof(double));
+    std::size_t at = 0;  // the cell's first entry in kept_.values
+    for_each_cell<Elem>(p.mesh,
+                        [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t,
+                                                      const std::array<int, NPC>& cell, const CellTag& tag) {
+                          if (prescribed_only && !has_prescribed(cell)) return;
+                          using Kernel         = ElementKernel<Kin, E>;
+                          constexpr auto count = static_cast<std::size_t>(Kernel::kDofs * Kernel::kDofs);
+                          typename Kernel::Matrix k;
+                          typename Kernel::Vector f;
+                          if (reuse && !has_element_load<E>(p, local(p, tag, cell))) {
+                            k = Eigen::Map<const typename Kernel::Matrix>(kept_.values.data() + at);
+                            f.setZero();
+                          } else {
+                            element_system<E>(p, cell, tag, k, f);
+                            if (keep) kept_.values.insert(kept_.values.end(), k.data(), k.data() + count);
+                          }
+                          at += count;
                           const typename Kernel::Vector fe = k * gather(cell, u) - f;
                           add_to(cell, fe, internal);
                         });
+    if (keep) kept_.valid = true;
     add_link_forces(u, internal);
     return internal;
   }
+  /// The element stiffness changed (a new assembly): linear_internal's kept matrices no longer hold.
+  void forget_kept_stiffness() { kept_.valid = false, kept_.values = {}; }
+  /// At most this much memory for linear_internal's kept element stiffnesses [bytes].
+  static constexpr std::size_t kKeptBytes = std::size_t(64) << 20;
 
   /// Node links into the stiffness values and the right-hand side (after the elements).
   void add_links(double* values, VecX& rhs) const {
@@ -352,12 +390,9 @@ class Assembler {
   void add_element_rhs(const std::array<int, NPC>& cell, const Vector& f, Stiffness&& k, VecX& rhs) const {
     constexpr int n = kNd * static_cast<int>(NPC);
     std::array<int, n> dof;
-    bool moved = false;
     for (int a = 0; a < static_cast<int>(NPC); ++a)
-      for (int c = 0; c < kNd; ++c) {
-        dof[a * kNd + c] = dofs_.dof(cell[a], c);
-        moved |= dofs_.equation[dof[a * kNd + c]] < 0 && dofs_.prescribed(dof[a * kNd + c]) != 0;
-      }
+      for (int c = 0; c < kNd; ++c) dof[a * kNd + c] = dofs_.dof(cell[a], c);
+    const bool moved = moves_prescribed(cell);
     for (int i = 0; i < n; ++i) {
       const int eq = dofs_.equation[dof[i]];
       if (eq < 0) continue;
@@ -367,6 +402,39 @@ class Assembler {
           if (dofs_.equation[dof[j]] < 0) r -= k(i, j) * dofs_.prescribed(dof[j]);
       rhs(eq) += r;
     }
+  }
+  /// Whether a cell has a prescribed DOF.
+  template <std::size_t NPC>
+  bool has_prescribed(const std::array<int, NPC>& cell) const {
+    for (const int node : cell)
+      for (int c = 0; c < kNd; ++c)
+        if (dofs_.equation[static_cast<std::size_t>(dofs_.dof(node, c))] < 0) return true;
+    return false;
+  }
+  /// The memory the stiffnesses of the cells with a prescribed DOF take [bytes].
+  std::size_t kept_bytes(const Problem<M>& p) const {
+    std::size_t bytes = 0;
+    for_each_cell<Elem>(p.mesh,
+                        [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t,
+                                                      const std::array<int, NPC>& cell, const CellTag&) {
+                          constexpr int n = ElementKernel<Kin, E>::kDofs;
+                          if (has_prescribed(cell)) bytes += sizeof(double) * n * n;
+                        });
+    return bytes;
+  }
+  /// Whether a cell of law values `lp` carries an element load (body force or thermal strain).
+  template <class E>
+  bool has_element_load(const Problem<M>& p, const typename Law::Local& lp) const {
+    return body_force(p.inertia, lp.density).any() ||
+           !ElementKernel<Kin, E>::restrict(lp.thermal_strain).isZero(0.0);
+  }
+  /// Whether a cell has a prescribed DOF with a non-zero value (a K_fp u_p term for the right-hand side).
+  template <std::size_t NPC>
+  bool moves_prescribed(const std::array<int, NPC>& cell) const {
+    for (const int node : cell)
+      for (int c = 0; c < kNd; ++c)
+        if (const int d = dofs_.dof(node, c); dofs_.equation[d] < 0 && dofs_.prescribed(d) != 0) return true;
+    return false;
   }
   /// predictor -= K_fp du_p over one element's free rows and prescribed columns.
   template <std::size_t NPC, class Matrix>
@@ -436,6 +504,10 @@ class Assembler {
   std::size_t cells_ = 0, points_ = 0;
   EdgeIndex<Elem> edges_;
   LocalLawCache<Law> cache_;
+  mutable struct {  // linear_internal's element stiffnesses of the cells with a prescribed DOF
+    std::vector<double> values;
+    bool valid = false;
+  } kept_;
 };
 
 }  // namespace gapfe

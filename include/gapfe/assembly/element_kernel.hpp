@@ -110,7 +110,13 @@ struct ElementKernel {
 
   /// K_s = sum_q B^T D B 2 pi r |J| w over the stiffness points (before condensation).
   static ShapeMatrix shape_stiffness(const Coords& x, const StrainMatrix& D) {
-    ShapeMatrix k            = ShapeMatrix::Zero();
+    return stiffness_rows<0, kShapeDofs>(x, D);
+  }
+  /// Rows [First, First + Rows) of shape_stiffness: recovery's expand() needs the interior DOFs' rows only
+  /// (for the legacy quad 2 of 10, a third of the products; issue 14).
+  template <int First, int Rows>
+  static Mat<Rows, kShapeDofs> stiffness_rows(const Coords& x, const StrainMatrix& D) {
+    Mat<Rows, kShapeDofs> k  = Mat<Rows, kShapeDofs>::Zero();
     const Points points      = stiffness_points(x);
     const VolumetricRow mean = mean_volumetric(points);
     for (const auto& g : points) {
@@ -118,7 +124,7 @@ struct ElementKernel {
       const StrainDisplacement d_b = D * b;
       // lazyProduct: Eigen sends a fixed 8 x 4 by 4 x 8 product (and larger) to its blocked GEMM, whose
       // packing costs more than the product; coefficient-based, it unrolls (BENCHMARKS.md, issue 14).
-      k.noalias() += g.weight * b.transpose().lazyProduct(d_b);
+      k.noalias() += g.weight * b.template middleCols<Rows>(First).transpose().lazyProduct(d_b);
     }
     return k;
   }
@@ -177,16 +183,19 @@ struct ElementKernel {
     }
   }
 
-  /// Interior DOFs from the element's own: u_i = Kii^-1 (F_i - K_ic u_c).
-  static ShapeVector expand(const ShapeMatrix& ks, const ShapeVector& fs, const Vector& u) {
+  /// Interior DOFs from the element's own: u_i = Kii^-1 (F_i - K_ic u_c); `inner` holds the interior
+  /// rows of K_s, [K_ic K_ii] (inner_rows()).
+  static ShapeVector expand(const Mat<kInner, kShapeDofs>& inner, const ShapeVector& fs,
+                            const Vector& u) requires(kInner > 0) {
     ShapeVector us;
     us.template head<kDofs>() = u;
-    if constexpr (kInner > 0) {
-      const Eigen::LDLT<Mat<kInner, kInner>> kii(ks.template bottomRightCorner<kInner, kInner>());
-      us.template tail<kInner>() =
-          kii.solve(fs.template tail<kInner>() - ks.template bottomLeftCorner<kInner, kDofs>() * u);
-    }
+    const Eigen::LDLT<Mat<kInner, kInner>> kii(inner.template rightCols<kInner>());
+    us.template tail<kInner>() = kii.solve(fs.template tail<kInner>() - inner.template leftCols<kDofs>() * u);
     return us;
+  }
+  /// The interior DOFs' rows of K_s, what expand() reads.
+  static Mat<kInner, kShapeDofs> inner_rows(const Coords& x, const StrainMatrix& D) requires(kInner > 0) {
+    return stiffness_rows<kDofs, kInner>(x, D);
   }
 
   /// Voigt-6 strain at a point from shape-level displacements (zero in slots the kinematics lacks);

@@ -3,14 +3,17 @@
 // of the engine's pieces: the Assembler (assembly/assembler.hpp) builds the DOF map, the pattern and the
 // scatter offsets once; the System (solver/system.hpp) holds the values and runs the solver's symbolic
 // analysis once; recovery (post/recovery.hpp) turns displacements into reactions and point values.
-// solve() re-assembles values and right-hand side: loads, temperatures and material constants may change
-// between calls; which DOFs are prescribed and the mesh may not.
+// solve() re-assembles the right-hand side, and the stiffness values only when a material law or a
+// temperature changed since the last assembly (laws compared with ==; a law type without == is taken as
+// changed): loads, temperatures and material constants may change between calls; which DOFs are
+// prescribed and the mesh may not.
 //
 // Node links (assembly/node_links.hpp), declared at construction so that the pattern holds their
 // couplings, add two-node springs whose values may change between solves: what contact policies use.
 //
 // Conventions: full ring (core/types.hpp). Reactions are total ring forces at prescribed DOFs.
 #include <chrono>
+#include <concepts>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -75,13 +78,21 @@ class LinearStatic {
     return assembler_.nodal_stiffness(p_, std::forward<Keep>(keep));
   }
 
-  /// Assemble, factorize, solve, recover reactions. Throws SolveError when the stiffness is singular
+  /// Assemble (the right-hand side; the stiffness too when a law or temperature changed), factorize,
+  /// solve, recover reactions. Throws SolveError when the stiffness is singular
   /// (say, a missing constraint) and InputError for loads that do not fit the mesh or the kinematics.
   /// `same_stiffness`: the caller changed only loads and prescribed values since the last solve (not
   /// materials or temperatures) and kept the link stiffnesses, so the last factorization is reused.
   const Solution& solve(bool same_stiffness = false) {
     const auto t0 = std::chrono::steady_clock::now();
-    assemble_system();
+    if (stiffness_current()) {  // loads only: the element values are those of the last assembly
+      if (!links().empty() && system_.saved()) system_.restore();
+      assembler_.refresh(p_);
+      external_ = assembler_.external_forces(p_);
+      assembler_.linear_rhs(p_, external_, system_.rhs());
+    } else {
+      assemble_system();
+    }
     if (!links().empty()) {  // keep the element-only system for resolve_links()
       system_.save();
       assembler_.add_links(system_.values(), system_.rhs());
@@ -107,6 +118,24 @@ class LinearStatic {
     assembler_.refresh(p_);
     external_ = assembler_.external_forces(p_);
     assembler_.linear_system(p_, external_, system_.values(), system_.rhs());
+    assembler_.forget_kept_stiffness();
+    if constexpr (std::equality_comparable<Law>) {
+      assembled_.materials             = p_.materials;
+      assembled_.temperature           = p_.temperature;
+      assembled_.reference_temperature = p_.reference_temperature;
+      assembled_.valid                 = true;
+    }
+  }
+  /// Whether the stiffness values in the system are those of the current laws and temperatures (the
+  /// last assembly's inputs are kept for this: the laws and one temperature per node).
+  bool stiffness_current() const {
+    if constexpr (std::equality_comparable<Law>) {
+      const auto& a = assembled_;
+      return a.valid && a.reference_temperature == p_.reference_temperature && a.materials == p_.materials &&
+             a.temperature.size() == p_.temperature.size() && a.temperature.cwiseEqual(p_.temperature).all();
+    } else {
+      return false;
+    }
   }
 
   /// Strain and stress at every stiffness point of every cell (after solve()).
@@ -183,6 +212,12 @@ class LinearStatic {
   SolveTimings total_;
   mutable bool reactions_stale_ = false;
   bool defer_reactions_         = false;
+  struct {  // what the stiffness values in system_ were assembled from (stiffness_current())
+    std::vector<Law> materials;
+    VecX temperature;
+    double reference_temperature = 0;
+    bool valid                   = false;
+  } assembled_;
 };
 
 }  // namespace gapfe

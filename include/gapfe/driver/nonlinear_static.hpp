@@ -44,8 +44,9 @@ struct NewtonOptions {
   /// Laws with kIterate: start a step from the last accepted step's displacement change, scaled by the
   /// ratio of the steps' dt (context()), instead of from the committed displacements (the prescribed
   /// values are then set at once). On the plastic tube of BENCHMARKS.md (issue 14) the first residual
-  /// falls from about 1e-1 to 5e-3 and 45 solves become 38; the converged answer is the same to the
-  /// tolerance. No extrapolation before a first accepted step, or when either dt is zero.
+  /// falls from about 1e-1 to 5e-3 and 45 solves become 27; the converged answer is the same to the
+  /// tolerance. No extrapolation before a first accepted step, or when either dt is zero; a step whose
+  /// extrapolated start fails restarts from the committed state (solve()).
   bool extrapolate = true;
 };
 

@@ -50,6 +50,7 @@ struct ElasticConstants {
     return s;
   }
   Vec3 expansion() const { return {alpha_N, alpha_S, alpha_T}; }
+  bool operator==(const ElasticConstants&) const = default;
 
   /// Throws InputError naming `where` unless E, G > 0, |nu_ij| < sqrt(E_i / E_j) and S is positive definite.
   void validate(const std::string& where) const {
@@ -72,8 +73,9 @@ enum class ThermalInput { coefficients, free_strain };
 /// A property table: rows sorted by temperature, interpolated linearly, constant outside.
 struct ElasticTable {
   std::vector<ElasticConstants> rows;
-  ThermalInput thermal = ThermalInput::coefficients;
-  double density       = 0.0;  ///< mass density [mass / length^3], for inertia loads
+  ThermalInput thermal                       = ThermalInput::coefficients;
+  double density                             = 0.0;  ///< mass density [mass / length^3], for inertia loads
+  bool operator==(const ElasticTable&) const = default;
 
   ElasticConstants at(double T) const {
     if (T <= rows.front().temperature) return rows.front();
@@ -134,6 +136,9 @@ struct NoHistory {
 struct ElasticUpdate {
   using State                   = NoHistory;
   static constexpr bool kLinear = true;  ///< tangent independent of strain and history
+  /// Laws compare equal when they give the same stiffness and thermal strain: LinearStatic re-assembles
+  /// the stiffness only when a law (or a temperature) changed.
+  bool operator==(const ElasticUpdate&) const = default;
   static PointResponse<NoHistory> update(const ElasticPoint& p, const Vec6& strain, const NoHistory&,
                                          const StepContext&) {
     return {p.stiffness * (strain - p.thermal_strain), p.stiffness, {}, false};
@@ -157,6 +162,7 @@ struct Orthotropic : ElasticUpdate {
     return {t_eps.transpose() * c_m * t_eps, t_sigma.transpose() * eps_m, table.density, t_sigma};
   }
   void validate(const std::string& where) const { table.validate(where); }
+  bool operator==(const Orthotropic&) const = default;
 };
 
 struct Isotropic : ElasticUpdate {
@@ -186,6 +192,7 @@ struct Isotropic : ElasticUpdate {
       if (!(c.E_N == c.E_S && c.E_S == c.E_T && c.nu_NS == c.nu_NT && c.nu_NT == c.nu_ST))
         throw InputError(where + ": an Isotropic table row has direction-dependent constants");
   }
+  bool operator==(const Isotropic&) const = default;
 };
 
 }  // namespace gapfe

@@ -24,6 +24,7 @@
 // 1e-13. The symmetry CG needs holds in exact arithmetic; single-precision rounding in it is far below
 // the reduction per cycle.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -42,12 +43,14 @@ class GridLaplace {
 
   /// `state` holds one of absent, fixed, unknown per point, at [j * ni + i] (0-based).
   GridLaplace(int ni, int nj, const std::vector<char>& state) {
-    Level fine =
-        make_level(ni, nj, false, [&](int i, int j) { return state[static_cast<std::size_t>(j) * ni + i]; });
+    Level fine = make_level(ni, nj, 1, nullptr,
+                            [&](int i, int j) { return state[static_cast<std::size_t>(j) * ni + i]; });
     levels_.push_back(std::move(fine));
-    while (levels_.back().ni * levels_.back().nj > 2000 && levels_.back().ni > 2 && levels_.back().nj > 2) {
+    for (int spacing = 2;
+         levels_.back().ni * levels_.back().nj > 2000 && levels_.back().ni > 2 && levels_.back().nj > 2;
+         spacing *= 2) {
       const Level& f = levels_.back();
-      Level c        = make_level((f.ni + 1) / 2, (f.nj + 1) / 2, true,
+      Level c        = make_level((f.ni + 1) / 2, (f.nj + 1) / 2, spacing, &levels_.front(),
                                   [&](int i, int j) { return f.state[f.at(2 * i, 2 * j)]; });
       levels_.push_back(std::move(c));
     }
@@ -61,7 +64,7 @@ class GridLaplace {
                           double tolerance = 1e-13, int max_iterations = 200) {
     Level& L            = levels_.front();
     const std::size_t n = L.state.size();
-    std::vector<Vec2> x(n, Vec2::Zero()), r(n, Vec2::Zero()), z(n), p(n), q(n, Vec2::Zero());
+    std::vector<Vec2> x(n, Vec2::Zero()), r(n, Vec2::Zero()), p(n), q(n, Vec2::Zero());
     for (int j = 0; j < L.nj; ++j)
       for (int i = 0; i < L.ni; ++i) {
         const std::size_t k = L.at(i, j), m = static_cast<std::size_t>(j) * L.ni + i;
@@ -71,11 +74,19 @@ class GridLaplace {
     apply(L, x, q);
     for (std::size_t k = 0; k < n; ++k) r[k] -= q[k];
     if (b_norm.maxCoeff() > 0) {
-      precondition(r, z);
-      p           = z;
-      Vec2 rz     = dots(r, z);
-      int iter    = 0;
-      Vec2 r_norm = norms(r);
+      // Preconditioned CG with z = V-cycle(r) never stored: r goes to the cycle's right-hand side in the
+      // pass that updates it, and z is read back from the cycle's result where r . z and p need it (the
+      // loop is memory-bound, so passes are what it costs).
+      Vec2 r_norm = Vec2::Zero();
+      for (std::size_t k = 0; k < n; ++k) r_norm += r[k].cwiseProduct(r[k]), L.f[k] = r[k].cast<float>();
+      r_norm = r_norm.cwiseSqrt();
+      v_cycle(0);
+      Vec2 rz = Vec2::Zero();
+      for (std::size_t k = 0; k < n; ++k) {
+        p[k] = L.e[k].cast<double>();
+        rz += r[k].cwiseProduct(p[k]);
+      }
+      int iter = 0;
       for (;; ++iter) {
         const Vec2 res = r_norm.cwiseQuotient(b_norm.cwiseMax(1e-300));
         if (res.maxCoeff() <= tolerance) break;
@@ -90,13 +101,15 @@ class GridLaplace {
         for (std::size_t k = 0; k < n; ++k) {
           x[k] += alpha.cwiseProduct(p[k]), r[k] -= alpha.cwiseProduct(q[k]);
           rr += r[k].cwiseProduct(r[k]);
+          L.f[k] = r[k].cast<float>();
         }
         r_norm = rr.cwiseSqrt();
-        precondition(r, z);
-        const Vec2 rz_new = dots(r, z);
-        const Vec2 beta   = (rz.array() > 0).select(rz_new.cwiseQuotient(rz.cwiseMax(1e-300)), 0.0);
-        rz                = rz_new;
-        for (std::size_t k = 0; k < n; ++k) p[k] = z[k] + beta.cwiseProduct(p[k]);
+        v_cycle(0);
+        Vec2 rz_new = Vec2::Zero();
+        for (std::size_t k = 0; k < n; ++k) rz_new += r[k].cwiseProduct(L.e[k].cast<double>());
+        const Vec2 beta = (rz.array() > 0).select(rz_new.cwiseQuotient(rz.cwiseMax(1e-300)), 0.0);
+        rz              = rz_new;
+        for (std::size_t k = 0; k < n; ++k) p[k] = L.e[k].cast<double>() + beta.cwiseProduct(p[k]);
       }
       iterations_ = iter;
     }
@@ -123,10 +136,17 @@ class GridLaplace {
     std::size_t at(int i, int j) const { return static_cast<std::size_t>(j + 1) * stride + (i + 1); }
   };
 
-  /// Coarse levels count every lattice neighbour in the diagonal (absent ones as zero error), which
-  /// keeps each coarse operator diagonally dominant and never singular, whatever survives coarsening.
+  /// Coarse levels (spacing H > 1 fine steps) count every lattice neighbour in the diagonal (absent ones
+  /// as zero error), which keeps each coarse operator diagonally dominant and never singular, whatever
+  /// survives coarsening. Where the coarse neighbour is absent because the fine lattice's fixed boundary
+  /// lies between (a fine size that is not 2^k + 1: the last fine row is odd and no coarse row), that
+  /// direction counts H / d instead of 1, d < H the distance in fine steps to the first fixed point: the
+  /// finite-volume weight of a zero-error boundary at distance d (face H over distance d, unscaled as the
+  /// interior's H / H = 1). Without it the coarse problem put that boundary at distance H and CG took
+  /// 13-14 cycles on a 500 x 1000 annulus instead of the 7 of the aligned 513 x 1025 (BENCHMARKS.md).
   template <class State>
-  static Level make_level(int ni, int nj, bool coarse, State&& state_of) {
+  static Level make_level(int ni, int nj, int spacing, const Level* finest, State&& state_of) {
+    const bool coarse = spacing > 1;
     Level L;
     L.ni = ni, L.nj = nj, L.stride = ni + 2;
     const std::size_t n = static_cast<std::size_t>(ni + 2) * (nj + 2);
@@ -142,6 +162,22 @@ class GridLaplace {
                                               (L.state[k - s] != absent) + (L.state[k + s] != absent));
       if (L.diag[k] == 0) L.state[k] = fixed;  // isolated on this lattice: no coarse correction there
     }
+    if (coarse)
+      for (int j = 0; j < nj; ++j)
+        for (int i = 0; i < ni; ++i) {
+          const std::size_t k = L.at(i, j);
+          if (L.state[k] != unknown) continue;
+          for (const auto& [di, dj] :
+               {std::array{-1, 0}, std::array{1, 0}, std::array{0, -1}, std::array{0, 1}}) {
+            if (L.state[L.at(i + di, j + dj)] != absent) continue;
+            for (int d = 1; d < spacing; ++d) {  // the first fine point that is not an unknown
+              const char fine = finest->state[finest->at(spacing * i + d * di, spacing * j + d * dj)];
+              if (fine == unknown) continue;
+              if (fine == fixed) L.diag[k] += static_cast<float>(spacing) / static_cast<float>(d) - 1.0f;
+              break;
+            }
+          }
+        }
     L.inv_diag.assign(n, 0.0f), L.mask.assign(n, 0.0f);
     for (std::size_t k = 0; k < n; ++k)
       if (L.state[k] == unknown) L.inv_diag[k] = 1.0f / L.diag[k], L.mask[k] = 1.0f;
@@ -244,14 +280,6 @@ class GridLaplace {
           stencil(L, I, J, [&](std::size_t k, float wt) { L.e[k] += wt * C.e[kc]; });
       }
     for (int sweep = 0; sweep < kSweeps; ++sweep) gauss_seidel(L, false);
-  }
-
-  /// z = V-cycle(r): r rounded to single precision, the cycle, z widened back.
-  void precondition(const std::vector<Vec2>& r, std::vector<Vec2>& z) {
-    Level& L = levels_.front();
-    for (std::size_t k = 0; k < r.size(); ++k) L.f[k] = r[k].cast<float>();
-    v_cycle(0);
-    for (std::size_t k = 0; k < z.size(); ++k) z[k] = L.e[k].cast<double>();
   }
 
   void build_coarsest() {

@@ -99,7 +99,7 @@ std::vector<PointValues> recover(const Assembler<M>& a, const Problem<M>& p, con
       if (strain) {
         const typename Kernel::StrainMatrix d = Kernel::restrict(lp.stiffness);
         us                                    = Kernel::expand(
-                                               Kernel::shape_stiffness(x, d),
+                                               Kernel::inner_rows(x, d),
                                                Kernel::shape_load(x, d, Kernel::restrict(lp.thermal_strain), body_force(p.inertia, lp.density)),
                                                ue);
       }
