@@ -350,6 +350,7 @@ def main():
         answers, phase = {}, {}
         for k in range(args.pairs):
             log = os.path.join(work, job + ".log")
+            os.sync()  # before every timed run: no write-back of an earlier run's files inside it
             code, wall, rss = run_measured([args.ccx, "-i", job], work, log)
             if code != 0 or "*ERROR" in open(log, errors="replace").read():
                 die("ccx failed on %s (exit %d): see %s" % (name, code, log))
@@ -358,6 +359,7 @@ def main():
             for v, extra in case.variants:
                 out = os.path.join(work, "%s_%s" % (name, v))
                 log = out + ".log"
+                os.sync()
                 code, wall, rss = run_measured([gapfe, "run", deck, "--out", out] + extra, work, log)
                 if code != 0:
                     die("gapfe failed on %s, %s (exit %d): see %s" % (name, v, code, log))
