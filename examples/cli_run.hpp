@@ -35,6 +35,10 @@ struct RunTimes {
   double penalty        = 0;
   int newton_iterations = 0, cut_steps = 0, plastic_points = 0, factorizations = 0;
   double drift = 0, worst_residual = 0;
+  /// Linear laws: the largest |K u - f| / |f| over the free DOFs of an accepted increment's solve (issue 15:
+  /// ill-conditioning shows here, as round-off the factorization could not hold), and its load step.
+  double equilibrium   = 0;
+  int equilibrium_step = 0;
   /// Rate-dependent laws: per accepted increment, lambda dt over the yielding points (the log prints it).
   std::vector<std::string> relaxation;
 };
@@ -96,6 +100,11 @@ void write_increment(const RunRequest& r, RunTimes& times, StepFiles& files, int
                      const Fe& fe, std::vector<VtuField> extra_cells = {}) {
   if (!std::isfinite(fe.solution().residual) || !fe.solution().displacement.allFinite())
     throw SolveError("load step " + std::to_string(step) + ": the solution is not finite");
+  // A law with history reports Newton's out-of-balance here instead (the tangent integration leaves
+  // one by design), so only a linear law's residual measures the solve.
+  if constexpr (Fe::Law::kLinear)
+    if (fe.solution().residual > times.equilibrium)
+      times.equilibrium = fe.solution().residual, times.equilibrium_step = step;
   const auto start = std::chrono::steady_clock::now();
   files.write(step, inc, fe.solution(), fe.centroid_values(Recovered::stress), std::move(extra_cells));
   times.write += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

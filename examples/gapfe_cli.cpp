@@ -18,6 +18,25 @@
 namespace gapfe::cli {
 namespace {
 
+/// Above this Poisson's ratio `gapfe run` warns that element = quad4 locks (issue 15).
+constexpr double kLockingPoisson = 0.49;
+
+/// Above this relative residual |K u - f| / |f| of a linear solve `gapfe run` warns of ill-conditioning
+/// (issue 15). A well-posed model solves to about 1e-14 (machine epsilon times a modest condition number).
+/// The example two-tube deck under the active-set penalty reaches 4e-10 at the default 100 x the adjacent
+/// stiffness, 5e-6 at 1e8, 4e-4 at 1e10 and 4e-3 at 1e11; tests/test_contact.cpp's penalty sweep keeps its
+/// answers to the discretization error up to 1e9 and loses them beyond, which this threshold marks.
+constexpr double kResidualWarning = 1e-4;
+
+/// The largest Poisson's ratio of any material table row, and its material's deck number.
+std::pair<int, double> largest_poisson(const Deck& d) {
+  std::pair<int, double> worst{0, -1.0};
+  for (const DeckMaterial& m : d.materials)
+    for (const ElasticConstants& c : m.table.rows)
+      if (const double nu = std::max({c.nu_NS, c.nu_NT, c.nu_ST}); nu > worst.second) worst = {m.id, nu};
+  return worst;
+}
+
 constexpr const char* kUsage =
     "usage: gapfe run DECK --out DIR [options]   solve every load step; CSV, VTU and PVD files in DIR\n"
     "       gapfe mesh DECK --out DIR [options]  the mesh only: mesh.svg with numbers, tables, mesh.vtu\n"
@@ -214,7 +233,15 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
   const std::string element = d.options.element != "auto" ? d.options.element
                               : plastic                   ? "quad4bbar"
                                                           : "legacy";
-  const bool unsymmetric    = !s.needs.gaps.empty() && d.options.friction_model() == "coulomb";
+  // Issue 15: the fully integrated bilinear quad locks near incompressibility (its volumetric strain is
+  // enforced at every Gauss point), so its displacements come out too small; said on the error stream so
+  // that --quiet keeps it. B-bar (the mean dilatation, element_kernel.hpp) relieves it.
+  if (element == "quad4")
+    if (const auto [material, nu] = largest_poisson(d); nu > kLockingPoisson)
+      err << "gapfe: warning: element = quad4 with Poisson's ratio " << nu << " (material " << material
+          << "): the bilinear quad locks near incompressibility and its displacements come out too "
+             "small; use element = quad4bbar or legacy\n";
+  const bool unsymmetric = !s.needs.gaps.empty() && d.options.friction_model() == "coulomb";
 #ifdef GAPFE_HAS_UMFPACK
   constexpr bool kHasUmfpack = true;
 #else
@@ -238,6 +265,15 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
   log << "time [s]: read " << t_read << ", mesh " << t_mesh << ", setup " << setup << ", assemble "
       << times.assemble << ", factorize " << times.factorize << ", solve " << times.solve << ", write "
       << times.write << "\n";
+  if (!plastic) {
+    log << "equilibrium: largest relative residual |K u - f| / |f| " << times.equilibrium << " (load step "
+        << times.equilibrium_step << ")\n";
+    if (times.equilibrium > kResidualWarning)
+      err << "gapfe: warning: load step " << times.equilibrium_step << " was solved to a relative residual "
+          << times.equilibrium << " (above " << kResidualWarning
+          << "): the stiffness is ill-conditioned (a large gap_penalty? a nearly incompressible material? a "
+             "body held by little more than its gaps?), so its results may be inaccurate\n";
+  }
   if (plastic && s.needs.gaps.empty())
     log << "plasticity: " << d.options.plasticity << "; " << times.increments << " increments ("
         << times.cut_steps << " from cut steps), " << times.newton_iterations << " linear solves ("

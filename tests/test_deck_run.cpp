@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <unistd.h>
@@ -120,6 +121,55 @@ TEST_CASE("Thick-tube example deck: equals the library-API solution to 1e-12 and
   for (const auto& row : elements) CHECK(test::rel(row.at("s_tt"), lame.hoop_stress(row.at("r"))) < 5e-3);
   CHECK(fs::exists(out / "result.pvd"));
   CHECK(fs::exists(out / "step_0001.vtu"));
+}
+
+TEST_CASE(
+    "gapfe run warns when element = quad4 meets a Poisson's ratio above 0.49 (locking), and only then") {
+  std::ifstream in(kExamples / "thick_tube.deck");
+  const std::string example((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string from = "       0.3       0.3       0.3", to = "    0.4999    0.4999    0.4999";
+  std::string text = example;
+  REQUIRE(text.find(from) != std::string::npos);
+  text.replace(text.find(from), from.size(), to);
+  const fs::path nearly_incompressible = write_deck(text, "nearly_incompressible");
+  const std::string warning =
+      "warning: element = quad4 with Poisson's ratio 0.4999 (material 1): the bilinear quad locks";
+  for (const std::string element : {"quad4", "quad4bbar", "legacy"}) {
+    std::ostringstream o, e;
+    REQUIRE(gapfe::cli::main({"run", nearly_incompressible.string(), "--out",
+                              scratch("locking_" + element).string(), "--quiet", "--element", element},
+                             o, e) == 0);
+    CAPTURE(e.str());
+    CHECK((e.str().find(warning) != std::string::npos) == (element == "quad4"));
+  }
+  std::ostringstream o, e;  // the example as it is (nu = 0.3): no warning
+  REQUIRE(gapfe::cli::main({"run", (kExamples / "thick_tube.deck").string(), "--out",
+                            scratch("locking_none").string(), "--quiet", "--element", "quad4"},
+                           o, e) == 0);
+  CHECK(e.str().find("warning") == std::string::npos);
+}
+
+TEST_CASE("gapfe run reports each run's worst relative residual and warns of ill-conditioning above 1e-4") {
+  // The two-tube example under the active-set penalty: the residual |K u - f| / |f| grows about like the
+  // penalty (tests/test_contact.cpp); at 1e11 x the adjacent stiffness it is about 4e-3.
+  const auto run = [](const std::string& penalty, const std::string& name) {
+    std::ostringstream o, e;
+    REQUIRE(gapfe::cli::main({"run", (kExamples / "two_tubes.deck").string(), "--out", scratch(name).string(),
+                              "--contact", "active-set", "--set", "gap_penalty=" + penalty},
+                             o, e) == 0);
+    const std::string log = o.str(), key = "equilibrium: largest relative residual |K u - f| / |f| ";
+    const auto at = log.find(key);
+    REQUIRE(at != std::string::npos);
+    return std::pair{std::stod(log.substr(at + key.size())), e.str()};
+  };
+  const auto [fine, fine_err] = run("100", "residual_fine");
+  CHECK(fine < 1e-8);
+  CHECK(fine_err.find("warning") == std::string::npos);
+  const auto [ill, ill_err] = run("1e11", "residual_ill");
+  CHECK(ill > 1e-4);
+  CAPTURE(ill_err);
+  CHECK(ill_err.find("was solved to a relative residual") != std::string::npos);
+  CHECK(ill_err.find("ill-conditioned") != std::string::npos);
 }
 
 TEST_CASE("A deck in the smallest (saas) and a richer (saga) variant gives the same displacements to 1e-10") {
