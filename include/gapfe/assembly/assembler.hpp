@@ -370,17 +370,17 @@ class Assembler {
   void element_system(const Problem<M>& p, const std::array<int, NPC>& cell, const CellTag& tag,
                       typename ElementKernel<Kin, E>::Matrix& k,
                       typename ElementKernel<Kin, E>::Vector& f) const {
-    using Kernel                           = ElementKernel<Kin, E>;
-    const auto x                           = cell_coords<E>(p.mesh, cell);
-    const auto& lp                         = local(p, tag, cell);
-    const typename Kernel::StrainMatrix d  = Kernel::restrict(lp.stiffness);
-    const typename Kernel::StrainVector th = Kernel::restrict(lp.thermal_strain);
-    const BodyForce body                   = body_force(p.inertia, lp.density);
-    if (!body.any() && th.isZero(0.0)) {
+    using Kernel                          = ElementKernel<Kin, E>;
+    const auto x                          = cell_coords<E>(p.mesh, cell);
+    const auto& lp                        = local(p, tag, cell);
+    const typename Kernel::StrainMatrix d = Kernel::restrict(lp.stiffness);
+    if (!has_element_load<E>(p, lp)) {
       k = Kernel::stiffness(x, d);
       f.setZero();
     } else {
-      Kernel::condense(Kernel::shape_stiffness(x, d), Kernel::shape_load(x, d, th, body), k, f);
+      const typename Kernel::ShapeVector fs =
+          Kernel::shape_load(x, d, Kernel::restrict(lp.thermal_strain), body_force(p.inertia, lp.density));
+      Kernel::condense(Kernel::shape_stiffness(x, d), fs, k, f);
     }
   }
 
@@ -483,12 +483,11 @@ class Assembler {
             for (int j = 0; j < 8; ++j, ++c)
               if (off[c] >= 0) values[off[c]] += batch.k[kUpper[i][j]][l];
         }
-        const auto& lp                         = local(p, m.cell_tag(e), m.cells[e]);
-        const typename Kernel::StrainVector th = Kernel::restrict(lp.thermal_strain);
-        const BodyForce body                   = body_force(p.inertia, lp.density);
-        typename Kernel::Vector f              = Kernel::Vector::Zero();
-        if (body.any() || !th.isZero(0.0))
-          f = Kernel::shape_load(cell_coords<Elem>(m, m.cells[e]), Kernel::restrict(lp.stiffness), th, body);
+        const auto& lp            = local(p, m.cell_tag(e), m.cells[e]);
+        typename Kernel::Vector f = Kernel::Vector::Zero();
+        if (has_element_load<Elem>(p, lp))
+          f = Kernel::shape_load(cell_coords<Elem>(m, m.cells[e]), Kernel::restrict(lp.stiffness),
+                                 Kernel::restrict(lp.thermal_strain), body_force(p.inertia, lp.density));
         add_element_rhs(
             m.cells[e], f, [&](int i, int j) { return batch.k[kUpper[i][j]][l]; }, rhs);
       }
