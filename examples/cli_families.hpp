@@ -67,6 +67,8 @@ void run_plastic(const RunRequest& r, RunTimes& times) {
     const auto& t   = fe.total_timings();  // every Newton solve so far, cut attempts included
     times.assemble = t.assemble, times.factorize = t.factorize, times.solve = t.solve + t.reactions;
     times.newton_iterations += rep.iterations;
+    times.element_passes += rep.evaluations;
+    times.tangents += rep.tangents;
     times.factorizations = fe.factorizations();
     times.cut_steps += step == last_step || inc != std::floor(inc);
     times.plastic_points = rep.plastic_points;

@@ -170,8 +170,9 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
   auto t0                = Clock::now();
   const std::string text = read_file(a.deck);
   const Deck d           = read_deck(text, a.options);
+  const long steps       = a.command == "run" ? std::max(1, d.steps()) : 1;
   if (large_model && a.command != "info" &&
-      static_cast<long>(d.mesh.max_i) * static_cast<long>(d.mesh.max_j) >= kLargeModel)
+      static_cast<long>(d.mesh.max_i) * static_cast<long>(d.mesh.max_j) * steps >= kLargeModel)
     large_model();
   const double t_read = since(t0);
   t0                  = Clock::now();
@@ -277,7 +278,8 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
   if (plastic && s.needs.gaps.empty())
     log << "plasticity: " << d.options.plasticity << "; " << times.increments << " increments ("
         << times.cut_steps << " from cut steps), " << times.newton_iterations << " linear solves ("
-        << times.factorizations << " factorizations); worst residual " << times.worst_residual
+        << times.factorizations << " factorizations; " << times.tangents << " tangents in "
+        << times.element_passes << " element passes); worst residual " << times.worst_residual
         << ", largest drift off the yield surface " << times.drift << "; " << times.plastic_points
         << " plastic points at the end\n";
   if (!s.needs.gaps.empty())

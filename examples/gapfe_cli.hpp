@@ -12,9 +12,10 @@ namespace gapfe::cli {
 /// solved (SolveError); 3 a file cannot be read or written, or memory ran out; 64 bad command line.
 enum Exit : int { ok = 0, input = 1, solve = 2, system = 3, usage = 64 };
 
-/// Index-grid points (MAXI x MAXJ) from which a `run` or `mesh` calls main()'s `large_model`, once the deck
-/// is read and before the mesh is built: gapfe.cpp re-executes itself there with huge pages, which pay
-/// for their 13 ms start-up when a run touches hundreds of MB (BENCHMARKS.md, issue 14).
+/// Index-grid points (MAXI x MAXJ) times load steps from which a `run` or `mesh` calls main()'s
+/// `large_model`, once the deck is read and before the mesh is built: gapfe.cpp re-executes itself
+/// there with huge pages, which pay for their 13 ms start-up when a run touches hundreds of MB, or tens
+/// of MB again and again in Newton and contact iterations (BENCHMARKS.md, issue 14, levers 9 and 13).
 inline constexpr long kLargeModel = 20000;
 
 /// `args` excludes the program name. Normal output goes to `out`, errors and progress to `err`;

@@ -453,6 +453,57 @@ TEST_CASE("ReturnMapping: Newton converges quadratically (the residuals of a pla
   CHECK(checked >= 2);
 }
 
+TEST_CASE("ReturnMapping: evaluations expected to end a step skip the tangent, with the same iterates") {
+  // NewtonOptions::predict_convergence: the same 16 steps to the plastic radius 0.15 with and without it,
+  // from the committed state (dt = 0) and from the extrapolated trend (dt = 1). Same residuals and
+  // displacements bit for bit (the tangent never feeds F_int); fewer tangents, at least one for every
+  // other step, since every step ends with an evaluation that meets the tolerance; a wrong guess (the
+  // first plastic step, expected elastic) costs one evaluation more.
+  using M = Model<Axisym2, Quad4BBar, Hill<ReturnMapping>>;
+  const PlasticTube<M> tube;
+  struct Run {
+    int tangents = 0, evaluations = 0;
+    std::vector<double> residuals;
+    Eigen::Matrix<double, Eigen::Dynamic, 3> u;
+  };
+  std::ostringstream log;
+  const auto run = [&](bool predict, double dt) {
+    NewtonOptions o;
+    o.predict_convergence = predict;
+    NonlinearStatic<M> fe(tube.problem(), {}, o);
+    fe.context().dt = dt;
+    Run r;
+    for (int s = 1; s <= 16; ++s) {
+      tube.set_pressure(fe.problem(), tube.pressure_at(0.15) * s / 16);
+      fe.solve();
+      fe.commit();
+      CHECK(fe.report().converged);
+      r.tangents += fe.report().tangents;
+      r.evaluations += fe.report().evaluations;
+      r.residuals.insert(r.residuals.end(), fe.report().residuals.begin(), fe.report().residuals.end());
+      if (predict) {
+        log << "\n  dt " << dt << ", step " << s << ": " << fe.report().tangents << " tangents in "
+            << fe.report().evaluations << " evaluations, residuals";
+        for (double x : fe.report().residuals) log << " " << x;
+      }
+    }
+    r.u = fe.solution().displacement;
+    return r;
+  };
+  for (const double dt : {0.0, 1.0}) {
+    CAPTURE(dt);
+    const Run on = run(true, dt), off = run(false, dt);
+    MESSAGE("dt " << dt << ": " << on.tangents << " tangents in " << on.evaluations
+                  << " evaluations (always: " << off.tangents << " in " << off.evaluations << ")");
+    CHECK(on.u == off.u);
+    CHECK(on.residuals == off.residuals);
+    CHECK(off.tangents == off.evaluations);
+    CHECK(on.tangents + 8 <= off.tangents);
+    CHECK(on.evaluations - off.evaluations <= 2);
+  }
+  MESSAGE("per step:" << log.str());
+}
+
 TEST_CASE("Thick tube with the seed's Tangent scheme at 10, 50 and 200 steps: error against step count") {
   // Pressure ramped to p(rho = 0.15) = 288.3 MPa. Errors of the bore displacement against ReturnMapping
   // (Newton, 1e-10) on the same mesh, and of the plastic radius against the closed form. The tangent

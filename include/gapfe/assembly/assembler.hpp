@@ -267,6 +267,8 @@ class Assembler {
     internal.setZero(u.size());
     predictor.setZero(dofs_.free_count);
     cache_.reset();
+    StepContext point_ctx = ctx;  // a residual pass: the laws may skip their tangents
+    point_ctx.tangent     = values != nullptr;
     for_each_cell<Elem>(
         p.mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
                                               const std::array<int, NPC>& cell, const CellTag& tag) {
@@ -281,7 +283,7 @@ class Assembler {
           for (int q = 0; q < E::kStiffnessPoints; ++q) {
             const auto& g   = geometry[q];
             const auto b    = Kernel::point_B(g, mean);
-            const auto resp = Law::update(lp, Kernel::extend(b * ue), points.committed(first + q), ctx);
+            const auto resp = Law::update(lp, Kernel::extend(b * ue), points.committed(first + q), point_ctx);
             f.noalias() += g.weight * (b.transpose() * Kernel::restrict(resp.stress));
             if (values) {  // lazyProduct: see ElementKernel::shape_stiffness
               const typename Kernel::StrainDisplacement d_b = Kernel::restrict(resp.tangent) * b;

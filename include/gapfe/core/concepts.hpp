@@ -14,6 +14,9 @@ namespace gapfe {
 struct StepContext {
   double time = 0.0;  ///< [model time unit]
   double dt   = 0.0;  ///< [model time unit]
+  /// False when the caller needs stress and state only (a residual pass whose tangent nobody
+  /// factorizes): a law may then skip its tangent, and PointResponse::tangent is unspecified.
+  bool tangent = true;
 };
 
 /// A material point's answer: stress and tangent in global Voigt axes, the trial history.

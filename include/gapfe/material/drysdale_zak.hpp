@@ -118,7 +118,7 @@ struct DrysdaleZak {
       r               = detail::hill_elastic_trial(p, strain, old);
       r.state.plastic = false;
     } else if constexpr (std::is_same_v<Integration, ReturnMapping>) {
-      r = detail::hill_return_map(p, strain, old, term);
+      r = detail::hill_return_map(p, strain, old, term, ctx.tangent);
     } else {
       r = seed_scheme(p, strain, old, term);
     }

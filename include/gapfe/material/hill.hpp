@@ -303,10 +303,11 @@ PointResponse<State> hill_forward_euler(const HillPoint& p, const Vec6& strain, 
 /// Backward-Euler closest-point projection (Hill<ReturnMapping>, THEORY.md 7.3), onto the surface
 /// f = level(r)^2 of `rate` with r = d eqps / dt = 2 dl sqrt(f) / (X dt) (THEORY.md 8.6; level 1 for
 /// the rate-independent law), with its consistent tangent. A(dl) is inverted in E P's modes (HillModes):
-/// one scalar equation in dl, no matrix factorization per iteration.
+/// one scalar equation in dl, no matrix factorization per iteration. Without `tangent` (a residual pass,
+/// StepContext::tangent) the consistent tangent, about half the work at a yielding point, is skipped.
 template <class State>
 PointResponse<State> hill_return_map(const HillPoint& p, const Vec6& strain, const State& old,
-                                     const RateTerm& rate) {
+                                     const RateTerm& rate, bool tangent) {
   const Mat66& c         = p.stiffness;
   const Mat66& P         = p.yield_matrix;
   PointResponse<State> r = hill_elastic_trial(p, strain, old);
@@ -318,7 +319,7 @@ PointResponse<State> hill_return_map(const HillPoint& p, const Vec6& strain, con
     // consistent tangent's limit as dl -> 0+, on the expectation that the loading goes on. The stress
     // is the same either way; with the elastic tangent the first solve ignored the plastic zone (the
     // 1e4-equation tube: 49 solves instead of 45, BENCHMARKS.md issue 14).
-    if (old.plastic && strain == old.strain && p.thermal_strain == old.thermal_strain)
+    if (tangent && old.plastic && strain == old.strain && p.thermal_strain == old.thermal_strain)
       r.tangent = continuum_tangent(c, p.hardening_matrix, Vec6(2.0 * (P * xi_trial)));
     return r;
   }
@@ -364,6 +365,7 @@ PointResponse<State> hill_return_map(const HillPoint& p, const Vec6& strain, con
   r.stress        = hill_stress(p, strain, r.state.plastic_strain);
   r.state.plastic = true;
   r.yielded       = true;
+  if (!tangent) return r;
   // Consistent tangent (THEORY.md 7.3, with the rate term of 8.6): d dl = g^T d eps,
   // g = kappa C A^-T a / (kappa a^T A^-1 E a + h), kappa = 1 - 2 level' dl / (X dt),
   // h = 4 s^2 level' / (X dt) (kappa = 1, h = 0 without rate dependence);
@@ -418,9 +420,9 @@ struct Hill {
   }
 
   static PointResponse<State> update(const Local& p, const Vec6& strain, const State& old,
-                                     const StepContext&) {
+                                     const StepContext& ctx) {
     if constexpr (std::is_same_v<Integration, ReturnMapping>)
-      return detail::hill_return_map(p, strain, old, detail::RateTerm{});
+      return detail::hill_return_map(p, strain, old, detail::RateTerm{}, ctx.tangent);
     else
       return detail::hill_forward_euler(p, strain, old, [](auto&&...) { return detail::SurfaceChange{}; });
   }
