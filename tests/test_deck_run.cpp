@@ -471,6 +471,49 @@ TEST_CASE("Plastic tube deck: yield cards run Hill plasticity; eqps in elements.
   CHECK(e.str().find("element = legacy with yield cards") != std::string::npos);
 }
 
+TEST_CASE(
+    "A plastic deck loaded past its limit load: a clear error naming the step, exit 2, and every "
+    "accepted increment on disk") {
+  // examples/decks/plastic_tube.deck with 30 instead of 20 per step: 15 steps to 450 against the limit
+  // p_L = (2 / sqrt 3) 400 ln 2 = 320.15 of the perfectly plastic tube (THEORY.md V6; Mises at nu = 0.3 is
+  // within ~1% of it). Steps 1-10 (to 300) must be accepted; step 11 (330) has no equilibrium: the
+  // cut-back halves it down to 1/64 and then gives up past load factor 10 + k / 64, p < p_L.
+  std::ifstream in(kExamples / "plastic_tube.deck");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string from = "   42    1      20.0", to = "   42    1      30.0";
+  REQUIRE(text.find(from) != std::string::npos);
+  text.replace(text.find(from), from.size(), to);
+  const fs::path deck = write_deck(text, "past_the_limit");
+  const fs::path out  = scratch("past_the_limit");
+  std::ostringstream o, e;
+  const int code = gapfe::cli::main({"run", deck.string(), "--out", out.string(), "--quiet"}, o, e);
+  CAPTURE(e.str());
+  CHECK(code == gapfe::cli::Exit::solve);
+  CHECK(e.str().find("load step 11 fails even when cut to 1/64, past load factor 10") != std::string::npos);
+  CHECK(e.str().find("limit (collapse) load") != std::string::npos);
+  // The accepted increments: all 10 whole steps, then pieces of step 11 below the limit.
+  const auto nodes = read_csv(out / "nodes.csv");
+  std::map<double, int> rows_per_increment;
+  for (const auto& row : nodes) ++rows_per_increment[row.at("inc")];
+  REQUIRE(rows_per_increment.size() > 10);
+  for (const auto& [inc, rows] : rows_per_increment) CHECK(rows == 82);  // 41 x 2 nodes, no torn increment
+  const double last = rows_per_increment.rbegin()->first;
+  CHECK(last >= 10);
+  CHECK(last < 11);
+  CHECK(20.0 * 1.5 * last <= 320.15 * 1.01);  // the pressure reached stays below the limit load
+  // The ParaView collection is closed and names only files that exist.
+  std::ifstream pvd(out / "result.pvd");
+  const std::string collection((std::istreambuf_iterator<char>(pvd)), std::istreambuf_iterator<char>());
+  CHECK(collection.rfind("</VTKFile>") != std::string::npos);
+  int listed = 0;
+  for (std::size_t at = collection.find("file=\""); at != std::string::npos;
+       at             = collection.find("file=\"", at + 1), ++listed) {
+    const std::size_t begin = at + 6, end = collection.find('"', begin);
+    CHECK(fs::exists(out / collection.substr(begin, end - begin)));
+  }
+  CHECK(listed == static_cast<int>(rows_per_increment.size()));
+}
+
 TEST_CASE("SAAC3X deck: card 0's STRSTEP then STRRATE drive a thin tube to THEORY.md 8.7's steady state") {
   // examples/decks/saac3x_tube.deck (bench/deckgen.py saac3x_deck): a tube 999..1000 mm, 1 mm long, one
   // cell, Mises sigma_0 = 400 MPa, b = 0.05, rate_0 = 1e-3 / s; STRSTEP = 230.94 MPa on the top face in

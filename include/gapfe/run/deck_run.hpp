@@ -8,6 +8,7 @@
 // end of load step k.
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include "gapfe/driver/contact_static.hpp"
@@ -98,7 +99,8 @@ void run_deck(const Deck& d, const DeckScene& s, OnStep&& on_step) {
 
 /// Run every load step of a deck with yield cards (law with history, NonlinearStatic). A step whose
 /// Newton iterations fail is rejected and cut in halves, down to 1/64 of a step (the load factor
-/// interpolates the totals as in run_deck_contact); then the SolveError goes to the caller.
+/// interpolates the totals as in run_deck_contact); then a SolveError that names the step and the last
+/// accepted load factor goes to the caller (whose files then hold every accepted increment).
 /// `on_increment(step, inc, const NonlinearStatic<M>&)` sees every accepted increment.
 template <class M, class OnIncrement>
 void run_deck_plastic(const Deck& d, const DeckScene& s, OnIncrement&& on_increment) {
@@ -114,8 +116,18 @@ void run_deck_plastic(const Deck& d, const DeckScene& s, OnIncrement&& on_increm
         fe.solve();
       } catch (const SolveError& e) {
         fe.reject();
-        if (size < 1.0 / 64)
-          throw SolveError("load step " + std::to_string(step) + " (cut to 1/64): " + e.what());
+        if (size < 1.0 / 64) {
+          std::ostringstream m;
+          m << "load step " << step << " fails even when cut to 1/64, past load factor " << step - 1 + done
+            << " (the last accepted increment): " << e.what();
+          // After accepted increments a singular tangent is rarely a missing constraint: a perfectly
+          // plastic part loaded beyond its limit load has no equilibrium (THEORY.md V6's tube: p_L).
+          if (step > 1 || done > 0)
+            m << ". Past accepted increments this usually means the loads exceed the limit (collapse) load "
+                 "of "
+                 "a part without hardening, or a residual tolerance below the round-off of the tangent";
+          throw SolveError(m.str());
+        }
         size /= 2;
         continue;
       }
