@@ -80,6 +80,24 @@ fs::path write_deck(const std::string& text, const std::string& name) {
 
 const fs::path kExamples = fs::path(GAPFE_SOURCE_DIR) / "examples" / "decks";
 
+/// The whole file as a string.
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  REQUIRE(in);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// examples/decks/`example` with its first `from` replaced by `to` (which must be there), written as
+/// the scratch deck `name`.
+fs::path edited_example(const std::string& example, const std::string& from, const std::string& to,
+                        const std::string& name) {
+  std::string text = read_text(kExamples / example);
+  const auto at    = text.find(from);
+  REQUIRE(at != std::string::npos);
+  text.replace(at, from.size(), to);
+  return write_deck(text, name);
+}
+
 }  // namespace
 
 TEST_CASE("Thick-tube example deck: equals the library-API solution to 1e-12 and Lame within 0.5%") {
@@ -125,13 +143,9 @@ TEST_CASE("Thick-tube example deck: equals the library-API solution to 1e-12 and
 
 TEST_CASE(
     "gapfe run warns when element = quad4 meets a Poisson's ratio above 0.49 (locking), and only then") {
-  std::ifstream in(kExamples / "thick_tube.deck");
-  const std::string example((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::string from = "       0.3       0.3       0.3", to = "    0.4999    0.4999    0.4999";
-  std::string text = example;
-  REQUIRE(text.find(from) != std::string::npos);
-  text.replace(text.find(from), from.size(), to);
-  const fs::path nearly_incompressible = write_deck(text, "nearly_incompressible");
+  const fs::path nearly_incompressible =
+      edited_example("thick_tube.deck", "       0.3       0.3       0.3", "    0.4999    0.4999    0.4999",
+                     "nearly_incompressible");
   const std::string warning =
       "warning: element = quad4 with Poisson's ratio 0.4999 (material 1): the bilinear quad locks";
   for (const std::string element : {"quad4", "quad4bbar", "legacy"}) {
@@ -243,8 +257,7 @@ TEST_CASE(
     const double p_closure = closed_at / 20 * 100;
     CHECK(std::abs(p_closure - pc) / pc < 5e-3);  // 20 legacy elements across each tube
     // deformed.svg shows the last increment: at 100 > p_c every gap element is closed (red), none open.
-    std::ifstream svg_file(out / "deformed.svg");
-    const std::string svg((std::istreambuf_iterator<char>(svg_file)), std::istreambuf_iterator<char>());
+    const std::string svg = read_text(out / "deformed.svg");
     CHECK(svg.find("fill=\"#d62728\"") != std::string::npos);
     CHECK(svg.find("fill=\"#1f77b4\"") == std::string::npos);
     if (std::string(policy) == "active-set") {
@@ -478,13 +491,9 @@ TEST_CASE(
   // p_L = (2 / sqrt 3) 400 ln 2 = 320.15 of the perfectly plastic tube (THEORY.md V6; Mises at nu = 0.3 is
   // within ~1% of it). Steps 1-10 (to 300) must be accepted; step 11 (330) has no equilibrium: the
   // cut-back halves it down to 1/64 and then gives up past load factor 10 + k / 64, p < p_L.
-  std::ifstream in(kExamples / "plastic_tube.deck");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::string from = "   42    1      20.0", to = "   42    1      30.0";
-  REQUIRE(text.find(from) != std::string::npos);
-  text.replace(text.find(from), from.size(), to);
-  const fs::path deck = write_deck(text, "past_the_limit");
-  const fs::path out  = scratch("past_the_limit");
+  const fs::path deck =
+      edited_example("plastic_tube.deck", "   42    1      20.0", "   42    1      30.0", "past_the_limit");
+  const fs::path out = scratch("past_the_limit");
   std::ostringstream o, e;
   const int code = gapfe::cli::main({"run", deck.string(), "--out", out.string(), "--quiet"}, o, e);
   CAPTURE(e.str());
@@ -502,8 +511,7 @@ TEST_CASE(
   CHECK(last < 11);
   CHECK(20.0 * 1.5 * last <= 320.15 * 1.01);  // the pressure reached stays below the limit load
   // The ParaView collection is closed and names only files that exist.
-  std::ifstream pvd(out / "result.pvd");
-  const std::string collection((std::istreambuf_iterator<char>(pvd)), std::istreambuf_iterator<char>());
+  const std::string collection = read_text(out / "result.pvd");
   CHECK(collection.rfind("</VTKFile>") != std::string::npos);
   int listed = 0;
   for (std::size_t at = collection.find("file=\""); at != std::string::npos;
