@@ -57,18 +57,20 @@ class GridLaplace {
     build_coarsest();
   }
 
-  /// Solve A x = b from the initial guess x0; b, x0 and the result live on the fine lattice, 0 off the
-  /// unknowns, (i, j) at [j * ni + i]. Throws SolveError when CG does not reach `tolerance` (residual
-  /// relative to b).
-  std::vector<Vec2> solve(const std::vector<Vec2>& b_lattice, const std::vector<Vec2>& x0,
-                          double tolerance = 1e-13, int max_iterations = 200) {
+  /// Solve A x = b. b and x live on the fine lattice, (i, j) at [j * ni + i]; b is read at the unknowns
+  /// only, x holds the initial guess at the unknowns on entry and the solution there on return (other
+  /// points untouched). In place, because at 1e6 points every fresh array's first touch costs more than a
+  /// CG pass over it (BENCHMARKS.md lever 11). Throws SolveError when CG does not reach `tolerance`
+  /// (residual relative to b).
+  void solve(const std::vector<Vec2>& b_lattice, std::vector<Vec2>& x_lattice, double tolerance = 1e-13,
+             int max_iterations = 200) {
     Level& L            = levels_.front();
     const std::size_t n = L.state.size();
     std::vector<Vec2> x(n, Vec2::Zero()), r(n, Vec2::Zero()), p(n), q(n, Vec2::Zero());
     for (int j = 0; j < L.nj; ++j)
       for (int i = 0; i < L.ni; ++i) {
         const std::size_t k = L.at(i, j), m = static_cast<std::size_t>(j) * L.ni + i;
-        if (L.state[k] == unknown) r[k] = b_lattice[m], x[k] = x0[m];
+        if (L.state[k] == unknown) r[k] = b_lattice[m], x[k] = x_lattice[m];
       }
     const Vec2 b_norm = norms(r);
     apply(L, x, q);
@@ -113,10 +115,10 @@ class GridLaplace {
       }
       iterations_ = iter;
     }
-    std::vector<Vec2> out(static_cast<std::size_t>(L.ni) * L.nj);
     for (int j = 0; j < L.nj; ++j)
-      for (int i = 0; i < L.ni; ++i) out[static_cast<std::size_t>(j) * L.ni + i] = x[L.at(i, j)];
-    return out;
+      for (int i = 0; i < L.ni; ++i)
+        if (const std::size_t k = L.at(i, j); L.state[k] == unknown)
+          x_lattice[static_cast<std::size_t>(j) * L.ni + i] = x[k];
   }
 
   int iterations() const { return iterations_; }

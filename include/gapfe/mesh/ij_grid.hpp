@@ -221,6 +221,11 @@ inline IJGrid generate_ij_grid(int max_i, int max_j, const std::vector<Segment>&
         g.row_max[j - 1] = i;
       }
   g.node_at.assign(points, -1);
+  // Reserved to the exact count: at 1e6 points a growing vector's copies are fresh memory to touch.
+  std::size_t node_count = 0;
+  for (int j = 1; j <= max_j; ++j)
+    node_count += static_cast<std::size_t>(g.row_max[j - 1] - g.row_min[j - 1] + 1);
+  g.nodes.reserve(node_count), g.node_ij.reserve(node_count), g.placed.reserve(node_count);
   for (int j = 1; j <= max_j; ++j)
     for (int i = g.row_min[j - 1]; i <= g.row_max[j - 1]; ++i) {
       g.node_at[at(i, j)] = static_cast<int>(g.nodes.size());
@@ -244,24 +249,24 @@ inline IJGrid generate_ij_grid(int max_i, int max_j, const std::vector<Segment>&
       for (const auto& [oi, oj] : {std::array{-1, 0}, std::array{1, 0}, std::array{0, -1}, std::array{0, 1}})
         if (const int q = g.node(i + oi, j + oj); q >= 0 && g.placed[q]) rhs[at(i, j)] += g.nodes[q];
     }
-    // Initial guess: linear in I between the nearest placed points of the row (exact for straight
-    // top and bottom boundaries, and close for gentle curves), which saves most CG iterations.
-    std::vector<Vec2> guess(points, Vec2::Zero());
+    // Initial guess, written into x (zero at the unknowns so far): linear in I between the nearest
+    // placed points of the row (exact for straight top and bottom boundaries, and close for gentle
+    // curves), which saves most CG iterations.
     for (int j = 1; j <= max_j; ++j) {
       int left = 0;
       for (int i = g.row_min[j - 1]; i <= g.row_max[j - 1]; ++i) {
         if (g.placed[g.node(i, j)]) {
           if (left > 0 && i > left + 1)
             for (int k = left + 1; k < i; ++k)
-              guess[at(k, j)] = x[at(left, j)] + (x[at(i, j)] - x[at(left, j)]) * (k - left) / (i - left);
+              x[at(k, j)] = x[at(left, j)] + (x[at(i, j)] - x[at(left, j)]) * (k - left) / (i - left);
           left = i;
         }
       }
     }
     detail::GridLaplace laplace(max_i, max_j, state);
-    const std::vector<Vec2> filled = laplace.solve(rhs, guess);
+    laplace.solve(rhs, x);
     for (std::size_t n = 0; n < g.nodes.size(); ++n)
-      if (!g.placed[n]) g.nodes[n] = filled[at(g.node_ij[n][0], g.node_ij[n][1])];
+      if (!g.placed[n]) g.nodes[n] = x[at(g.node_ij[n][0], g.node_ij[n][1])];
   }
   for (std::size_t n = 0; n < g.nodes.size(); ++n)
     if (!g.nodes[n].allFinite())
@@ -281,6 +286,7 @@ inline IJGrid generate_ij_grid(int max_i, int max_j, const std::vector<Segment>&
     return a;
   };
   int quads = 0, triangles = 0;
+  g.cells.reserve(static_cast<std::size_t>(max_i - 1) * static_cast<std::size_t>(max_j - 1));  // at most
   for (int j = 1; j < max_j; ++j) {
     const int lo =
         std::min(g.row_min[j - 1] > 0 ? g.row_min[j - 1] : max_i, g.row_min[j] > 0 ? g.row_min[j] : max_i);
