@@ -74,6 +74,7 @@ void run_plastic(const RunRequest& r, RunTimes& times) {
     times.plastic_points = rep.plastic_points;
     times.drift          = std::max(times.drift, rep.drift);
     times.worst_residual = std::max(times.worst_residual, rep.residuals.back());
+    times.stalled += rep.stalled;
     ++times.increments;
     note_relaxation(times, r.deck, step, inc, fe.states());
     std::string row;

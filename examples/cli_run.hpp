@@ -35,6 +35,7 @@ struct RunTimes {
   double penalty        = 0;
   int newton_iterations = 0, cut_steps = 0, plastic_points = 0, factorizations = 0;
   int element_passes = 0, tangents = 0;  ///< Newton's F_int evaluations, and those that assembled K_t
+  int stalled  = 0;  ///< increments accepted at round-off (NewtonOptions::stall_factor), not the tolerance
   double drift = 0, worst_residual = 0;
   /// Linear laws: the largest |K u - f| / |f| over the free DOFs of an accepted increment's solve (issue 15:
   /// ill-conditioning shows here, as round-off the factorization could not hold), and its load step.

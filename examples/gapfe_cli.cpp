@@ -282,6 +282,12 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
         << times.element_passes << " element passes); worst residual " << times.worst_residual
         << ", largest drift off the yield surface " << times.drift << "; " << times.plastic_points
         << " plastic points at the end\n";
+  if (plastic && s.needs.gaps.empty() && times.stalled > 0)
+    err << "gapfe: warning: " << times.stalled << " increment(s) stopped where the residual stopped falling, "
+        << "at most 100 x newton_tolerance (" << d.options.newton_tolerance  // NewtonOptions::stall_factor
+        << "; worst " << times.worst_residual
+        << "): the round-off of a nearly singular tangent (loads near a collapse load? very small "
+           "hardening?); accepted\n";
   if (!s.needs.gaps.empty())
     log << "contact: " << times.increments << " increments ("
         << (d.options.events == "step-end" ? "statuses settled at step ends: " +

@@ -735,3 +735,102 @@ TEST_CASE("Friction input errors: one line naming the key, a non-zero exit, no r
   refused(kExamples / "plastic_two_tubes.deck",
           {"friction=0.2", "contact=active-set", "slip=coulomb", "plasticity=tangent"}, "return-mapping");
 }
+
+// ------------------------------------------------------------------ Newton and load-step extremes (issue 15)
+
+namespace {
+/// `text` with its first `from` replaced by `to` (which must be there).
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  REQUIRE(at != std::string::npos);
+  return text.replace(at, from.size(), to);
+}
+const std::string kPlasticControl = "    1    0    1    1    0    0  0.0    0   15    0    0    0";
+const std::string kPlasticLoad    = "   42    1      20.0";
+}  // namespace
+
+TEST_CASE(
+    "Newton at round-off: a nearly singular tangent (hardening E / 2e5 at 3 p_L in one step) is accepted "
+    "once its residual stops falling below 100 x the tolerance, with a warning") {
+  // Before NewtonOptions::stall_factor the residuals wandered between 1.5e-10 and 2.6e-10 against 1e-10
+  // for 30 iterations and the step failed even when cut to 1/64.
+  std::string text = read_text(kExamples / "plastic_tube.deck");
+  text = replaced(text, kPlasticControl, "    1    0    1    1    0    0  0.0    0    1    0    0    0");
+  text = replaced(text, kPlasticLoad, "   42    1     960.0");          // 3 p_L at once
+  text = replaced(text, "230.94011       0.0", "230.94011       1.0");  // c = 1 MPa
+  const fs::path deck = write_deck(text, "round_off"), out = scratch("round_off");
+  std::ostringstream o, e;
+  const int code = gapfe::cli::main({"run", deck.string(), "--out", out.string(), "--quiet"}, o, e);
+  CAPTURE(e.str());
+  REQUIRE(code == 0);
+  CHECK(e.str().find("stopped where the residual stopped falling") != std::string::npos);
+  const auto record = read_csv(out / "plasticity.csv");
+  REQUIRE(record.size() == 1);  // one increment: no cut was needed
+  CHECK(record[0].at("iterations") <= 30);
+  for (const auto& row : read_csv(out / "nodes.csv")) REQUIRE(std::isfinite(row.at("u_r")));
+  // The last residual of the record (space-separated) is within the stall bound.
+  const std::string residuals = gapfe::test::lines_of(read_text(out / "plasticity.csv")).at(1);
+  const double last           = std::stod(residuals.substr(residuals.find_last_of(" ,") + 1));
+  CHECK(last <= 100 * 1e-10);
+}
+
+TEST_CASE(
+    "Cut-back rescues a step Newton cannot take whole: the example's pressure 300 in one step with "
+    "newton_iterations = 3 is cut in halves, and the halves equal a deck of two steps of 150") {
+  std::string text = read_text(kExamples / "plastic_tube.deck");
+  text = replaced(text, kPlasticControl, "    1    0    1    1    0    0  0.0    0    1    0    0    0");
+  const fs::path whole = write_deck(replaced(text, kPlasticLoad, "   42    1     300.0"), "cut_whole");
+  const fs::path two =
+      write_deck(replaced(replaced(read_text(kExamples / "plastic_tube.deck"), kPlasticControl,
+                                   "    1    0    1    1    0    0  0.0    0    2    0    0    0"),
+                          kPlasticLoad, "   42    1     150.0"),
+                 "cut_two");
+  const fs::path cut = run_deck_file(whole, "cut_whole", {"--set", "newton_iterations=3"});
+  const fs::path ref = run_deck_file(two, "cut_two", {"--set", "newton_iterations=3"});
+  // The whole step needs more than 3 iterations: without the cut the run fails.
+  {
+    std::ostringstream o, e;
+    const fs::path out = scratch("cut_fails");
+    CHECK(gapfe::cli::main(
+              {"run", whole.string(), "--out", out.string(), "--quiet", "--set", "newton_iterations=1"}, o,
+              e) == gapfe::cli::Exit::solve);
+    CHECK(e.str().find("fails even when cut to 1/64") != std::string::npos);
+  }
+  const auto record = read_csv(cut / "plasticity.csv");
+  CHECK(record.size() >= 2);  // accepted in pieces
+  CHECK(record.back().at("inc") == 1.0);
+  const auto a = read_csv(cut / "nodes.csv"), b = read_csv(ref / "nodes.csv");
+  std::map<int, double> u_cut, u_ref;
+  for (const auto& row : a)
+    if (row.at("inc") == 1.0) u_cut[static_cast<int>(row.at("node"))] = row.at("u_r");
+  for (const auto& row : b)
+    if (row.at("inc") == 2.0) u_ref[static_cast<int>(row.at("node"))] = row.at("u_r");
+  REQUIRE(u_cut.size() == 82);
+  REQUIRE(u_ref.size() == 82);
+  const double scale = std::abs(u_ref.at(1));
+  for (const auto& [n, u] : u_ref) CHECK(std::abs(u_cut.at(n) - u) <= 1e-9 * scale);
+  // Bad Newton options are refused by name.
+  for (const std::string bad :
+       {"newton_iterations=0", "newton_iterations=2.5", "newton_tolerance=0", "newton_tolerance=2"}) {
+    std::ostringstream o, e;
+    CHECK(gapfe::cli::main({"run", whole.string(), "--out", scratch("bad_newton").string(), "--set", bad}, o,
+                           e) != 0);
+    CHECK(e.str().find(bad.substr(0, bad.find('='))) != std::string::npos);
+  }
+}
+
+TEST_CASE("10,000 load steps in one run: the thick tube ramped to 1e4 x its pressure ends on Lame") {
+  // The example deck's one step of 100 repeated 10,000 times (INCF = 0): linear, so u = 1e4 u(100);
+  // one factorization, 10,000 back-substitutions; only the last increment written.
+  const fs::path deck = edited_example("thick_tube.deck", "    0    1    0    0    0\n",
+                                       "    010000    0    0    0\n", "ten_thousand_steps");
+  const fs::path out  = run_deck_file(deck, "ten_thousand_steps", {"--output", "last"});
+  const auto nodes    = read_csv(out / "nodes.csv");
+  REQUIRE(nodes.size() == 27);
+  const test::Lame lame{100, 200, 1e6, 200000, 0.3};
+  for (const auto& row : nodes) {
+    CHECK(row.at("step") == 10000);
+    CHECK(row.at("t") == 10000);
+    CHECK(test::rel(row.at("u_r"), lame.displacement(row.at("r"))) < 5e-3);
+  }
+}

@@ -104,7 +104,6 @@ TEST_CASE("[verification] Lame tube: observed L2 convergence order ~2 for Quad4,
 TEST_CASE_TEMPLATE("[verification] spinning hollow tube, plane strain: u_r within 0.5%", M,
                    Model<Axisym2, Quad4, Isotropic>, Model<Axisym2, LegacyQuad, Isotropic>,
                    Model<Axisym2, Quad8, Isotropic>, Model<Axisym3, Tri3, Isotropic>) {
-  constexpr int NPC = M::Element::kNodes == 3 ? 4 : M::Element::kNodes;
   const double a = 0.05, b = 0.1, w = 1000, nr = 8, nz = 2, h = (b - a) / nr;
   // Closed form from the plane-strain ODE (lambda + 2G)(u'' + u'/r - u/r^2) = -rho w^2 r:
   // u = C1 r + C2 / r - k r^3, k = rho w^2 / 8 (lambda + 2G); sigma_r(a) = sigma_r(b) = 0.
@@ -120,15 +119,8 @@ TEST_CASE_TEMPLATE("[verification] spinning hollow tube, plane strain: u_r withi
   const auto u_r = [&](double r) { return C(0) * r + C(1) / r - k * r * r * r; };
 
   Problem<M> p;
-  const auto quads = rectangle_mesh<NPC>(a, b, 0, nz * h, nr, nz);
-  if constexpr (M::Element::kNodes == 3) {  // split every quad into two triangles
-    p.mesh.nodes = quads.nodes;
-    for (const auto& c : quads.cells)
-      p.mesh.cells.push_back({c[0], c[1], c[2]}), p.mesh.cells.push_back({c[0], c[2], c[3]});
-  } else {
-    p.mesh = quads;
-  }
-  p.materials                = {M::Material::constant(kE, kNu, 0, kRho)};
+  p.mesh      = rectangle_mesh<M::Element::kNodes>(a, b, 0, nz * h, nr, nz);  // Tri3: each quad split in two
+  p.materials = {M::Material::constant(kE, kNu, 0, kRho)};
   p.inertia.angular_velocity = w;
   fix_plane(p.conditions, p.mesh, 0.0, 6, zero3);
   fix_plane(p.conditions, p.mesh, nz * h, 6, zero3);
@@ -402,17 +394,7 @@ namespace {
 /// nr x nz cells over [r0, r1] x [0, height]; a Tri3 model gets every quad split into two triangles.
 template <class M>
 Mesh<M::Element::kNodes> ring_mesh(double r0, double r1, double height, int nr, int nz) {
-  constexpr int NPC = M::Element::kNodes;
-  if constexpr (NPC == 3) {
-    const auto quads = rectangle_mesh<4>(r0, r1, 0, height, nr, nz);
-    Mesh<3> m;
-    m.nodes = quads.nodes;
-    for (const auto& c : quads.cells)
-      m.cells.push_back({c[0], c[1], c[2]}), m.cells.push_back({c[0], c[2], c[3]});
-    return m;
-  } else {
-    return rectangle_mesh<NPC>(r0, r1, 0, height, nr, nz);
-  }
+  return rectangle_mesh<M::Element::kNodes>(r0, r1, 0, height, nr, nz);
 }
 
 /// The plane-strain Lame tube of lame_tube() (a = 0.1, b = 0.2, p = 100 MPa, nr x nz square cells) with

@@ -44,6 +44,10 @@ struct DeckOptions {
   /// record, and deformed.svg (the last increment) are always written.
   std::string output_csv = "all";
   std::string output_vtu = "all";
+  /// newton_tolerance = |R_free| / |F_int| that ends a plastic step's Newton iterations (default 1e-10);
+  /// newton_iterations = the iterations before a step is cut in halves (default 30). NewtonOptions.
+  double newton_tolerance = 1e-10;
+  int newton_iterations   = 30;
 
   /// The friction model a run uses: "none" without friction, else the slip option with auto resolved.
   std::string friction_model() const {
@@ -100,10 +104,20 @@ struct DeckOptions {
       output_csv = one_of({"all", "last", "none"});
     } else if (key == "output_vtu") {
       output_vtu = one_of({"all", "last", "none"});
+    } else if (key == "newton_tolerance") {
+      newton_tolerance = number(0.0);
+      if (!(newton_tolerance > 0 && newton_tolerance < 1))
+        throw InputError("option newton_tolerance = '" + value + "': expected a number in (0, 1)");
+    } else if (key == "newton_iterations") {
+      const double n = number(1.0);
+      if (n != std::floor(n) || n > 10000)
+        throw InputError("option newton_iterations = '" + value + "': expected a whole number 1 to 10000");
+      newton_iterations = static_cast<int>(n);
     } else {
       throw InputError("unknown option '" + key +
                        "' (known: format, element, solver, bc_loads, contact, friction, slip, gap_penalty, "
-                       "events, gap_direction, plasticity, output, output_csv, output_vtu)");
+                       "events, gap_direction, plasticity, output, output_csv, output_vtu, newton_tolerance, "
+                       "newton_iterations)");
     }
   }
 };

@@ -104,7 +104,10 @@ void run_deck(const Deck& d, const DeckScene& s, OnStep&& on_step) {
 /// `on_increment(step, inc, const NonlinearStatic<M>&)` sees every accepted increment.
 template <class M, class OnIncrement>
 void run_deck_plastic(const Deck& d, const DeckScene& s, OnIncrement&& on_increment) {
-  NonlinearStatic<M> fe(deck_problem<M>(d, s, 1));
+  NewtonOptions newton;
+  newton.tolerance      = d.options.newton_tolerance;
+  newton.max_iterations = d.options.newton_iterations;
+  NonlinearStatic<M> fe(deck_problem<M>(d, s, 1), {}, newton);
   for (int step = 1; step <= d.steps(); ++step) {
     const StepTotals before = step_totals(d, s, step - 1), after = step_totals(d, s, step);
     double done = 0, size = 1;
