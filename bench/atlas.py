@@ -369,7 +369,7 @@ def main():
     command = "OPENBLAS_NUM_THREADS=1 /usr/bin/python3 bench/atlas.py " + " ".join(sys.argv[1:])
     if args.from_csv:  # the run that made the table
         command = ("OPENBLAS_NUM_THREADS=1 /usr/bin/python3 bench/atlas.py --gapfe build/bench/examples/gapfe "
-                   "--bench-dir build/bench/bench --repeat 3` (tables and pictures redrawn with `--from-csv")
+                   "--bench-dir build/bench/bench --repeat 3`; tables and pictures redrawn with `--from-csv")
     t0 = time.perf_counter()
     if args.from_csv:
         rows = []
