@@ -89,7 +89,7 @@ TEST_CASE("[contact] two tubes: unloading reopens the gap and returns the displa
   check(std::type_identity<AugmentedLagrangian>{});
 }
 
-TEST_CASE("[contact] penalty sweep 1e1 to 1e12: penetration, error and residual per factor") {
+TEST_CASE("[contact] penalty sweep 1e1 to 1e12, every policy: penetration, error and residual per factor") {
   TwoTubes t;
   const double p_max = 100e6, u_exact = t.inner_displacement(t.a, p_max);
   const double q_exact = t.contact_pressure(p_max);
@@ -116,8 +116,14 @@ TEST_CASE("[contact] penalty sweep 1e1 to 1e12: penetration, error and residual 
       table += line;
       return std::array<double, 4>{pen, eu, eq, res};
     };
+    TubeRun<Saac> seed(t, p_max, o);
     const auto p = row("active-set (penalty)", penalty);
     const auto a = row("augmented-lagrangian", augmented);
+    const auto s = row("saac (the seed's)", seed);
+    // The seed's policy is the same penalty law, its one closure split exact here (every pair closes at
+    // once in plane strain): the same penetration and accuracy as the active set.
+    if (e <= 10) CHECK(s[0] * kappa == doctest::Approx(2.57e-3).epsilon(0.02));
+    if (e >= 4 && e <= 9) CHECK((s[1] < 2e-4 && s[2] < 1e-3));
     // The penalty law: penetration = P / k, so penetration x kappa is constant (2.57e-3 delta at
     // kappa = 1 here) until round-off takes over; the answer then holds to the discretization error
     // (1e-4 in u(a), 5.4e-4 in q) from kappa = 1e4 to 1e9.
@@ -253,10 +259,10 @@ TEST_CASE(
   }
 }
 
-TEST_CASE("[contact] extremes: gap aspect 1:1000, gaps down to 1e-9 of the body, or a clear error") {
+TEST_CASE("[contact] extremes: gap aspect 1:1000, gaps down to 1e-12 of the body, or a clear error") {
   // (gap / body size, gap element height / width; 0: 1 mm high, so 1e7 for the 1e-10 m gap)
   for (const auto& [gap_over_size, aspect] :
-       {std::pair{2e-4, 1.0}, {2e-4, 1000.0}, {1e-6, 1000.0}, {1e-9, 0.0}}) {
+       {std::pair{1e-1, 1.0}, {2e-4, 1.0}, {2e-4, 1000.0}, {1e-6, 1000.0}, {1e-9, 0.0}, {1e-12, 0.0}}) {
     {
       TwoTubes t;
       t.delta             = gap_over_size * t.c;
@@ -272,7 +278,11 @@ TEST_CASE("[contact] extremes: gap aspect 1:1000, gaps down to 1e-9 of the body,
               "; u(a) error ", rel(exact.bore_displacement(), t.inner_displacement(t.a, p_max)));
       CHECK(rel(exact.closure_factor * p_max, pc) < 1e-3);
       CHECK(rel(saac.closure_factor * p_max, pc) < 1e-2);
-      CHECK(rel(exact.bore_displacement(), t.inner_displacement(t.a, p_max)) < 5e-3);
+      // After closure V5's compound tube puts both faces at b: an approximation of order gap / b, checked
+      // where that is below the tolerance (the closure load above is exact for any gap).
+      if (t.delta / t.b < 1e-3)
+        CHECK(rel(exact.bore_displacement(), t.inner_displacement(t.a, p_max)) < 5e-3);
+      REQUIRE(exact.fe->fe().solution().displacement.allFinite());
     }
   }
   // A gap material too stiff for its gap carries load while open: refused, naming the element.

@@ -834,3 +834,87 @@ TEST_CASE("10,000 load steps in one run: the thick tube ramped to 1e4 x its pres
     CHECK(test::rel(row.at("u_r"), lame.displacement(row.at("r"))) < 5e-3);
   }
 }
+
+namespace {
+/// The deck `text` with every boundary-condition card's code (columns 21-30) set to 0: no constraint
+/// left, the model is free to translate along z (and, in SAGA, to spin about the axis).
+std::string unconstrained(const std::string& text) {
+  auto lines    = gapfe::test::lines_of(text);
+  std::size_t k = 0;
+  while (k < lines.size() && lines[k].starts_with("$")) ++k;
+  const std::size_t mesh_control = k + 2;  // title, control card, mesh control card
+  REQUIRE(mesh_control < lines.size());
+  const int segments = std::stoi(lines[mesh_control].substr(10, 5));
+  const int bcs      = std::stoi(lines[mesh_control].substr(15, 5));
+  REQUIRE(bcs > 0);
+  for (int b = 0; b < bcs; ++b) {
+    std::string& card = lines[mesh_control + 1 + static_cast<std::size_t>(segments + b)];
+    card.resize(std::max<std::size_t>(card.size(), 30), ' ');
+    card.replace(20, 10, "         0");
+  }
+  return gapfe::test::join(lines);
+}
+}  // namespace
+
+TEST_CASE(
+    "A model with a missing constraint, in every family the command runs (elastic SAAS and SAGA, plastic, "
+    "gaps, friction) and with every solver: a clear error naming a free node and its direction, exit 2") {
+  for (const std::string example :
+       {"thick_tube.deck", "helical_sleeve.deck", "plastic_tube.deck", "two_tubes.deck", "press_fit.deck"}) {
+    const fs::path deck = write_deck(unconstrained(read_text(kExamples / example)), "free_" + example);
+    for (const std::string solver : {"auto", "eigen"}) {
+      CAPTURE(example);
+      CAPTURE(solver);
+      std::ostringstream o, e;
+      const int code = gapfe::cli::main(
+          {"run", deck.string(), "--out", scratch("free").string(), "--quiet", "--solver", solver}, o, e);
+      CAPTURE(e.str());
+      CHECK(code == gapfe::cli::Exit::solve);
+      CHECK(e.str().find("singular") != std::string::npos);
+      // "near node N u_z" (or u_theta in SAGA: the spin about the axis), N a node of the deck.
+      const auto at = e.str().find("near node ");
+      REQUIRE(at != std::string::npos);
+      const int node = std::stoi(e.str().substr(at + 10));
+      CHECK(node >= 1);
+      const std::string direction = e.str().substr(e.str().find(' ', at + 10) + 1, 7);
+      CHECK((direction.starts_with("u_z") || direction.starts_with("u_theta")));
+      CHECK(e.str().find("constraints") != std::string::npos);
+    }
+  }
+}
+
+TEST_CASE(
+    "Rate-dependent deck at the dt extremes through the command: 1e-12 s steps stay elastic (Lame), 1e4 s "
+    "steps give the rate-independent tube") {
+  // examples/decks/rate_tube.deck (sigma_0 = 400, b = 0.05, rate_0 = 1e-3 / s, bore pressure to 300 in 15
+  // steps) with card 0's dt (columns 1-12) changed. At dt = 1e-12 s the bore strains at ~1e9 / s, where
+  // the yield stress is 400 (1 + 0.05 ln(1 + 1e12)) = 952 MPa (seed Eq. 17), above Lame's bore Mises
+  // stress sqrt 3 p b^2 / (b^2 - a^2) = 693: the tube stays elastic. At dt = 1e4 s the strain rate is
+  // ~1e-7 / s and the overstress 400 x 0.05 ln(1 + 1e-4) = 2e-3 MPa: the rate-independent tube.
+  const std::string deck = read_text(kExamples / "rate_tube.deck");
+  const auto plastic = read_csv(run_deck_file(kExamples / "plastic_tube.deck", "dt_reference") / "nodes.csv");
+  const test::Lame lame{100, 200, 300, 200000, 0.3};
+  for (const auto& [dt, label] :
+       {std::pair{" 1.00000E-12", "dt_tiny"}, std::pair{" 1.00000E+04", "dt_huge"}}) {
+    const std::string name = label;
+    CAPTURE(name);
+    const fs::path out = run_deck_file(
+        write_deck(replaced(deck, " 1.00000E-03 5.00000E-02", std::string(dt) + " 5.00000E-02"), name), name);
+    const auto nodes = read_csv(out / "nodes.csv");
+    REQUIRE(nodes.size() == plastic.size());
+    for (const auto& row : nodes) REQUIRE(std::isfinite(row.at("u_r")));
+    const auto &bore = nodes[nodes.size() - 82], &outer = nodes.back();  // last increment: nodes 1 and 82
+    REQUIRE(bore.at("node") == 1);
+    if (name == "dt_tiny") {
+      CHECK(test::rel(bore.at("u_r"), lame.displacement(100)) < 5e-3);
+      CHECK(test::rel(outer.at("u_r"), lame.displacement(200)) < 5e-3);
+      // Above sigma_0 the Drysdale-Zak law always flows, at no more than rate_0 (exp((sigma / sigma_0 -
+      // 1) / b) - 1) = 2.3e3 / s at the bore's 693 MPa, so for at most 15 x 1e-12 s: eqps <= 3.5e-8
+      // (measured up to 1.2e-9), against elastic strains of 1e-3.
+      for (const auto& row : read_csv(out / "elements.csv")) CHECK(row.at("eqps") < 3.5e-8);
+    } else {
+      CHECK(test::rel(outer.at("u_r"), plastic.back().at("u_r")) < 1e-4);
+      CHECK(test::rel(bore.at("u_r"), plastic[plastic.size() - 82].at("u_r")) < 1e-4);
+    }
+  }
+}

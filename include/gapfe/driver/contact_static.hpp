@@ -97,6 +97,14 @@ class ContactStatic {
                                   Policy::kMaxPenalty);
     size_  = fe_.problem().mesh.size();
     kappa_ = kappa;
+    // An open pair overlaps when its gap is below -gap_tolerance_: 1e-12 of the model size, or 1e-6 of the
+    // smallest initial clearance where that is smaller. Without the second a 1e-13 m gap in a 0.1 m body
+    // was crossed by its own size before it counted as closed (closure load 29-50% late; tests/
+    // test_contact.cpp, gaps to 1e-12 of the body). A gap's round-off, ~1e-16 of the displacements
+    // across it, stays far below either.
+    gap_tolerance_ = 1e-12 * size_;
+    for (const auto& g : pairs_)
+      if (g.initial_gap > 0) gap_tolerance_ = std::min(gap_tolerance_, 1e-6 * g.initial_gap);
     if constexpr (Policy::kContact) {
       if (!(kappa > 0) || !std::isfinite(kappa))
         throw InputError("contact: the penalty factor must be a positive number");
@@ -203,8 +211,8 @@ class ContactStatic {
   double force(int p) const { return history_.committed(p).normal_force; }
   double trial_gap(int p) const { return history_.trial(p).gap; }
   double trial_force(int p) const { return history_.trial(p).normal_force; }
-  /// An open pair overlaps when its gap is below -1e-12 of the model size.
-  double gap_tolerance() const { return 1e-12 * size_; }
+  /// An open pair overlaps when its gap is below minus this (see the constructor) [length].
+  double gap_tolerance() const { return gap_tolerance_; }
   double force_tolerance(int p) const { return stiffness_.empty() ? 0.0 : stiffness_[p] * gap_tolerance(); }
   /// Between two status changes the response is linear in the load factor (elastic, no Coulomb slip):
   /// the policies then find an event by one interpolation, otherwise by a few more solves.
@@ -592,9 +600,10 @@ class ContactStatic {
   std::vector<double> friction_residuals_;
   std::vector<Mat<kNd, kNd>> factorized_links_;  ///< Coulomb: link stiffnesses of the last solve
   History<PairState> history_;                   ///< committed: the accepted increment; trial: the last solve
-  double t_ = 0, t_trial_ = 0, size_ = 1, kappa_ = 0;  ///< accepted and last solved load factors
-  bool status_changed_ = true;
-  bool warm_start_     = false;  ///< Coulomb: the next solve's Newton starts from the last solve
+  double t_ = 0, t_trial_ = 0, size_ = 1, kappa_ = 0,
+         gap_tolerance_ = 1e-12;  ///< accepted and last solved load factors
+  bool status_changed_  = true;
+  bool warm_start_      = false;  ///< Coulomb: the next solve's Newton starts from the last solve
   /// Coulomb: the accepted state ends a whole step (not a split point inside one), so a pair that
   /// slipped there is predicted to slip on: on the cone's boundary it keeps the slip linearization.
   bool slip_on_    = false;

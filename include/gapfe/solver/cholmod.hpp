@@ -6,6 +6,8 @@
 // opt-in: it is not in gapfe.hpp, and needs the gapfe::cholmod CMake target (GAPFE_HAS_CHOLMOD).
 // Link BLAS from OpenBLAS: the supernodal factorization is BLAS-3 bound, several times slower on the
 // reference BLAS.
+#include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -41,11 +43,15 @@ class CholmodLlt {
   }
   bool factorize(const SpMat& k) {
     failure_.clear();
+    failed_equation_ = -1;
     llt_.factorize(k);
-    if (llt_.info() != Eigen::Success)
+    if (llt_.info() != Eigen::Success) {
+      failed_equation_ = weakest_equation();
       return fail("stiffness is singular or not positive definite (CHOLMOD)");
+    }
     const double rcond = cholmod_rcond(llt_.factor(), &llt_.cholmod());
     if (!(rcond > singular_rcond)) {
+      failed_equation_ = weakest_equation();
       char text[64];
       std::snprintf(text, sizeof text, "stiffness is singular (CHOLMOD rcond %.3g)", rcond);
       return fail(text);
@@ -54,9 +60,36 @@ class CholmodLlt {
   }
   VecX solve(const VecX& b) const { return llt_.solve(b); }
   const std::string& failure() const { return failure_; }
-  int failed_equation() const { return -1; }
+  /// After a failed factorize(): the equation (caller's numbering) where L's pivot broke down (CHOLMOD's
+  /// `minor`) or, when every pivot was positive but the condition estimate too small, the one with the
+  /// smallest pivot: a rigid-body mode's last free DOF in the elimination order. -1 when unknown.
+  int failed_equation() const { return failed_equation_; }
 
  private:
+  /// See failed_equation(). Supernode s of L is a dense column-major block of pi[s+1] - pi[s] rows whose
+  /// columns super[s]..super[s+1]-1 have their diagonal at px[s] + c (rows + 1), c the column within it
+  /// (CHOLMOD's cholmod_factor layout); Perm maps L's columns to the matrix's.
+  int weakest_equation() {
+    const cholmod_factor* f = llt_.factor();
+    if (f == nullptr || f->Perm == nullptr || f->x == nullptr || f->itype != CHOLMOD_INT) return -1;
+    const int* perm = static_cast<const int*>(f->Perm);
+    if (f->minor < f->n) return perm[f->minor];
+    if (!f->is_super) return -1;
+    const int *super = static_cast<const int*>(f->super), *pi = static_cast<const int*>(f->pi),
+              *px   = static_cast<const int*>(f->px);
+    const double* x = static_cast<const double*>(f->x);
+    double smallest = INFINITY;
+    int worst       = -1;
+    for (std::size_t s = 0; s < f->nsuper; ++s) {
+      const int rows = pi[s + 1] - pi[s];
+      for (int j = super[s]; j < super[s + 1]; ++j)
+        if (const double d = std::abs(x[px[s] + static_cast<std::ptrdiff_t>(j - super[s]) * (rows + 1)]);
+            d < smallest)
+          smallest = d, worst = j;
+    }
+    return worst >= 0 ? perm[worst] : -1;
+  }
+
   struct Llt : Eigen::CholmodSupernodalLLT<SpMat, Eigen::Lower> {
     cholmod_factor* factor() { return m_cholmodFactor; }
     /// Eigen's analyzePattern with CHOLMOD_GIVEN: the same state afterwards, the order ours.
@@ -95,6 +128,7 @@ class CholmodLlt {
   }
   Llt llt_;
   std::string failure_;
+  int failed_equation_ = -1;
 };
 static_assert(OrderedSolver<CholmodLlt>);
 
