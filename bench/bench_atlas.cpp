@@ -45,14 +45,6 @@ double centroid_error(const LinearStatic<M>& fe, int component, Exact exact) {
   return worst / scale;
 }
 
-/// Set the atlas's counters from the last iteration's errors.
-void report(benchmark::State& state, double u_error, double stress_error, double dofs) {
-  state.counters["error"]        = std::max(u_error, stress_error);
-  state.counters["u_error"]      = u_error;
-  state.counters["stress_error"] = stress_error;
-  state.counters["dofs"]         = dofs;
-}
-
 /// Largest |u(n, c) - exact(r, z)| over the nodes, relative to the largest |exact|.
 template <class M, class Exact>
 double nodal_error(const LinearStatic<M>& fe, const Solution& s, int c, Exact exact) {
@@ -65,6 +57,25 @@ double nodal_error(const LinearStatic<M>& fe, const Solution& s, int c, Exact ex
   return worst / scale;
 }
 
+/// The timed loop every problem shares: build the Problem, construct LinearStatic and solve (what a user's
+/// program does); then the counters from the last solve: displacement component `c` at the nodes against
+/// `exact_u`, centroid stress component `stress` against `exact_stress`.
+template <class M, class Build, class ExactU, class ExactS>
+void measure(benchmark::State& state, Build build, int c, ExactU exact_u, int stress, ExactS exact_stress) {
+  double u_error = 0, stress_error = 0, dofs = 0;
+  for (auto _ : state) {
+    LinearStatic<M> fe(build());
+    const Solution& s = fe.solve();
+    u_error           = nodal_error(fe, s, c, exact_u);
+    stress_error      = centroid_error(fe, stress, exact_stress);
+    dofs              = static_cast<double>(s.displacement.rows() * M::Kinematics::kDofsPerNode);
+  }
+  state.counters["error"]        = std::max(u_error, stress_error);
+  state.counters["u_error"]      = u_error;
+  state.counters["stress_error"] = stress_error;
+  state.counters["dofs"]         = dofs;
+}
+
 template <class M>
 void lame(benchmark::State& state, double nu) {
   const int nr   = static_cast<int>(state.range(0));
@@ -73,9 +84,8 @@ void lame(benchmark::State& state, double nu) {
   const auto exact = [&](double r, double) {  // plane strain, sigma_z = 2 nu A
     return r / kE * ((A + B / (r * r)) - nu * ((A - B / (r * r)) + 2 * nu * A));
   };
-  const auto hoop = [&](double r, double) { return A + B / (r * r); };
-  double error = 0, stress_error = 0, dofs = 0;
-  for (auto _ : state) {
+  const auto hoop  = [&](double r, double) { return A + B / (r * r); };
+  const auto build = [&] {
     Problem<M> p;
     p.mesh      = rectangle_mesh<M::Element::kNodes>(a, b, 0, 2 * h, nr, 2);
     p.materials = {M::Material::constant(kE, nu)};
@@ -91,13 +101,9 @@ void lame(benchmark::State& state, double nu) {
       }
     }
     fix_plane(p, 0.0, 2), fix_plane(p, 2 * h, 2);
-    LinearStatic<M> fe(std::move(p));
-    const Solution& s = fe.solve();
-    error             = nodal_error(fe, s, 0, exact);
-    stress_error      = centroid_error(fe, voigt::hoop, hoop);
-    dofs              = static_cast<double>(s.displacement.rows() * M::Kinematics::kDofsPerNode);
-  }
-  report(state, error, stress_error, dofs);
+    return p;
+  };
+  measure<M>(state, build, 0, exact, voigt::hoop, hoop);
 }
 
 template <class M>
@@ -111,20 +117,15 @@ void spin(benchmark::State& state) {
   const auto hoop  = [&](double r, double) {
     return 2 * (lambda + G) * C1 - (4 * lambda + 2 * G) * k * r * r;
   };
-  double error = 0, stress_error = 0, dofs = 0;
-  for (auto _ : state) {
+  const auto build = [&] {
     Problem<M> p;
     p.mesh                     = rectangle_mesh<M::Element::kNodes>(0, b, 0, 2 * h, nr, 2);
     p.materials                = {M::Material::constant(kE, nu, 0, kRho)};
     p.inertia.angular_velocity = w;
     fix_plane(p, 0.0, 2), fix_plane(p, 2 * h, 2);
-    LinearStatic<M> fe(std::move(p));
-    const Solution& s = fe.solve();
-    error             = nodal_error(fe, s, 0, exact);
-    stress_error      = centroid_error(fe, voigt::hoop, hoop);
-    dofs              = static_cast<double>(s.displacement.rows() * M::Kinematics::kDofsPerNode);
-  }
-  report(state, error, stress_error, dofs);
+    return p;
+  };
+  measure<M>(state, build, 0, exact, voigt::hoop, hoop);
 }
 
 template <class M>
@@ -133,20 +134,15 @@ void shaft(benchmark::State& state) {
   const double c = 0.05, L = 0.5, wdot = 1e4, nu = 0.3, G = kE / (2 * (1 + nu));
   const auto exact = [&](double r, double z) { return kRho * wdot * r / G * (z * z / 2 - L * z); };
   const auto shear = [&](double r, double z) { return kRho * wdot * r * (z - L); };  // G du_theta / dz
-  double error = 0, stress_error = 0, dofs = 0;
-  for (auto _ : state) {
+  const auto build = [&] {
     Problem<M> p;
     p.mesh                         = rectangle_mesh<M::Element::kNodes>(0, c, 0, L, nr, 10 * nr);
     p.materials                    = {M::Material::constant(kE, nu, 0, kRho)};
     p.inertia.angular_acceleration = wdot;
     fix_plane(p, 0.0, 6);  // u_z = u_theta = 0 at the base
-    LinearStatic<M> fe(std::move(p));
-    const Solution& s = fe.solve();
-    error             = nodal_error(fe, s, 2, exact);
-    stress_error      = centroid_error(fe, voigt::z_theta, shear);
-    dofs              = static_cast<double>(s.displacement.rows() * M::Kinematics::kDofsPerNode);
-  }
-  report(state, error, stress_error, dofs);
+    return p;
+  };
+  measure<M>(state, build, 2, exact, voigt::z_theta, shear);
 }
 
 template <class Element>
