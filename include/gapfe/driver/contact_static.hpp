@@ -600,8 +600,8 @@ class ContactStatic {
   std::vector<double> friction_residuals_;
   std::vector<Mat<kNd, kNd>> factorized_links_;  ///< Coulomb: link stiffnesses of the last solve
   History<PairState> history_;                   ///< committed: the accepted increment; trial: the last solve
-  double t_ = 0, t_trial_ = 0, size_ = 1, kappa_ = 0,
-         gap_tolerance_ = 1e-12;  ///< accepted and last solved load factors
+  double t_ = 0, t_trial_ = 0, size_ = 1, kappa_ = 0;  ///< accepted and last solved load factors
+  double gap_tolerance_ = 1e-12;                       ///< see gap_tolerance() [length]
   bool status_changed_  = true;
   bool warm_start_      = false;  ///< Coulomb: the next solve's Newton starts from the last solve
   /// Coulomb: the accepted state ends a whole step (not a split point inside one), so a pair that
