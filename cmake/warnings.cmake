@@ -2,6 +2,11 @@
 # Eigen and doctest come in through imported targets, hence as -isystem, so their own warnings stay out.
 function(gapfe_warnings target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wconversion)
+  if(CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    # clang's -Wconversion also turns on -Wsign-conversion, which g++'s leaves off; keep the two compilers
+    # to one rule (gapfe indexes std containers with int, as Eigen does).
+    target_compile_options(${target} PRIVATE -Wno-sign-conversion)
+  endif()
   if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_LESS 13)
     # g++ 12 reports false stringop-overflow / restrict positives inside std::string concatenation at -O2
     # (GCC bugs 105329, 105651, 107852); they are in libstdc++, not in our code.

@@ -1,6 +1,7 @@
 #pragma once
 // What the `gapfe run` command's run code shares: the request, the timings it reports, the solver
 // policy every compiled model uses, and the write of one increment. Internal to the command.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iosfwd>
@@ -41,6 +42,9 @@ struct RunTimes {
   /// ill-conditioning shows here, as round-off the factorization could not hold), and its load step.
   double equilibrium   = 0;
   int equilibrium_step = 0;
+  /// Per load step (index step - 1), the largest relative residual of its accepted increments: a linear
+  /// law's |K u - f| / |f|, Newton's |R| / |F_int| for a law with history (the log prints them).
+  std::vector<double> step_residual;
   /// Rate-dependent laws: per accepted increment, lambda dt over the yielding points (the log prints it).
   std::vector<std::string> relaxation;
 };
@@ -104,9 +108,13 @@ void write_increment(const RunRequest& r, RunTimes& times, StepFiles& files, int
     throw SolveError("load step " + std::to_string(step) + ": the solution is not finite");
   // A law with history reports Newton's out-of-balance here instead (the tangent integration leaves
   // one by design), so only a linear law's residual measures the solve.
+  const double residual = fe.solution().residual;
   if constexpr (Fe::Law::kLinear)
-    if (fe.solution().residual > times.equilibrium)
-      times.equilibrium = fe.solution().residual, times.equilibrium_step = step;
+    if (residual > times.equilibrium) times.equilibrium = residual, times.equilibrium_step = step;
+  if (times.step_residual.size() < static_cast<std::size_t>(step))
+    times.step_residual.resize(static_cast<std::size_t>(step), 0.0);
+  double& worst    = times.step_residual[static_cast<std::size_t>(step - 1)];
+  worst            = std::max(worst, residual);
   const auto start = std::chrono::steady_clock::now();
   files.write(step, inc, fe.solution(), fe.centroid_values(Recovered::stress), std::move(extra_cells));
   times.write += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

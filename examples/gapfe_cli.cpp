@@ -2,12 +2,14 @@
 // smallest compiled model variant that represents it; --variant forces a richer one.
 #include "gapfe_cli.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <vector>
 
 #include "gapfe/io/deck_output.hpp"
 #include "gapfe/solver/threads.hpp"
@@ -35,6 +37,30 @@ std::pair<int, double> largest_poisson(const Deck& d) {
     for (const ElasticConstants& c : m.table.rows)
       if (const double nu = std::max({c.nu_NS, c.nu_NT, c.nu_ST}); nu > worst.second) worst = {m.id, nu};
   return worst;
+}
+
+/// Up to this many load steps the log lists each step's relative residual; beyond, their median and
+/// the largest with its step.
+constexpr std::size_t kListedSteps = 50;
+
+/// Issue 15: the relative residual of every load step (its worst increment), so that a step the solver
+/// could not hold to round-off shows where it happened.
+void log_step_residuals(std::ostream& log, const std::vector<double>& per_step, bool plastic) {
+  if (per_step.empty()) return;
+  log << "residual per load step (" << (plastic ? "Newton's |R| / |F_int|" : "|K u - f| / |f|")
+      << ", the largest of its increments):";
+  if (per_step.size() <= kListedSteps) {
+    for (std::size_t k = 0; k < per_step.size(); ++k)
+      log << (k % 10 == 0 ? "\n   " : "") << " " << per_step[k];
+    log << "\n";
+    return;
+  }
+  std::vector<double> sorted = per_step;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2),
+                   sorted.end());
+  const auto worst = std::max_element(per_step.begin(), per_step.end());
+  log << " " << per_step.size() << " steps, median " << sorted[sorted.size() / 2] << ", largest " << *worst
+      << " (step " << (worst - per_step.begin()) + 1 << ")\n";
 }
 
 constexpr const char* kUsage =
@@ -266,6 +292,7 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
   log << "time [s]: read " << t_read << ", mesh " << t_mesh << ", setup " << setup << ", assemble "
       << times.assemble << ", factorize " << times.factorize << ", solve " << times.solve << ", write "
       << times.write << "\n";
+  log_step_residuals(log, times.step_residual, plastic);
   if (!plastic) {
     log << "equilibrium: largest relative residual |K u - f| / |f| " << times.equilibrium << " (load step "
         << times.equilibrium_step << ")\n";

@@ -104,7 +104,8 @@ TEST_CASE("[verification] Lame tube: observed L2 convergence order ~2 for Quad4,
 TEST_CASE_TEMPLATE("[verification] spinning hollow tube, plane strain: u_r within 0.5%", M,
                    Model<Axisym2, Quad4, Isotropic>, Model<Axisym2, LegacyQuad, Isotropic>,
                    Model<Axisym2, Quad8, Isotropic>, Model<Axisym3, Tri3, Isotropic>) {
-  const double a = 0.05, b = 0.1, w = 1000, nr = 8, nz = 2, h = (b - a) / nr;
+  const int nr = 8, nz = 2;
+  const double a = 0.05, b = 0.1, w = 1000, h = (b - a) / nr;
   // Closed form from the plane-strain ODE (lambda + 2G)(u'' + u'/r - u/r^2) = -rho w^2 r:
   // u = C1 r + C2 / r - k r^3, k = rho w^2 / 8 (lambda + 2G); sigma_r(a) = sigma_r(b) = 0.
   const double lambda = kE * kNu / ((1 + kNu) * (1 - 2 * kNu)), G = kE / (2 * (1 + kNu));
