@@ -2,6 +2,7 @@
 """Write card decks (BRL-CR-670 Appendix A) column-exact, for the examples and the benchmarks.
 
     python3 bench/deckgen.py tube --ni 301 --nj 167 > tube.deck    # thick tube, 2 ni nj DOFs
+    python3 bench/deckgen.py tube --ni 707 --nj 707 --wide > big.deck  # `$ fields = wide`: 1e6 DOFs
     python3 bench/deckgen.py two-tubes --n 40 --nz 80 > tubes.deck  # two tubes across a radial gap
     python3 bench/deckgen.py examples                               # rewrites examples/decks/*.deck
 
@@ -33,15 +34,17 @@ def i(value, width):
     return text
 
 
-def segment(points, kind):
-    """Data 4: up to three (I, J, R, Z) points, then the type in columns 67-71 (3(2I3, 2F8.3), I5)."""
+def segment(points, kind, wide=False):
+    """Data 4: up to three (I, J, R, Z) points, then the type in columns 67-71 (3(2I3, 2F8.3), I5); with
+    wide (the deck's `$ fields = wide`), 3(2I5, 2F12.3), I5 with the type in columns 103-107."""
+    iw, cw = (5, 12) if wide else (3, 8)
     line = ""
     for k in range(3):
         if k < len(points):
             pi, pj, r, z = points[k]
-            line += i(pi, 3) + i(pj, 3) + f(r, 8) + f(z, 8)  # explicit point: any decimals fit
+            line += i(pi, iw) + i(pj, iw) + f(r, cw) + f(z, cw)  # explicit point: any decimals fit
         else:
-            line += " " * 22
+            line += " " * (2 * iw + 2 * cw)
     return line + i(kind, 5)
 
 
@@ -84,30 +87,36 @@ def isotropic(E, nu, alpha=0.0, T=0.0):
     return (T, E, E, E, nu, nu, nu, G, G, G, alpha, alpha, alpha)
 
 
-def edge(m, n, value):
-    """Data 13-15 (2I5, F10.0)."""
-    return i(m, 5) + i(n, 5) + f(value, 10)
+def edge(m, n, value, wide=False):
+    """Data 13-15 (2I5, F10.0; wide: 2I10, F10.0)."""
+    w = 10 if wide else 5
+    return i(m, w) + i(n, w) + f(value, 10)
 
 
-def tube_deck(ni, nj, a=100.0, b=200.0, h=None, p=100.0, extension=("format = elastic",), nodal=False):
+def tube_deck(ni, nj, a=100.0, b=200.0, h=None, p=100.0, extension=("format = elastic",), nodal=False,
+              wide=False):
     """Thick tube a <= r <= b, 0 <= z <= h, plane strain (u_z = 0 on both ends), internal pressure p.
-    Nodes (ni x nj grid): node(I, J) = (J - 1) ni + I. Pressure cards (I5 node numbers) reach only node
-    99999; with nodal=True the pressure is given as its consistent ring forces on BC cards instead."""
+    Nodes (ni x nj grid): node(I, J) = (J - 1) ni + I. Legacy pressure cards (I5 node numbers) reach only
+    node 99999 and segment cards (I3) index 999: wide=True writes `$ fields = wide` and the widened cards;
+    with nodal=True the pressure is given as its consistent ring forces on BC cards instead."""
+    if wide:
+        extension = tuple(extension) + ("fields = wide",)
+    seg = lambda points, kind: segment(points, kind, wide)
     h = h if h is not None else (b - a) * (nj - 1) / (ni - 1)
     node = lambda I, J: (J - 1) * ni + I
     force = p * 2 * math.pi * a * h / (nj - 1)  # total ring force per bore node (half at the ends)
     lines = [f"$ {e}" for e in extension]
     lines += [f"THICK TUBE {a:g} < r < {b:g}, internal pressure {p:g}, plane strain ({ni} x {nj} grid)",
               control(numpc=0 if nodal else nj - 1), mesh_control(ni, nj, 4, 5 if nodal else 2, 1),
-              segment([(1, 1, a, 0.0), (ni, 1, b, 0.0)], 1), segment([(ni, 1, b, 0.0), (ni, nj, b, h)], 1),
-              segment([(ni, nj, b, h), (1, nj, a, h)], 1), segment([(1, nj, a, h), (1, 1, a, 0.0)], 1),
+              seg([(1, 1, a, 0.0), (ni, 1, b, 0.0)], 1), seg([(ni, 1, b, 0.0), (ni, nj, b, h)], 1),
+              seg([(ni, nj, b, h), (1, nj, a, h)], 1), seg([(1, nj, a, h), (1, 1, a, 0.0)], 1),
               bc(1, ni, 1, 1, 2), bc(1, ni, nj, nj, 2)]
     if nodal:
         lines += [bc(1, 1, 2, nj - 1, 0, force), bc(1, 1, 1, 1, 2, force / 2), bc(1, 1, nj, nj, 2, force / 2)]
     lines += [block(1, 1, ni, 1, nj)]
     lines += material(1, [isotropic(200000.0, 0.3, 1.2e-5)], density=7.85e-9, elastic_format=True)
     if not nodal:
-        lines += [edge(node(1, J + 1), node(1, J), p) for J in range(1, nj)]
+        lines += [edge(node(1, J + 1), node(1, J), p, wide) for J in range(1, nj)]
     return "\n".join(lines) + "\n"
 
 
@@ -293,6 +302,7 @@ def main():
     t.add_argument("--ni", type=int, required=True)
     t.add_argument("--nj", type=int, required=True)
     t.add_argument("--nodal", action="store_true", help="pressure as BC-card ring forces (for > 99999 nodes)")
+    t.add_argument("--wide", action="store_true", help="`$ fields = wide`: grid indices > 999, nodes > 99999")
     tt = sub.add_parser("two-tubes")
     tt.add_argument("--n", type=int, default=40)
     tt.add_argument("--nz", type=int, default=80)
@@ -305,7 +315,7 @@ def main():
     sub.add_parser("examples")
     args = ap.parse_args()
     if args.what == "tube":
-        print(tube_deck(args.ni, args.nj, nodal=args.nodal), end="")
+        print(tube_deck(args.ni, args.nj, nodal=args.nodal, wide=args.wide), end="")
     elif args.what == "press-fit":
         print(press_fit_deck(steps=args.steps, push=0.04 / args.steps, slip=args.slip, contact=args.contact), end="")
     elif args.what == "two-tubes":
@@ -314,6 +324,7 @@ def main():
         out = pathlib.Path(__file__).resolve().parent.parent / "examples" / "decks"
         out.mkdir(exist_ok=True)
         (out / "thick_tube.deck").write_text(tube_deck(9, 3, h=10.0))
+        (out / "thick_tube_wide.deck").write_text(tube_deck(9, 3, h=10.0, wide=True))  # `$ fields = wide`
         (out / "helical_sleeve.deck").write_text(helical_sleeve_deck())
         (out / "two_tubes.deck").write_text(two_tubes_deck(n=20, nz=2, a=50.0, b=75.0, gap=0.02, c=100.0,
                                                            steps=20, contact="active-set"))

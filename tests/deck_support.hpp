@@ -1,5 +1,6 @@
 #pragma once
 // Building card images column by column in tests (the seed's decks are column-exact).
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,64 @@ inline std::string segment(int i1, int j1, const char* r1, const char* z1, int i
       .f(37, 44, z2)
       .i(67, 71, type)
       .str();
+}
+
+/// The Lame tube of the example deck (thick_tube.deck) on any grid: a = 100 < r < b = 200, plane strain
+/// (u_z = 0 on both ends), pressure p on the bore as NUMPC = nj - 1 pressure cards, E = 200000, nu = 0.3;
+/// node(I, J) = (J - 1) ni + I. `wide`: `$ fields = wide` with the widened line segment cards
+/// 3(2I5, 2F12.3), I5 and pressure cards 2I10, F10.0 (io/deck_reader.hpp, CardLayout); otherwise the
+/// seed's 3(2I3, 2F8.3), I5 and 2I5, F10.0, whose fields cut an index above 999 or a node above 99,999
+/// short, as a card punch would.
+inline std::string lame_tube_deck(int ni, int nj, bool wide, double p = 100) {
+  const int iw = wide ? 5 : 3, cw = wide ? 12 : 8, nw = wide ? 10 : 5, pw = 2 * iw + 2 * cw;
+  const double a = 100, b = 200, h = (b - a) * (nj - 1) / (ni - 1);
+  const auto number = [](double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3f", v);
+    return std::string(text);
+  };
+  const auto segment_card = [&](int i1, int j1, double r1, double z1, int i2, int j2, double r2, double z2) {
+    Card c;
+    const int q[2][2]    = {{i1, j1}, {i2, j2}};
+    const double x[2][2] = {{r1, z1}, {r2, z2}};
+    for (int k = 0; k < 2; ++k) {
+      const int o = pw * k;
+      c.i(o + 1, o + iw, q[k][0]).i(o + iw + 1, o + 2 * iw, q[k][1]);
+      c.f(o + 2 * iw + 1, o + 2 * iw + cw, number(x[k][0])).f(o + 2 * iw + cw + 1, o + pw, number(x[k][1]));
+    }
+    return c.i(3 * pw + 1, 3 * pw + 5, 1).str();
+  };
+  const auto node = [&](int i, int j) { return (j - 1) * ni + i; };
+  std::string s   = "$ format = elastic\n";
+  if (wide) s += "$ fields = wide\n";
+  s += "LAME TUBE " + std::to_string(ni) + " X " + std::to_string(nj) + "\n";
+  s += Card().i(1, 5, 1).i(11, 15, 1).i(16, 20, nj - 1).i(41, 45, 1).str() + "\n";
+  s += Card().i(1, 5, ni).i(6, 10, nj).i(11, 15, 4).i(16, 20, 2).i(21, 25, 1).str() + "\n";
+  s += segment_card(1, 1, a, 0, ni, 1, b, 0) + "\n" + segment_card(ni, 1, b, 0, ni, nj, b, h) + "\n";
+  s += segment_card(ni, nj, b, h, 1, nj, a, h) + "\n" + segment_card(1, nj, a, h, 1, 1, a, 0) + "\n";
+  s += Card().i(1, 5, 1).i(6, 10, ni).i(11, 15, 1).i(16, 20, 1).i(21, 30, 2).str() + "\n";
+  s += Card().i(1, 5, 1).i(6, 10, ni).i(11, 15, nj).i(16, 20, nj).i(21, 30, 2).str() + "\n";
+  s += Card().i(1, 5, 1).i(6, 10, 1).i(11, 15, ni).i(16, 20, 1).i(21, 25, nj).str() + "\n";
+  s += Card().i(1, 5, 1).i(6, 10, 1).str() + "\n";
+  s += Card()
+           .f(1, 10, "0.")
+           .f(11, 20, "200000.")
+           .f(21, 30, "200000.")
+           .f(31, 40, "200000.")
+           .f(41, 50, ".3")
+           .f(51, 60, ".3")
+           .f(61, 70, ".3")
+           .str() +
+       "\n";
+  s += Card().f(1, 10, "76923.0769").f(11, 20, "76923.0769").f(21, 30, "76923.0769").str() + "\n";
+  for (int j = 1; j < nj; ++j)  // from M = (1, J + 1) to N = (1, J): the element on the left (seed Data 13)
+    s += Card()
+             .i(1, nw, node(1, j + 1))
+             .i(nw + 1, 2 * nw, node(1, j))
+             .f(2 * nw + 1, 2 * nw + 10, number(p))
+             .str() +
+         "\n";
+  return s;
 }
 
 /// A small valid elastic deck: a tube 1 < r < 2, 0 < z < 0.25 on a 5 x 3 grid (4 x 2 cells), u_z = 0 on

@@ -933,3 +933,63 @@ TEST_CASE(
     }
   }
 }
+
+// Issue 16, wide decks: the seed's fields cap a deck at grid index 999 (line segment cards, I3) and node
+// 99,999 (edge load cards, I5); `$ fields = wide` widens those two and nothing else.
+TEST_CASE("fields = wide: the same tube as a legacy and as a wide deck gives identical files") {
+  const std::string legacy = test::lame_tube_deck(9, 3, false), wide = test::lame_tube_deck(9, 3, true);
+  REQUIRE(legacy != wide);
+  const fs::path a = run_deck_file(write_deck(legacy, "tube_legacy"), "tube_legacy");
+  const fs::path b = run_deck_file(write_deck(wide, "tube_wide"), "tube_wide");
+  for (const char* file : {"nodes.csv", "elements.csv", "reactions.csv"}) {
+    CAPTURE(file);
+    CHECK(read_text(a / file) == read_text(b / file));
+  }
+  const test::Lame lame{100, 200, 100, 200000, 0.3};
+  for (const auto& row : read_csv(b / "nodes.csv"))
+    CHECK(test::rel(row.at("u_r"), lame.displacement(row.at("r"))) < 5e-3);
+}
+
+TEST_CASE("fields = wide: a 1000 x 500 grid with its bore pressure meshes; the legacy fields refuse it") {
+  struct Info {
+    int code;
+    std::string log, err;
+  };
+  const auto info = [](const std::string& text, const std::string& name) {
+    std::ostringstream o, e;
+    const int code = gapfe::cli::main({"info", write_deck(text, name).string()}, o, e);
+    return Info{code, o.str(), e.str()};
+  };
+  // The issue's report: index 1000 in I3 reads as 100, so the grid's corners go missing.
+  const Info legacy = info(test::lame_tube_deck(1000, 500, false), "grid_legacy");
+  CHECK(legacy.code != 0);
+  CHECK(legacy.err.find("error in") != std::string::npos);
+  const Info wide = info(test::lame_tube_deck(1000, 500, true), "grid_wide");
+  CAPTURE(wide.err);
+  REQUIRE(wide.code == 0);
+  CHECK(wide.log.find("mesh 1000 x 500 index grid: 500000 nodes, 498501 quadrilaterals") !=
+        std::string::npos);
+}
+
+TEST_CASE("fields = wide: a 1e6-equation tube with its bore pressure as a wide deck runs and ends on Lame") {
+  // 707 x 707 grid points, u_z held on both ends: 2 x 499,849 - 2 x 707 = 998,284 equations; the pressure
+  // cards name nodes up to 499,143, past I5's 99,999.
+  const int n        = 707;
+  const fs::path out = run_deck_file(write_deck(test::lame_tube_deck(n, n, true), "tube_1e6"), "tube_1e6",
+                                     {"--set", "output_vtu=none"});
+  const test::Lame lame{100, 200, 100, 200000, 0.3};
+  std::ifstream in(out / "nodes.csv");  // step,inc,t,node,i,j,r,z,u_r,u_z,u_t; only the bore's rows read
+  std::string line;
+  std::getline(in, line);
+  int bore = 0;
+  while (std::getline(in, line)) {
+    std::vector<std::string> v;
+    std::stringstream s(line);
+    for (std::string x; std::getline(s, x, ',');) v.push_back(x);
+    REQUIRE(v.size() == 11);
+    if (v[4] != "1") continue;
+    ++bore;
+    CHECK(test::rel(std::stod(v[8]), lame.displacement(std::stod(v[6]))) < 1e-3);
+  }
+  CHECK(bore == n);
+}

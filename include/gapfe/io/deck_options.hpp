@@ -48,6 +48,10 @@ struct DeckOptions {
   /// newton_iterations = the iterations before a step is cut in halves (default 30). NewtonOptions.
   double newton_tolerance = 1e-10;
   int newton_iterations   = 30;
+  /// fields = legacy | wide (issue 16): wide widens the two fields that cap a deck's size, the line
+  /// segment cards' grid indices (I3, at most 999) and the edge load cards' node numbers (I5, at most
+  /// 99,999); every other card keeps its columns (CardLayout, io/deck_reader.hpp).
+  bool wide_fields = false;
 
   /// The friction model a run uses: "none" without friction, else the slip option with auto resolved.
   std::string friction_model() const {
@@ -108,6 +112,8 @@ struct DeckOptions {
       newton_tolerance = number(0.0);
       if (!(newton_tolerance > 0 && newton_tolerance < 1))
         throw InputError("option newton_tolerance = '" + value + "': expected a number in (0, 1)");
+    } else if (key == "fields") {
+      wide_fields = one_of({"legacy", "wide"}) == "wide";
     } else if (key == "newton_iterations") {
       const double n = number(1.0);
       if (n != std::floor(n) || n > 10000)
@@ -117,7 +123,7 @@ struct DeckOptions {
       throw InputError("unknown option '" + key +
                        "' (known: format, element, solver, bc_loads, contact, friction, slip, gap_penalty, "
                        "events, gap_direction, plasticity, output, output_csv, output_vtu, newton_tolerance, "
-                       "newton_iterations)");
+                       "newton_iterations, fields)");
     }
   }
 };

@@ -57,6 +57,18 @@ inline std::string numbered(const std::string& data, const std::string& what, in
   return data + " (" + what + " " + std::to_string(k) + ")";
 }
 
+/// The columns of the fields that `fields = wide` widens (DeckOptions::wide_fields). Legacy, as the seed:
+/// line segment cards 3(2I3, 2F8.3), I5 and edge load cards 2I5, F10.0. Wide: line segment cards
+/// 3(2I5, 2F12.3), I5 (grid indices to 99,999 as MAXI and MAXJ on Data 3, coordinates with four more
+/// columns) and edge load cards 2I10, F10.0 (node numbers to 2,147,483,647).
+struct CardLayout {
+  int index_width;       ///< I and J of a segment point
+  int coordinate_width;  ///< R and Z of a segment point (F.3)
+  int node_width;        ///< M and N of an edge load card
+  int point_width() const { return 2 * index_width + 2 * coordinate_width; }
+};
+inline constexpr CardLayout kLegacyCards{3, 8, 5}, kWideCards{5, 12, 10};
+
 /// Minimum I, maximum I, minimum J, maximum J: four I5 fields from column `first` (Data 5 and 6),
 /// within 1..MAXI and 1..MAXJ. A material block must span at least one cell (`spans_cell`: min < max);
 /// a BC rectangle may be a line or a point (min <= max).
@@ -108,7 +120,8 @@ inline Deck read_deck(std::string_view text,
     }
   }
   for (const auto& [key, value] : overrides) d.options.set(key, value);
-  const bool plastic_format = d.options.format != DeckFormat::elastic;
+  const bool plastic_format      = d.options.format != DeckFormat::elastic;
+  const detail::CardLayout& cols = d.options.wide_fields ? detail::kWideCards : detail::kLegacyCards;
 
   // ---- Data 0: rate property card (5E12.6), SAAC3 / SAAC3X only
   if (d.options.format == DeckFormat::saac3) {
@@ -176,29 +189,31 @@ inline Deck read_deck(std::string_view text,
     if (k.nmtl < 1) c.reject(21, 25, "NMTL", "must be >= 1");
   }
 
-  // ---- Data 4: line segment cards (3(2I3, 2F8.3), I5)
+  // ---- Data 4: line segment cards (3(2I3, 2F8.3), I5; wide: 3(2I5, 2F12.3), I5)
+  const int iw = cols.index_width, cw = cols.coordinate_width, type_at = 3 * cols.point_width() + 1;
   for (int s = 1; s <= d.mesh.nseg; ++s) {
     const CardImage c = in.take(detail::numbered("DATA NO. 4", "line segment card", s));
     Segment seg;
     for (int k = 0; k < 3; ++k) {
-      const int o = 22 * k;
-      seg.p[k].i  = c.integer(o + 1, o + 3, "I");
-      seg.p[k].j  = c.integer(o + 4, o + 6, "J");
-      seg.p[k].x  = {c.real(o + 7, o + 14, 3, "R"), c.real(o + 15, o + 22, 3, "Z")};
+      const int o = cols.point_width() * k;
+      seg.p[k].i  = c.integer(o + 1, o + iw, "I");
+      seg.p[k].j  = c.integer(o + iw + 1, o + 2 * iw, "J");
+      seg.p[k].x  = {c.real(o + 2 * iw + 1, o + 2 * iw + cw, 3, "R"),
+                     c.real(o + 2 * iw + cw + 1, o + 2 * iw + 2 * cw, 3, "Z")};
     }
-    const int type = c.integer(67, 71, "line segment type");
+    const int type = c.integer(type_at, type_at + 4, "line segment type");
     if (type < 0 || type > 6)
-      c.reject(67, 71, "line segment type", "must be 0-6, got " + std::to_string(type));
+      c.reject(type_at, type_at + 4, "line segment type", "must be 0-6, got " + std::to_string(type));
     seg.type       = static_cast<SegmentType>(type);
     const int used = type == 0 ? 1 : type == 3 ? 3 : 2;
     for (int k = 0; k < used; ++k) {
-      const int o        = 22 * k;
+      const int o        = cols.point_width() * k;
       const GridPoint& p = seg.p[k];
       if (p.i < 1 || p.i > d.mesh.max_i)
-        c.reject(o + 1, o + 3, "I",
+        c.reject(o + 1, o + iw, "I",
                  "must be within 1..MAXI = " + std::to_string(d.mesh.max_i) + ", got " + std::to_string(p.i));
       if (p.j < 1 || p.j > d.mesh.max_j)
-        c.reject(o + 4, o + 6, "J",
+        c.reject(o + iw + 1, o + 2 * iw, "J",
                  "must be within 1..MAXJ = " + std::to_string(d.mesh.max_j) + ", got " + std::to_string(p.j));
     }
     d.segments.push_back(seg);
@@ -349,13 +364,14 @@ inline Deck read_deck(std::string_view text,
       const auto edges = [&](int count, const char* data, const char* what, std::vector<EdgeCard>& out) {
         for (int e = 1; e <= count; ++e) {
           const CardImage c = in.take(std::string(data) + " (" + what + " " + std::to_string(e) + step + ")");
-          EdgeCard card{c.integer(1, 5, "nodal point M"),
-                        c.integer(6, 10, "nodal point N"),
-                        c.real(11, 20, 0, "value"),
+          const int nw      = cols.node_width;  // 2I5, F10.0; wide: 2I10, F10.0
+          EdgeCard card{c.integer(1, nw, "nodal point M"),
+                        c.integer(nw + 1, 2 * nw, "nodal point N"),
+                        c.real(2 * nw + 1, 2 * nw + 10, 0, "value"),
                         {c.card(), c.line()}};
-          if (card.node_m < 1) c.reject(1, 5, "nodal point M", "node numbers start at 1");
-          if (card.node_n < 1) c.reject(6, 10, "nodal point N", "node numbers start at 1");
-          if (card.node_m == card.node_n) c.reject(1, 10, "nodal points M, N", "M and N must differ");
+          if (card.node_m < 1) c.reject(1, nw, "nodal point M", "node numbers start at 1");
+          if (card.node_n < 1) c.reject(nw + 1, 2 * nw, "nodal point N", "node numbers start at 1");
+          if (card.node_m == card.node_n) c.reject(1, 2 * nw, "nodal points M, N", "M and N must differ");
           out.push_back(card);
         }
       };
