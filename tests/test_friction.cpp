@@ -1,8 +1,12 @@
 // Friction at gap pairs (issue 12; contact/friction.hpp, THEORY.md 6): the push-out and the slip torque of
 // a press fit against their closed forms, no spurious friction, the seed's two models, Newton's
 // convergence with the unsymmetric tangent, the tangential penalty sweep and friction with plasticity.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <functional>
+#include <string>
+#include <vector>
 
 #include "gapfe/solver/eigen_lu.hpp"
 
@@ -388,6 +392,87 @@ TEST_CASE_TEMPLATE("friction: tangential penalty sweep 1e1 to 1e12 x the adjacen
     table += row;
     CHECK(force_error < 0.01);
     if (std::is_same_v<Policy, AugmentedLagrangian>) CHECK(stick_error < 1e-5);
+  }
+  MESSAGE(table);
+}
+
+// Issue 15 (extremes): the seed's two friction models under SAAC across the normal penalty, whose factor
+// sets their tangential springs too (Proportional mu k, Extended k in stick). Each factor gives the law's
+// springs exactly, every pair closed and finite displacements, or a SolveError (a penalty so large the
+// stiffness is numerically singular: refused, never a wrong answer) and only at 1e9 and above.
+TEST_CASE("friction: SAACFR's and the extended model's penalty sweep 1e1 to 1e12 x the adjacent stiffness") {
+  std::string table =
+      "factor, proportional: max |K u - f| / |f|; extended: slipping pairs, max |K u - f| / |f|\n";
+  std::vector<double> adjacent;  // k / factor per pair at the first factor: the adjacent stiffness
+  for (double factor = 1e1; factor <= 1e12; factor *= 10) {
+    char row[160];
+    std::string proportional = "refused", extended = "refused";
+    {  // SAACFR on a conical fit pushed closed (the existing proportional test's path)
+      PressFit fit;
+      fit.tilt = 0.5;
+      std::vector<GapPair> pairs;
+      auto problem       = fit.problem<Ldlt3>(pairs);
+      ContactOptions opt = fit_options(fit);
+      opt.penalty_factor = factor;
+      try {
+        ContactStatic<Ldlt3, Saac, Proportional> cs(std::move(problem), pairs, opt);
+        const auto path = run_path(
+            cs, fit, [&](double t) { return t <= 1 ? 0.0 : -5e-6 * (t - 1); }, none, 2.0, 4);
+        CHECK(std::isfinite(path.back().force));
+        CHECK(cs.fe().solution().displacement.allFinite());
+        if (adjacent.empty())
+          for (int p = 0; p < cs.pair_count(); ++p) adjacent.push_back(cs.penalty(p) / factor);
+        for (int p = 0; p < cs.pair_count(); ++p) {
+          CHECK(cs.states()[p].closed);
+          const double k = cs.penalty(p);
+          CHECK(rel(k / factor, adjacent[static_cast<std::size_t>(p)]) < 1e-12);  // k scales with the factor
+          CHECK(rel(cs.tangential_penalty(p), fit.mu * k) < 1e-12);               // Eq. 12-13: mu k
+        }
+        const double residual = cs.fe().solution().residual;
+        if (factor <= 1e8) CHECK(residual < 1e-6);  // the linear solves hold equilibrium
+        std::snprintf(row, sizeof row, "%9.2e", residual);
+        proportional = row;
+      } catch (const SolveError& e) {
+        CHECK(factor >= 1e9);
+        proportional += std::string(" (") + e.what() + ")";
+      }
+    }
+    {  // the extended model on the one-row fit pushed at its top (the existing extended test's path)
+      PressFit fit;
+      fit.drive = PressFit::Drive::ends;
+      fit.nz    = 1;
+      std::vector<GapPair> pairs;
+      auto problem       = fit.problem<Ldlt2>(pairs);
+      ContactOptions opt = fit_options(fit);
+      opt.penalty_factor = factor;
+      try {
+        ContactStatic<Ldlt2, Saac, Extended> cs(std::move(problem), pairs, opt);
+        const auto loads = [&](Problem<Ldlt2>& p, double t) {
+          fit.set(p, std::min(t, 1.0), t <= 1 ? 0 : -5e-5 * (t - 1));
+        };
+        cs.advance(1.0, loads);
+        for (int p = 0; p < cs.pair_count(); ++p) {
+          CHECK(cs.states()[p].closed);
+          CHECK(rel(cs.tangential_penalty(p), cs.penalty(p)) < 1e-12);  // stick spring k (Eq. 14)
+        }
+        for (int k = 1; k <= 20; ++k) cs.advance(1.0 + k / 20.0, loads);
+        int slipping = 0;
+        for (const auto& st : cs.states()) slipping += st.slipping;
+        CHECK(slipping > 0);  // the push slides the ring
+        CHECK(cs.fe().solution().displacement.allFinite());
+        // Equilibrium with the springs the step ran with (a switch refactorizes: it once reused the
+        // stick factorization, 0.44 here).
+        const double residual = cs.fe().solution().residual;
+        if (factor <= 1e8) CHECK(residual < 1e-6);
+        std::snprintf(row, sizeof row, "%d of %d, %9.2e", slipping, cs.pair_count(), residual);
+        extended = row;
+      } catch (const SolveError& e) {
+        CHECK(factor >= 1e9);
+        extended += std::string(" (") + e.what() + ")";
+      }
+    }
+    std::snprintf(row, sizeof row, "%8.0e  ", factor);
+    table += row + proportional + "; " + extended + "\n";
   }
   MESSAGE(table);
 }

@@ -578,6 +578,10 @@ class ContactStatic {
       const double normal = n.dot(sigma * n);
       const double shear  = std::hypot(t.dot(sigma * n), theta.dot(sigma * n));
       const bool stick    = normal < 0 && shear < opt_.friction * -normal;
+      // A pair that switches changes its tangential spring (k in stick, 0 in slip), so the next solve
+      // must factorize again: reusing the factor left the extended model's steps after a switch solved
+      // with the old springs (relative residual 0.44-0.66 on the press fit; issue 15's penalty sweep).
+      if (history_.committed(p).slipping == stick) status_changed_ = true;
       history_.amend(p, [&](PairState& s) { s.slipping = !stick; });
     }
   }
