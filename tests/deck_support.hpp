@@ -41,6 +41,20 @@ inline std::string segment(int i1, int j1, const char* r1, const char* z1, int i
       .str();
 }
 
+/// Data 10b, the first property card of an isotropic steel row: T, E_N, E_S, E_T (200000) and the three
+/// Poisson's ratios (0.3), in F10.0 fields.
+inline std::string steel_first_property_card(const char* temperature = "0.") {
+  return Card()
+      .f(1, 10, temperature)
+      .f(11, 20, "200000.")
+      .f(21, 30, "200000.")
+      .f(31, 40, "200000.")
+      .f(41, 50, ".3")
+      .f(51, 60, ".3")
+      .f(61, 70, ".3")
+      .str();
+}
+
 /// The Lame tube of the example deck (thick_tube.deck) on any grid: a = 100 < r < b = 200, plane strain
 /// (u_z = 0 on both ends), pressure p on the bore as NUMPC = nj - 1 pressure cards, E = 200000, nu = 0.3;
 /// node(I, J) = (J - 1) ni + I. `wide`: `$ fields = wide` with the widened line segment cards
@@ -78,16 +92,7 @@ inline std::string lame_tube_deck(int ni, int nj, bool wide, double p = 100) {
   s += Card().i(1, 5, 1).i(6, 10, ni).i(11, 15, nj).i(16, 20, nj).i(21, 30, 2).str() + "\n";
   s += Card().i(1, 5, 1).i(6, 10, 1).i(11, 15, ni).i(16, 20, 1).i(21, 25, nj).str() + "\n";
   s += Card().i(1, 5, 1).i(6, 10, 1).str() + "\n";
-  s += Card()
-           .f(1, 10, "0.")
-           .f(11, 20, "200000.")
-           .f(21, 30, "200000.")
-           .f(31, 40, "200000.")
-           .f(41, 50, ".3")
-           .f(51, 60, ".3")
-           .f(61, 70, ".3")
-           .str() +
-       "\n";
+  s += steel_first_property_card() + "\n";
   s += Card().f(1, 10, "76923.0769").f(11, 20, "76923.0769").f(21, 30, "76923.0769").str() + "\n";
   for (int j = 1; j < nj; ++j)  // from M = (1, J + 1) to N = (1, J): the element on the left (seed Data 13)
     s += Card()
@@ -127,15 +132,7 @@ inline std::string tube_deck() {
           .i(56, 60, 1)
           .str(),
       Card().i(1, 5, 1).i(6, 10, 1).f(11, 20, "7.85e-9").str(),
-      Card()
-          .f(1, 10, "0.")
-          .f(11, 20, "200000.")
-          .f(21, 30, "200000.")
-          .f(31, 40, "200000.")
-          .f(41, 50, ".3")
-          .f(51, 60, ".3")
-          .f(61, 70, ".3")
-          .str(),
+      steel_first_property_card(),
       Card()
           .f(1, 10, "80000.")
           .f(11, 20, "80000.")

@@ -2,6 +2,7 @@
 // exact columns, and malformed decks that must each give one clear message and a non-zero exit from
 // the `gapfe` command (run in-process; CI runs this file under ASan + UBSan too).
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -12,6 +13,7 @@
 #include "gapfe/io/deck.hpp"
 #include "gapfe/io/deck_output.hpp"
 #include "gapfe/io/deck_scene.hpp"
+#include "gapfe/mesh/gmsh_reader.hpp"
 
 #include "deck_support.hpp"
 #include "gapfe_cli.hpp"
@@ -356,16 +358,7 @@ TEST_CASE("Malformed decks: each gives one clear message and a non-zero exit") {
   {
     auto l = lines;
     l[11]  = Card().i(1, 5, 1).i(6, 10, 2).f(11, 20, "7.85e-9").str();
-    l.insert(l.begin() + 14, {Card()
-                                  .f(1, 10, "-10.")
-                                  .f(11, 20, "200000.")
-                                  .f(21, 30, "200000.")
-                                  .f(31, 40, "200000.")
-                                  .f(41, 50, ".3")
-                                  .f(51, 60, ".3")
-                                  .f(61, 70, ".3")
-                                  .str(),
-                              lines[13]});
+    l.insert(l.begin() + 14, {gapfe::test::steel_first_property_card("-10."), lines[13]});
     cases.back().deck = gapfe::test::join(l);
   }
   // Unconstrained: no boundary cards at all -> singular stiffness (exit 2), named by node.
@@ -428,4 +421,138 @@ TEST_CASE("deformed.svg of a large mesh: the outline keeps the boundary and the 
   const auto edges = gapfe::detail::outline_edges(s.grid, material);
   CHECK(edges.size() == 14);
   for (const auto& [a, b] : edges) CHECK(a < b);
+}
+
+// ---- Gmsh meshes (issue 16, item 2; mesh/gmsh_reader.hpp). The files in tests/data were written by meshio
+// (a writer independent of the reader) or, for MSH 4.1 with curve groups, by tests/data/make_meshes.py and
+// read back there with meshio; each holds the tube 100 <= r <= 200, 0 <= z <= 25.
+namespace {
+
+const std::filesystem::path kMeshData = std::filesystem::path(GAPFE_SOURCE_DIR) / "tests" / "data";
+
+gapfe::GmshMesh read_mesh_file(const std::string& name) {
+  std::ifstream in(kMeshData / name);
+  REQUIRE(in);
+  std::stringstream s;
+  s << in.rdbuf();
+  return gapfe::read_gmsh(s.str());
+}
+
+/// Twice the signed area of a cell's corners in (r, z): positive counterclockwise.
+double corner_area(const gapfe::GmshMesh& m, const gapfe::GmshElement& e) {
+  const int corners = e.type == 2 || e.type == 9 ? 3 : 4;
+  double area       = 0;
+  for (int a = 0; a < corners; ++a) {
+    const gapfe::Vec2& p = m.nodes[static_cast<std::size_t>(e.nodes[static_cast<std::size_t>(a)])];
+    const gapfe::Vec2& q =
+        m.nodes[static_cast<std::size_t>(e.nodes[static_cast<std::size_t>((a + 1) % corners)])];
+    area += p(0) * q(1) - q(0) * p(1);
+  }
+  return area;
+}
+
+/// The edges of physical group `tag`.
+int edges_in(const gapfe::GmshMesh& m, int tag) {
+  return static_cast<int>(
+      std::count_if(m.edges.begin(), m.edges.end(), [&](const auto& e) { return e.physical == tag; }));
+}
+
+}  // namespace
+
+TEST_CASE("[gmsh] the tube in MSH 4.1 and 2.2: nodes, counterclockwise cells, physical groups") {
+  for (const char* file : {"tube_quad4_v41.msh", "tube_quad4_v22.msh"}) {
+    CAPTURE(file);
+    const gapfe::GmshMesh m = read_mesh_file(file);
+    REQUIRE(m.nodes.size() == 15);
+    REQUIRE(m.cells.size() == 8);
+    CHECK(m.flipped == 4);           // the second row is written clockwise
+    for (const auto& x : m.nodes) {  // on the 4 x 2 grid r = 100 + 25 i, z = 12.5 j
+      const double i = (x(0) - 100) / 25, j = x(1) / 12.5;
+      CHECK(i == std::round(i));
+      CHECK(j == std::round(j));
+    }
+    for (const auto& c : m.cells) {
+      CHECK(c.type == 3);
+      CHECK(c.physical == m.physical(2, "steel"));
+      CHECK(corner_area(m, c) == doctest::Approx(2 * 25 * 12.5).epsilon(1e-12));  // counterclockwise
+    }
+    CHECK(edges_in(m, m.physical(1, "bore")) == 2);
+    CHECK(edges_in(m, m.physical(1, "bottom")) == 4);
+    CHECK(edges_in(m, m.physical(1, "top")) == 4);
+    for (const auto& e : m.edges)
+      if (e.physical == m.physical(1, "bore"))
+        for (int a = 0; a < 2; ++a)
+          CHECK(m.nodes[static_cast<std::size_t>(e.nodes[static_cast<std::size_t>(a)])](0) == 100);
+  }
+  // Node tags with gaps (1000 + 10 j + i) in the 4.1 file.
+  const gapfe::GmshMesh m = read_mesh_file("tube_quad4_v41.msh");
+  for (std::size_t k = 0; k < m.nodes.size(); ++k)
+    CHECK(m.node_tags[k] ==
+          1000 + 10 * std::lround(m.nodes[k](1) / 12.5) + std::lround((m.nodes[k](0) - 100) / 25));
+}
+
+TEST_CASE("[gmsh] 8-node quadrangles: mid-side nodes halfway along their edges, in gapfe's order") {
+  const gapfe::GmshMesh m = read_mesh_file("tube_quad8_v41.msh");
+  REQUIRE(m.nodes.size() == 23);
+  REQUIRE(m.cells.size() == 4);
+  CHECK(m.flipped == 0);
+  for (const auto& c : m.cells) {
+    CHECK(c.type == 16);
+    CHECK(corner_area(m, c) == doctest::Approx(2 * 25 * 25).epsilon(1e-12));
+    for (int a = 0; a < 4; ++a) {  // mid-side 4 + a on edge (a, a + 1): element/quad8.hpp
+      const auto node = [&](int k) {
+        return m.nodes[static_cast<std::size_t>(c.nodes[static_cast<std::size_t>(k)])];
+      };
+      CHECK((node(4 + a) - 0.5 * (node(a) + node((a + 1) % 4))).norm() < 1e-12);
+    }
+  }
+  CHECK(m.edges.size() == 9);  // 3-node lines; meshio's 4.1 writer gives them no physical group
+  for (const auto& e : m.edges) CHECK(e.physical == 0);
+}
+
+TEST_CASE("[gmsh] malformed meshes: each a clear InputError naming the line and what is wrong") {
+  const std::string head  = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
+  const std::string nodes = "$Nodes\n1 4 1 4\n2 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n$EndNodes\n";
+  const std::string quad  = "$Elements\n1 1 1 1\n2 1 3 1\n1 1 2 3 4\n$EndElements\n";
+  REQUIRE_NOTHROW(gapfe::read_gmsh(head + nodes + quad));
+  const auto replaced = [](std::string s, const std::string& from, const std::string& to) {
+    const auto at = s.find(from);
+    REQUIRE(at != std::string::npos);
+    return s.replace(at, from.size(), to);
+  };
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"hello\n", "expected a section"},
+      {"", "empty file"},
+      {replaced(head, "4.1 0 8", "4.1 1 8") + nodes + quad, "binary MSH file"},
+      {replaced(head, "4.1 0 8", "3 0 8") + nodes + quad, "gapfe reads 4.1 and 2.2"},
+      {head + replaced(nodes, "0 0 0\n1 0 0", "-1 0 0\n1 0 0") + quad, "< 0: an axisymmetric section"},
+      {head + replaced(nodes, "1 1 0\n", "1 1 0.5\n") + quad, "plane z = 0"},
+      {head + nodes + replaced(quad, "2 1 3 1\n1 1 2 3 4", "3 1 4 1\n1 1 2 3 4"), "element type 4"},
+      {head + nodes + replaced(quad, "1 1 2 3 4", "1 1 2 3 9"), "node 9 is not in $Nodes"},
+      {head + replaced(nodes, "1\n2\n3\n4\n", "1\n2\n2\n4\n") + quad, "node 2 is given twice"},
+      {head + nodes + replaced(quad, "1 1 2 3 4", "1 1 2 2 1"), "zero area"},
+      {head + nodes + "$Elements\n1 1 1 1\n1 1 1 1\n1 1 2\n$EndElements\n", "no triangles or quadrangles"},
+      {head + nodes + quad.substr(0, quad.size() / 2), "the file ends in $Elements"},
+      {head + quad + nodes, "$Elements before $Nodes"},
+      {nodes + quad, "does not start with $MeshFormat"},
+      {head + "$PhysicalNames\n1\n2 1 \"steel\n$EndPhysicalNames\n" + nodes + quad,
+       "unterminated quoted name"},
+      {head + replaced(nodes, "1 4 1 4", "1 5 1 4") + quad, "the header says 5 nodes"},
+      {head + replaced(nodes, "0 0 0\n", "0 zero 0\n") + quad, "expected a finite number, found 'zero'"},
+  };
+  for (const auto& c : cases) {
+    const std::string& text     = c.first;  // named: CAPTURE's lambda cannot take a structured binding
+    const std::string& expected = c.second;
+    CAPTURE(text);
+    try {
+      (void)gapfe::read_gmsh(text);
+      FAIL("no error; expected: " << expected);
+    } catch (const gapfe::InputError& e) {
+      CAPTURE(e.what());
+      CHECK(std::string(e.what()).find(expected) != std::string::npos);
+    }
+  }
+  const gapfe::GmshMesh m = read_mesh_file("tube_quad4_v22.msh");
+  CHECK_THROWS_WITH_AS(m.physical(1, "outer"), doctest::Contains("has no curve physical group \"outer\""),
+                       gapfe::InputError);
 }
