@@ -440,7 +440,7 @@ gapfe::GmshMesh read_mesh_file(const std::string& name) {
 
 /// Twice the signed area of a cell's corners in (r, z): positive counterclockwise.
 double corner_area(const gapfe::GmshMesh& m, const gapfe::GmshElement& e) {
-  const int corners = e.type == 2 || e.type == 9 ? 3 : 4;
+  const int corners = gapfe::detail::gmsh_corners(e.type);
   double area       = 0;
   for (int a = 0; a < corners; ++a) {
     const gapfe::Vec2& p = m.nodes[static_cast<std::size_t>(e.nodes[static_cast<std::size_t>(a)])];

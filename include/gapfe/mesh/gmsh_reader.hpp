@@ -96,6 +96,10 @@ inline int gmsh_node_count(int type) {
       return -1;
   }
 }
+/// The corners of a Gmsh cell type: 3 for triangles (2, 9), else 4 (quadrangles 3, 16).
+inline int gmsh_corners(int type) {
+  return type == 2 || type == 9 ? 3 : 4;
+}
 inline int gmsh_dimension(int type) {
   return type == 1 || type == 8 ? 1 : type == 15 ? 0 : 2;
 }
@@ -212,34 +216,29 @@ inline GmshMesh read_gmsh(std::string_view text) {
       m.edges.push_back(e);
       return;
     }
-    // Twice the signed area of the corner polygon in (r, z): positive counterclockwise.
-    const int corners = type == 2 || type == 9 ? 3 : 4;
-    double area       = 0;
+    // Twice the signed area of the corner polygon in (r, z), positive counterclockwise, and its longest
+    // edge (for the scale of "zero").
+    const int corners = detail::gmsh_corners(type);
+    double area = 0, size = 0;
     for (int a = 0; a < corners; ++a) {
       const Vec2& p = m.nodes[static_cast<std::size_t>(e.nodes[static_cast<std::size_t>(a)])];
       const Vec2& q = m.nodes[static_cast<std::size_t>(e.nodes[static_cast<std::size_t>((a + 1) % corners)])];
       area += p(0) * q(1) - q(0) * p(1);
+      size = std::max(size, (q - p).norm());
     }
     if (area < 0) {  // clockwise: reverse the corners (keeping the first) and the mid-sides with them
-      std::array<int, 8> n = e.nodes;
+      const std::array<int, 8> n = e.nodes;
       for (int a = 1; a < corners; ++a)
         e.nodes[static_cast<std::size_t>(a)] = n[static_cast<std::size_t>(corners - a)];
-      if (count >
-          corners)  // mid-side k lies on edge (k, k + 1); reversed, edge (a, a + 1) is old edge corners-1-a
+      // Mid-side k lies on edge (k, k + 1); reversed, new edge (a, a + 1) is old edge corners - 1 - a.
+      if (count > corners)
         for (int a = 0; a < corners; ++a)
-          e.nodes[static_cast<std::size_t>(corners + a)] =
-              n[static_cast<std::size_t>(corners + (corners - 1 - a))];
+          e.nodes[static_cast<std::size_t>(corners + a)] = n[static_cast<std::size_t>(2 * corners - 1 - a)];
       ++m.flipped, area = -area;
     }
-    double size = 0;
-    for (int a = 0; a < corners; ++a)
-      size = std::max(
-          size, (m.nodes[static_cast<std::size_t>(e.nodes[static_cast<std::size_t>(a)])] -
-                 m.nodes[static_cast<std::size_t>(e.nodes[static_cast<std::size_t>((a + 1) % corners)])])
-                    .norm());
     if (!(area > 1e-12 * size * size))
       throw InputError("line " + std::to_string(line) +
-                       " ($Elements): element with zero area (degenerate or " + "with repeated nodes)");
+                       " ($Elements): element with zero area (degenerate or with repeated nodes)");
     m.cells.push_back(e);
   };
 
