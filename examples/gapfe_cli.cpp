@@ -12,6 +12,9 @@
 #include <vector>
 
 #include "gapfe/io/deck_output.hpp"
+#ifdef GAPFE_HAS_SCENE
+#include "gapfe/io/scene_file.hpp"
+#endif
 #include "gapfe/solver/threads.hpp"
 #include "gapfe/version.hpp"
 
@@ -67,6 +70,7 @@ constexpr const char* kUsage =
     "usage: gapfe run DECK --out DIR [options]   solve every load step; CSV, VTU and PVD files in DIR\n"
     "       gapfe mesh DECK --out DIR [options]  the mesh only: mesh.svg with numbers, tables, mesh.vtu\n"
     "       gapfe info DECK [options]            what the deck asks for and which variant serves it\n"
+    "DECK: a card deck (BRL-CR-670 Appendix A) or a scene file NAME.toml with its Gmsh mesh (README)\n"
     "options:\n"
     "  --variant saas|saga      force a model variant (default: the smallest the deck needs)\n"
     "  --set KEY=VALUE          a deck extension option (README: format, element, solver, bc_loads, ...)\n"
@@ -188,23 +192,59 @@ void describe(std::ostream& out, const Deck& d, const DeckScene& s) {
   out << "\n";
 }
 
+/// Scene files are TOML (issue 16); anything else is read as a card deck.
+bool is_scene_file(const std::string& path) {
+  return std::filesystem::path(path).extension() == ".toml";
+}
+
+void describe_scene(std::ostream& out, const SceneModel& m) {
+  const Deck& d      = m.deck;
+  const DeckScene& s = m.scene;
+  out << "scene: " << d.title << "\n"
+      << "  element " << d.options.element << "; " << d.materials.size() << " material(s)"
+      << (d.rate ? "; rate card (saac3)" : "") << "\n"
+      << "  mesh " << m.mesh_file << ": " << s.grid.node_count() << " nodes, " << s.mesh.cells.size()
+      << " quadrilaterals, " << s.mesh.triangles.size() << " triangles\n"
+      << "  " << s.conditions.size() << " node condition(s), " << d.control.numpc << " pressure, "
+      << d.control.numsc << " shear and " << d.control.numst << " transverse shear edge(s), " << d.steps()
+      << " load step(s)";
+  if (d.control.numtc != 0) out << ", temperature field";
+  if (d.control.inert != 0) out << ", inertia loads";
+  out << "\n";
+}
+
 int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
             const std::function<void()>& large_model) {
   std::ostringstream null_stream;
   std::ostream& log = a.quiet ? null_stream : out;
   log << std::setprecision(3);
-  auto t0                = Clock::now();
-  const std::string text = read_file(a.deck);
-  const Deck d           = read_deck(text, a.options);
-  const long steps       = a.command == "run" ? std::max(1, d.steps()) : 1;
-  if (large_model && a.command != "info" &&
-      static_cast<long>(d.mesh.max_i) * static_cast<long>(d.mesh.max_j) * steps >= kLargeModel)
-    large_model();
+  auto t0 = Clock::now();
+  // A deck or a scene file (issue 16) becomes the same Deck and DeckScene: one path from here on.
+  SceneModel model;
+  const bool scene_file = is_scene_file(a.deck);
+  if (scene_file) {
+#ifdef GAPFE_HAS_SCENE
+    model = read_scene_file(a.deck, a.options);
+#else
+    throw InputError("this gapfe was built without toml++ (libtomlplusplus-dev), so it reads decks only");
+#endif
+  } else {
+    model.deck = read_deck(read_file(a.deck), a.options);
+  }
+  const Deck& d    = model.deck;
+  const long steps = a.command == "run" ? std::max(1, d.steps()) : 1;
+  const long grid  = scene_file ? static_cast<long>(model.scene.grid.node_count())
+                                : static_cast<long>(d.mesh.max_i) * static_cast<long>(d.mesh.max_j);
+  if (large_model && a.command != "info" && grid * steps >= kLargeModel) large_model();
   const double t_read = since(t0);
   t0                  = Clock::now();
-  const DeckScene s   = build_scene(d);
+  if (!scene_file) model.scene = build_scene(d);
+  const DeckScene& s  = model.scene;
   const double t_mesh = since(t0);
-  describe(log, d, s);
+  if (scene_file)
+    describe_scene(log, model);
+  else
+    describe(log, d, s);
 
   std::string why;
   const std::string variant = pick_variant(s.needs, a.variant, why);
@@ -212,7 +252,7 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
   if (!s.needs.gaps.empty()) {
     log << "  gaps: " << s.needs.gaps.front() << (s.needs.gaps.size() > 1 ? " and more" : "") << "; "
         << s.gaps.pairs.size() << " node pairs, " << s.gaps.soft.size()
-        << " gap element(s) soft throughout (corners, IJDIR 0)\n"
+        << " gap element(s) soft throughout (without a node pair: corners, IJDIR 0)\n"
         << "  contact: " << d.options.contact << "; friction: "
         << (d.options.friction_model() == "none"
                 ? std::string("none")

@@ -993,3 +993,214 @@ TEST_CASE("fields = wide: a 1e6-equation tube with its bore pressure as a wide d
   }
   CHECK(bore == n);
 }
+
+// ---- Scene files (issue 16): a Gmsh mesh with a TOML scene, through the same command and the same path as a
+// deck. tests/data/scenes/*.msh are the example decks' meshes node for node (make_scenes.py).
+
+#ifdef GAPFE_HAS_SCENE
+namespace {
+
+const fs::path kScenes = fs::path(GAPFE_SOURCE_DIR) / "tests" / "data" / "scenes";
+
+/// The largest difference between two runs' tables over every column but the grid indices i, j (0 for a Gmsh
+/// mesh), relative to that column's largest magnitude (a column of zeros compares absolutely), and the worst
+/// column's name.
+std::pair<double, std::string> table_difference(const fs::path& a, const fs::path& b) {
+  const auto x = read_csv(a), y = read_csv(b);
+  REQUIRE(x.size() == y.size());
+  REQUIRE(!x.empty());
+  std::pair<double, std::string> worst{0.0, ""};
+  for (const auto& [column, unused] : x.front()) {
+    if (column == "i" || column == "j") continue;
+    double scale = 0, diff = 0;
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      REQUIRE(y[k].count(column) == 1);
+      scale = std::max(scale, std::abs(x[k].at(column)));
+      diff  = std::max(diff, std::abs(x[k].at(column) - y[k].at(column)));
+    }
+    const double rel = scale > 0 ? diff / scale : diff;
+    if (rel >= worst.first) worst = {rel, column};
+  }
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "[scene] The thick tube, the two tubes and the plastic tube as Gmsh mesh + scene equal their decks to "
+    "1e-10 and meet the decks' closed forms") {
+  struct Pair {
+    const char *deck, *scene;
+    std::vector<const char*> tables;
+  };
+  for (const Pair& p :
+       {Pair{"thick_tube.deck", "thick_tube.toml", {"nodes.csv", "elements.csv", "reactions.csv"}},
+        Pair{"two_tubes.deck", "two_tubes.toml", {"nodes.csv", "elements.csv", "gaps.csv"}},
+        Pair{"plastic_tube.deck", "plastic_tube.toml", {"nodes.csv", "elements.csv", "reactions.csv"}}}) {
+    const std::string name = p.scene;
+    CAPTURE(name);
+    const fs::path deck  = run_deck_file(kExamples / p.deck, "scene_deck_" + name);
+    const fs::path scene = run_deck_file(kScenes / p.scene, "scene_toml_" + name);
+    for (const char* table : p.tables) {
+      CAPTURE(table);
+      const auto worst = table_difference(deck / table, scene / table);
+      CAPTURE(worst.second);  // the column
+      CHECK(worst.first <= 1e-10);
+    }
+  }
+
+  // The closed forms of the deck tests, read from the scenes' own output.
+  const test::Lame lame{100, 200, 100, 200000, 0.3};  // thick tube: Lame within 0.5%
+  for (const auto& row : read_csv(scratch("scene_toml_thick_tube.toml") / "nodes.csv"))
+    CHECK(test::rel(row.at("u_r"), lame.displacement(row.at("r"))) < 5e-3);
+  {  // two tubes: the closure pressure within 0.5% (THEORY.md V5, plane strain)
+    const double a = 50, b = 75, delta = 0.02, E = 200000, nu = 0.3;
+    const double pc  = delta * E * (b * b - a * a) / (2 * a * a * b * (1 - nu * nu));
+    double last_open = 0, closed_at = -1;
+    for (const auto& row : read_csv(scratch("scene_toml_two_tubes.toml") / "gaps.csv")) {
+      if (row.at("status") == 1 && closed_at < 0) closed_at = last_open;
+      if (row.at("status") == 0) last_open = row.at("inc");
+    }
+    CHECK(std::abs(closed_at / 20 * 100 - pc) / pc < 5e-3);
+  }
+  // plastic tube (THEORY.md V6): elastic through step 8 (160 < 173), the bore yielded and the outer wall
+  // elastic at 300 < p_L = 320.15.
+  for (const auto& row : read_csv(scratch("scene_toml_plastic_tube.toml") / "elements.csv")) {
+    if (row.at("step") <= 8) CHECK(row.at("eqps") == 0);
+    if (row.at("step") == 15 && row.at("element") == 1) CHECK(row.at("eqps") > 0);
+    if (row.at("step") == 15 && row.at("element") == 40) CHECK(row.at("eqps") == 0);
+  }
+}
+TEST_CASE("[scene] Malformed scene and mesh files: a clear error naming the key or line, a non-zero exit") {
+  const std::string tubes = (kScenes / "two_tubes.msh").string();
+  const std::string thick = (kScenes / "thick_tube.msh").string();
+  // A valid two-tube scene; each case edits it (or its mesh) once.
+  const std::string good =
+      "title = \"t\"\n"
+      "[mesh]\nfile = \"" +
+      tubes +
+      "\"\n"
+      "[materials.steel]\nsurfaces = [\"inner\", \"outer\"]\nE = 200000.0\nnu = 0.3\n"
+      "[materials.gap]\nE = 0.0002\nnu = 0.0\n"
+      "[[boundary]]\ngroups = [\"inner\", \"gap\", \"outer\"]\nfix = \"z\"\n"
+      "[[load]]\ncurves = \"bore\"\npressure = 100.0\n"
+      "[[contact]]\nfaces = [\"inner_face\", \"outer_face\"]\nsoft = \"gap\"\n";
+  const auto edit = [&](const std::string& from, const std::string& to) {
+    std::string s = good;
+    const auto at = s.find(from);
+    REQUIRE(at != std::string::npos);
+    return s.replace(at, from.size(), to);
+  };
+  const std::string mesh_text = read_text(kScenes / "thick_tube.msh");
+  const auto bad_mesh         = [&](const std::string& from, const std::string& to, const std::string& name) {
+    std::string s = mesh_text;
+    const auto at = s.find(from);
+    REQUIRE(at != std::string::npos);
+    const fs::path file = scratch("scene_bad") / (name + ".msh");
+    std::ofstream(file) << s.replace(at, from.size(), to);
+    return "title = \"t\"\n[mesh]\nfile = \"" + file.string() +
+           "\"\n[materials.steel]\nE = 1.0\nnu = 0.3\n[[boundary]]\ngroups = \"bottom\"\nfix = \"z\"\n";
+  };
+  struct Case {
+    std::string name, scene, expected;
+  };
+  const std::vector<Case> cases{
+      {"unknown top-level key", "titel = \"x\"\n" + good, "unknown key 'titel' (line 1)"},
+      {"unknown material key", edit("E = 200000.0", "Ee = 200000.0"),
+       "unknown key 'materials.steel.Ee' (line 6)"},
+      {"no mesh table", edit("[mesh]\nfile = \"" + tubes + "\"\n", ""), "no [mesh] table"},
+      {"missing mesh file", edit(tubes, tubes + ".missing"),
+       "key 'mesh.file' (line 3): cannot open the mesh"},
+      {"unknown surface", edit("[\"inner\", \"outer\"]", "[\"inner\", \"outr\"]"),
+       "no surface physical group \"outr\""},
+      {"cell without material", edit("[materials.gap]\nE = 0.0002\nnu = 0.0\n", ""),
+       "(surface group \"gap\") has no material"},
+      {"negative modulus", edit("E = 200000.0", "E = -1.0"), "Young's moduli"},
+      {"modulus of the wrong type", edit("E = 200000.0", "E = \"big\""),
+       "key 'materials.steel.E' (line 6): expected a number or three (N, S, T), got \"big\""},
+      {"bad direction", edit("fix = \"z\"", "fix = \"x\""),
+       "key 'boundary[1].fix' (line 13): expected directions among"},
+      {"unknown boundary group", edit("[\"inner\", \"gap\", \"outer\"]", "\"ends\""),
+       "no curve or surface group \"ends\""},
+      {"pressure on an interface", edit("curves = \"bore\"", "curves = \"inner_face\""),
+       "lies between two cells"},
+      {"mismatched gap faces", edit("[\"inner_face\", \"outer_face\"]", "[\"bore\", \"outer_face\"]"),
+       "has no node of face \"outer_face\" within half its shortest edge"},
+      {"one face twice", edit("[\"inner_face\", \"outer_face\"]", "[\"bore\", \"bore\"]"),
+       "two different curve groups"},
+      {"TOML syntax", edit("nu = 0.3", "nu = = 0.3"), "scene: line 7, column"},
+      {"no load steps", good + "[steps]\ncount = 0\n",
+       "key 'steps.count' (line 21): expected a whole number of load steps"},
+      {"format in options", good + "[options]\nformat = \"saac\"\n", "key 'options.format' (line 21)"},
+      {"unknown option value", good + "[options]\ncontact = \"magic\"\n",
+       "option contact = 'magic': expected one of"},
+      {"five yield stresses", edit("nu = 0.3", "nu = 0.3\nyield = [1.0, 2.0, 3.0, 4.0, 5.0]"),
+       "key 'materials.steel.yield' (line 8): expected one yield stress"},
+      {"rate without step time", good + "[rate]\nb = 0.05\n", "give key 'steps.time'"},
+      {"boundary without a condition", edit("fix = \"z\"\n", ""), "needs fix, displacement or force"},
+      {"a direction twice", edit("fix = \"z\"", "fix = \"z\"\ndisplacement = {z = 1.0}"), "z is given twice"},
+      {"temperature value and points", good + "[temperature]\nvalue = 1.0\npoints = [[0.0, 0.0, 1.0]]\n",
+       "not both"},
+      {"a surface in two materials",
+       edit("surfaces = [\"inner\", \"outer\"]", "surfaces = [\"inner\", \"outer\", \"gap\"]"),
+       "two materials"},
+      {"quadratic cells",
+       edit(tubes, (fs::path(GAPFE_SOURCE_DIR) / "tests/data/tube_quad8_v41.msh").string()),
+       "scenes take linear cells"},
+      {"negative r in the mesh",
+       bad_mesh("\n2 1.1250000000000000e+02", "\n2 -1.1250000000000000e+02", "negative_r"),
+       "< 0: an axisymmetric section lies at r >= 0"},
+      {"truncated mesh", bad_mesh("$EndElements", "", "truncated"),
+       "truncated.msh: the file ends in $Elements"},
+      {"mesh without the named group", bad_mesh("\"bottom\"", "\"base\"", "renamed"),
+       "no curve or surface group \"bottom\""},
+  };
+  for (const Case& c : cases) {
+    CAPTURE(c.name);
+    const fs::path file = scratch("scene_bad") / "scene.toml";
+    std::ofstream(file) << c.scene;
+    std::ostringstream out, err;
+    const int code = gapfe::cli::main({"info", file.string()}, out, err);
+    CAPTURE(err.str());
+    CHECK(code != 0);
+    CHECK(err.str().find(c.expected) != std::string::npos);
+  }
+}
+#endif
+
+#ifdef GAPFE_HAS_SCENE
+TEST_CASE(
+    "[scene] A notched tube (triangles and quadrangles from Gmsh) converges to its Richardson extrapolate, "
+    "between the Lame tubes of its two outer radii") {
+  // tests/data/make_notched.py: 100 <= r <= 200, 0 <= z <= 100, a groove of radius 20 at z = 50 (root at
+  // r = 180); u_z = 0 at both ends, bore pressure 100, E = 200000, nu = 0.3. Quantity: u_r at (100, 50),
+  // under the groove, on meshes of size 8, 4, 2 (not nested: Gmsh remeshes each).
+  std::vector<double> u;
+  for (const int h : {8, 4, 2}) {
+    const fs::path scene = scratch("notched") / ("notched_h" + std::to_string(h) + ".toml");
+    std::ofstream(scene) << "title = \"notched tube\"\n[mesh]\nfile = \""
+                         << (kScenes / ("notched_tube_h" + std::to_string(h) + ".msh")).string()
+                         << "\"\n[options]\nelement = \"quad4\"\n[materials.steel]\nE = 200000.0\nnu = 0.3\n"
+                            "[[boundary]]\ngroups = [\"bottom\", \"top\"]\nfix = \"z\"\n"
+                            "[[load]]\ncurves = \"bore\"\npressure = 100.0\n";
+    const fs::path out = run_deck_file(scene, "notched_h" + std::to_string(h));
+    double found       = std::nan("");
+    for (const auto& row : read_csv(out / "nodes.csv"))
+      if (row.at("r") == 100 && row.at("z") == 50) found = row.at("u_r");
+    REQUIRE(std::isfinite(found));
+    u.push_back(found);
+  }
+  const double order  = std::log((u[0] - u[1]) / (u[1] - u[2])) / std::log(2.0);
+  const double limit  = u[2] + (u[2] - u[1]) / (std::pow(2.0, order) - 1);
+  const double intact = test::Lame{100, 200, 100, 200000, 0.3}.displacement(100);
+  const double thin   = test::Lame{100, 180, 100, 200000, 0.3}.displacement(100);
+  MESSAGE("u_r(100, 50) at h = 8, 4, 2: " << u[0] << ", " << u[1] << ", " << u[2] << "; observed order "
+                                          << order << ", extrapolate " << limit
+                                          << "; Lame b = 200: " << intact << ", b = 180: " << thin);
+  CHECK(order > 1.5);  // linear elements: displacements converge at second order
+  CHECK(order < 2.6);
+  CHECK(std::abs(u[2] - limit) / limit < 1e-3);  // the finest mesh's estimated error
+  CHECK(limit > intact);                         // the groove weakens the tube...
+  CHECK(limit < thin);                           // ...less than turning the whole tube down to its root
+}
+#endif

@@ -1,9 +1,11 @@
-// libFuzzer target for the input readers: read any bytes as a card deck and build its mesh and scene, and
-// as a Gmsh MSH file (mesh/gmsh_reader.hpp). The only acceptable outcomes are a result or an InputError /
-// SolveError; anything else (a crash, another exception, a sanitizer report, a hang) is a bug. CI runs it for
-// a bounded time over examples/decks and tests/data/*.msh.
+// libFuzzer target for the input readers: read any bytes as a card deck and build its mesh and scene, as a
+// Gmsh MSH file (mesh/gmsh_reader.hpp), and as a scene file (io/scene_file.hpp) on the test meshes of
+// tests/data/scenes (its [mesh] file names one of them). The only acceptable outcomes are a result or an
+// InputError / SolveError; anything else (a crash, another exception, a sanitizer report, a hang) is a bug.
+// CI runs it for a bounded time over examples/decks, tests/data/*.msh and tests/data/scenes/*.toml.
 //   cmake -S . -B build/fuzz -DCMAKE_CXX_COMPILER=clang++ -DGAPFE_FUZZ=ON ...;
 //   build/fuzz/tests/fuzz/fuzz_deck
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
@@ -11,6 +13,36 @@
 #include "gapfe/io/deck.hpp"
 #include "gapfe/io/deck_scene.hpp"
 #include "gapfe/mesh/gmsh_reader.hpp"
+#ifdef GAPFE_HAS_SCENE
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "gapfe/io/scene_file.hpp"
+
+namespace {
+
+/// The scene tests' meshes by file name, read once.
+std::string scene_mesh(const std::string& name) {
+  static const std::map<std::string, std::string> meshes = [] {
+    std::map<std::string, std::string> m;
+    for (const char* file : {"thick_tube.msh", "two_tubes.msh", "plastic_tube.msh"}) {
+      std::ifstream in(std::filesystem::path(GAPFE_SOURCE_DIR) / "tests/data/scenes" / file);
+      std::ostringstream s;
+      s << in.rdbuf();
+      m[file] = s.str();
+    }
+    return m;
+  }();
+  const auto it = meshes.find(name);
+  if (it == meshes.end()) throw gapfe::InputError("no mesh '" + name + "'");
+  return it->second;
+}
+
+}  // namespace
+#endif
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);
@@ -39,5 +71,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     } catch (const gapfe::InputError&) {
     }
   }
+#ifdef GAPFE_HAS_SCENE
+  if (size < (1u << 14)) {  // a scene: its deck and scene as the command would run them
+    try {
+      const gapfe::SceneModel m = gapfe::read_scene(text, scene_mesh);
+      for (int step = 1; step <= m.deck.steps() && step <= 3; ++step)
+        (void)gapfe::step_totals(m.deck, m.scene, step);
+      for (const auto& p : m.scene.gaps.pairs)
+        if (!std::isfinite(p.initial_gap) || !p.normal.allFinite()) __builtin_trap();
+    } catch (const gapfe::InputError&) {
+    } catch (const gapfe::SolveError&) {
+    }
+  }
+#endif
   return 0;
 }

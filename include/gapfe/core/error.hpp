@@ -1,6 +1,7 @@
 #pragma once
 // Errors: InputError for a model that cannot be built (says what and where), SolveError for a
 // system that cannot be solved (singular, not positive definite). Nothing returns NaN silently.
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -13,5 +14,16 @@ struct InputError : std::runtime_error {
 struct SolveError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+
+namespace detail {
+
+/// A number as error messages print it (%g: 6 significant digits).
+inline std::string number_text(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
+}  // namespace detail
 
 }  // namespace gapfe

@@ -446,6 +446,7 @@ class GapFile {
       s += !st.closed ? ",open," : !friction_ ? ",closed," : st.slipping ? ",slip," : ",stick,";
       detail::csv_number(s, st.gap), detail::csv_number(s, st.normal_force);
       detail::append_number(s, st.tangential_force.norm()), s += '\n';
+      if (e >= ne) continue;  // a scene's gap element without a cell (io/scene_file.hpp): no cell to mark
       if (state.values[e] == 0) state.values[e] = 1, size.values[e] = st.gap;
       size.values[e] = std::min(size.values[e], st.gap);
       if (st.closed) state.values[e] += p.pair == 0 ? 1 : 2;  // 1 none, 2 first, 3 second, 4 both

@@ -11,7 +11,6 @@
 // load goes with the square of their sum); the temperature field acts from the first step on.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <map>
 #include <string>
 #include <vector>
@@ -74,13 +73,15 @@ struct DeckScene {
   std::vector<int> element_of_cell, element_of_triangle;
 };
 
-namespace detail {
+/// A model as read: a card deck with its scene (build_scene), or the deck and scene a scene file stands for
+/// (io/scene_file.hpp), which everything after reading takes alike.
+struct SceneModel {
+  Deck deck;
+  DeckScene scene;
+  std::string mesh_file;  ///< a scene file's Gmsh mesh ([mesh] file, resolved by read_scene_file)
+};
 
-inline std::string number_text(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", v);
-  return text;
-}
+namespace detail {
 
 inline std::string ij_text(int i, int j) {
   return "(I = " + std::to_string(i) + ", J = " + std::to_string(j) + ")";
@@ -96,124 +97,23 @@ inline void add_edges(std::map<std::pair<int, int>, EdgeLoad>& acc, const std::v
   }
 }
 
-}  // namespace detail
-
-/// Build the scene (mesh, tags, conditions, temperatures, checked loads) of a read deck.
-inline DeckScene build_scene(const Deck& d) {
-  DeckScene s;
-  try {
-    s.grid = generate_ij_grid(d.mesh.max_i, d.mesh.max_j, d.segments);
-  } catch (const InputError& e) {
-    // The generator numbers segment cards from 1 in deck order: add their lines.
-    std::string msg       = e.what();
-    const std::string tag = "line segment card ";
-    if (const auto at = msg.find(tag); at != std::string::npos) {
-      const int k = std::atoi(msg.c_str() + at + tag.size());
-      if (k >= 1 && k <= static_cast<int>(d.segment_refs.size()))
-        throw InputError("DATA NO. 4 (" + msg.substr(at) + "), line " +
-                         std::to_string(d.segment_refs[k - 1].line));
-    }
-    throw InputError("DATA NO. 3-4 (mesh generation): " + msg);
-  }
-  const IJGrid& g = s.grid;
-  s.mesh          = g.to_mesh();
-  const int nn    = g.node_count();
-
-  // ---- every node must belong to an element
-  {
-    std::vector<char> used(static_cast<std::size_t>(nn), 0);
-    for (const auto& c : g.cells)
-      for (int k = 0; k < c.corners; ++k) used[c.node[k]] = 1;
-    for (int n = 0; n < nn; ++n)
-      if (!used[n])
-        throw InputError("mesh: node " + std::to_string(n + 1) + " " +
-                         detail::ij_text(g.node_ij[n][0], g.node_ij[n][1]) +
-                         " belongs to no element; check the line segment cards of its row");
-  }
-
-  // ---- materials
-  const bool saac = d.options.format != DeckFormat::elastic;
+/// The deck's materials as the scene's (in deck order) and the plasticity they ask for.
+inline void scene_materials(const Deck& d, DeckScene& s) {
   for (const auto& m : d.materials) {
     s.materials.push_back(Orthotropic{{}, m.table});
     if (m.yield && !m.yield->blank)
       s.needs.plasticity.push_back("material " + std::to_string(m.id) + " has a yield card (" +
                                    m.ref.where() + ")");
   }
+}
 
-  // ---- material blocks: cells whose corners all lie in the block's nodal rectangle
-  std::vector<int> cell_at(static_cast<std::size_t>(g.max_i) * g.max_j, -1);
-  for (std::size_t e = 0; e < g.cells.size(); ++e)
-    cell_at[static_cast<std::size_t>(g.cells[e].j - 1) * g.max_i + g.cells[e].i - 1] = static_cast<int>(e);
+/// What every scene gets once its mesh, cells (s.grid.cells), tags and conditions are in place, whether a
+/// deck's I-J grid or a scene file's Gmsh mesh made them: the temperature field, the edge loads checked
+/// against the cells, and SAAC3X's faces.
+inline void finish_scene(const Deck& d, DeckScene& s) {
+  const IJGrid& g      = s.grid;
+  const int nn         = g.node_count();
   const std::size_t ne = g.cells.size();
-  s.material_id.assign(ne, 0);
-  s.ijdir.assign(ne, 0);
-  std::vector<CellTag> tags(ne);
-  for (const auto& b : d.blocks) {
-    const DeckMaterial* mat = d.material(b.material);
-    if (!mat) {
-      std::string ids;
-      for (const auto& m : d.materials) ids += (ids.empty() ? "" : ", ") + std::to_string(m.id);
-      throw InputError(b.ref.where() + ", columns 1-5 (material number): material " +
-                       std::to_string(b.material) + " is not defined by a material card (defined: " + ids +
-                       ")");
-    }
-    const int index = static_cast<int>(mat - d.materials.data());
-    int selected    = 0;
-    for (int j = b.j1; j < b.j2; ++j)
-      for (int i = b.i1; i < b.i2; ++i) {
-        const int e = cell_at[static_cast<std::size_t>(j - 1) * g.max_i + i - 1];
-        if (e < 0) continue;
-        ++selected;
-        const double deg = kTwoPi / 360.0;
-        tags[e] = {index, helical_frame(b.beta_deg * deg, b.alpha_deg * deg, b.iang, b.nang, i - b.i1)};
-        s.material_id[e] = b.material;
-        s.ijdir[e]       = b.ijdir;
-      }
-    if (selected == 0)
-      throw InputError(b.ref.where() + ": the block I " + std::to_string(b.i1) + "-" + std::to_string(b.i2) +
-                       ", J " + std::to_string(b.j1) + "-" + std::to_string(b.j2) +
-                       " contains no element of the mesh");
-    if (saac && b.material == 2) s.needs.gaps.push_back("material 2 (gap elements) in " + b.ref.where());
-    if (b.alpha_deg != 0)
-      s.needs.theta.push_back("ALPHA = " + detail::number_text(b.alpha_deg) + " in " + b.ref.where());
-  }
-  if (!s.needs.gaps.empty()) {  // gap elements: node pairs from the grid (contact/gap_pairs.hpp)
-    std::vector<char> is_gap(ne, 0);
-    for (std::size_t e = 0; e < ne; ++e) is_gap[e] = s.material_id[e] == 2;
-    s.gap_material = static_cast<int>(d.material(2) - d.materials.data());
-    s.gaps         = grid_gap_pairs(g, is_gap, s.ijdir, d.options.gap_direction);
-  }
-  s.element_of_cell.resize(s.mesh.cells.size());
-  s.element_of_triangle.resize(s.mesh.triangles.size());
-  s.mesh.cell_tags.resize(s.mesh.cells.size());
-  s.mesh.triangle_tags.resize(s.mesh.triangles.size());
-  for (std::size_t e = 0; e < ne; ++e) {
-    const GridCell& c = g.cells[e];
-    if (s.material_id[e] == 0)
-      throw InputError("element " + std::to_string(e + 1) + " " + detail::ij_text(c.i, c.j) +
-                       " is in no material block (DATA NO. 6)");
-    if (c.corners == 4) {
-      s.mesh.cell_tags[c.group_index] = tags[e], s.element_of_cell[c.group_index] = static_cast<int>(e);
-    } else {
-      s.mesh.triangle_tags[c.group_index]  = tags[e],
-      s.element_of_triangle[c.group_index] = static_cast<int>(e);
-    }
-  }
-
-  // ---- boundary conditions on the grid points of each card's rectangle
-  for (const auto& b : d.boundary) {
-    int found = 0;
-    for (int j = b.j1; j <= b.j2; ++j)
-      for (int i = b.i1; i <= b.i2; ++i)
-        if (const int n = g.node(i, j); n >= 0) s.conditions.push_back({n, b.code, b.value}), ++found;
-    if (found == 0)
-      throw InputError(b.ref.where() + ": no grid point lies in I " + std::to_string(b.i1) + "-" +
-                       std::to_string(b.i2) + ", J " + std::to_string(b.j1) + "-" + std::to_string(b.j2));
-    if (b.value[2] != 0)
-      s.needs.theta.push_back(std::string("a theta ") + ((b.code & 4) ? "displacement" : "load") + " in " +
-                              b.ref.where());
-  }
-
   // ---- temperature: applied from the first step on
   s.reference_temperature = d.control.tref;
   if (!d.temperature_points.empty())
@@ -298,6 +198,122 @@ inline DeckScene build_scene(const Deck& d) {
                               " in DATA NO. 0 (SAAC3X)");
     }
   }
+}
+
+}  // namespace detail
+
+/// Build the scene (mesh, tags, conditions, temperatures, checked loads) of a read deck.
+inline DeckScene build_scene(const Deck& d) {
+  DeckScene s;
+  try {
+    s.grid = generate_ij_grid(d.mesh.max_i, d.mesh.max_j, d.segments);
+  } catch (const InputError& e) {
+    // The generator numbers segment cards from 1 in deck order: add their lines.
+    std::string msg       = e.what();
+    const std::string tag = "line segment card ";
+    if (const auto at = msg.find(tag); at != std::string::npos) {
+      const int k = std::atoi(msg.c_str() + at + tag.size());
+      if (k >= 1 && k <= static_cast<int>(d.segment_refs.size()))
+        throw InputError("DATA NO. 4 (" + msg.substr(at) + "), line " +
+                         std::to_string(d.segment_refs[k - 1].line));
+    }
+    throw InputError("DATA NO. 3-4 (mesh generation): " + msg);
+  }
+  const IJGrid& g = s.grid;
+  s.mesh          = g.to_mesh();
+  const int nn    = g.node_count();
+
+  // ---- every node must belong to an element
+  {
+    std::vector<char> used(static_cast<std::size_t>(nn), 0);
+    for (const auto& c : g.cells)
+      for (int k = 0; k < c.corners; ++k) used[c.node[k]] = 1;
+    for (int n = 0; n < nn; ++n)
+      if (!used[n])
+        throw InputError("mesh: node " + std::to_string(n + 1) + " " +
+                         detail::ij_text(g.node_ij[n][0], g.node_ij[n][1]) +
+                         " belongs to no element; check the line segment cards of its row");
+  }
+
+  // ---- materials
+  const bool saac = d.options.format != DeckFormat::elastic;
+  detail::scene_materials(d, s);
+
+  // ---- material blocks: cells whose corners all lie in the block's nodal rectangle
+  std::vector<int> cell_at(static_cast<std::size_t>(g.max_i) * g.max_j, -1);
+  for (std::size_t e = 0; e < g.cells.size(); ++e)
+    cell_at[static_cast<std::size_t>(g.cells[e].j - 1) * g.max_i + g.cells[e].i - 1] = static_cast<int>(e);
+  const std::size_t ne = g.cells.size();
+  s.material_id.assign(ne, 0);
+  s.ijdir.assign(ne, 0);
+  std::vector<CellTag> tags(ne);
+  for (const auto& b : d.blocks) {
+    const DeckMaterial* mat = d.material(b.material);
+    if (!mat) {
+      std::string ids;
+      for (const auto& m : d.materials) ids += (ids.empty() ? "" : ", ") + std::to_string(m.id);
+      throw InputError(b.ref.where() + ", columns 1-5 (material number): material " +
+                       std::to_string(b.material) + " is not defined by a material card (defined: " + ids +
+                       ")");
+    }
+    const int index = static_cast<int>(mat - d.materials.data());
+    int selected    = 0;
+    for (int j = b.j1; j < b.j2; ++j)
+      for (int i = b.i1; i < b.i2; ++i) {
+        const int e = cell_at[static_cast<std::size_t>(j - 1) * g.max_i + i - 1];
+        if (e < 0) continue;
+        ++selected;
+        const double deg = kTwoPi / 360.0;
+        tags[e] = {index, helical_frame(b.beta_deg * deg, b.alpha_deg * deg, b.iang, b.nang, i - b.i1)};
+        s.material_id[e] = b.material;
+        s.ijdir[e]       = b.ijdir;
+      }
+    if (selected == 0)
+      throw InputError(b.ref.where() + ": the block I " + std::to_string(b.i1) + "-" + std::to_string(b.i2) +
+                       ", J " + std::to_string(b.j1) + "-" + std::to_string(b.j2) +
+                       " contains no element of the mesh");
+    if (saac && b.material == 2) s.needs.gaps.push_back("material 2 (gap elements) in " + b.ref.where());
+    if (b.alpha_deg != 0)
+      s.needs.theta.push_back("ALPHA = " + detail::number_text(b.alpha_deg) + " in " + b.ref.where());
+  }
+  if (!s.needs.gaps.empty()) {  // gap elements: node pairs from the grid (contact/gap_pairs.hpp)
+    std::vector<char> is_gap(ne, 0);
+    for (std::size_t e = 0; e < ne; ++e) is_gap[e] = s.material_id[e] == 2;
+    s.gap_material = static_cast<int>(d.material(2) - d.materials.data());
+    s.gaps         = grid_gap_pairs(g, is_gap, s.ijdir, d.options.gap_direction);
+  }
+  s.element_of_cell.resize(s.mesh.cells.size());
+  s.element_of_triangle.resize(s.mesh.triangles.size());
+  s.mesh.cell_tags.resize(s.mesh.cells.size());
+  s.mesh.triangle_tags.resize(s.mesh.triangles.size());
+  for (std::size_t e = 0; e < ne; ++e) {
+    const GridCell& c = g.cells[e];
+    if (s.material_id[e] == 0)
+      throw InputError("element " + std::to_string(e + 1) + " " + detail::ij_text(c.i, c.j) +
+                       " is in no material block (DATA NO. 6)");
+    if (c.corners == 4) {
+      s.mesh.cell_tags[c.group_index] = tags[e], s.element_of_cell[c.group_index] = static_cast<int>(e);
+    } else {
+      s.mesh.triangle_tags[c.group_index]  = tags[e],
+      s.element_of_triangle[c.group_index] = static_cast<int>(e);
+    }
+  }
+
+  // ---- boundary conditions on the grid points of each card's rectangle
+  for (const auto& b : d.boundary) {
+    int found = 0;
+    for (int j = b.j1; j <= b.j2; ++j)
+      for (int i = b.i1; i <= b.i2; ++i)
+        if (const int n = g.node(i, j); n >= 0) s.conditions.push_back({n, b.code, b.value}), ++found;
+    if (found == 0)
+      throw InputError(b.ref.where() + ": no grid point lies in I " + std::to_string(b.i1) + "-" +
+                       std::to_string(b.i2) + ", J " + std::to_string(b.j1) + "-" + std::to_string(b.j2));
+    if (b.value[2] != 0)
+      s.needs.theta.push_back(std::string("a theta ") + ((b.code & 4) ? "displacement" : "load") + " in " +
+                              b.ref.where());
+  }
+
+  detail::finish_scene(d, s);
   return s;
 }
 
