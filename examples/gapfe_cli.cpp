@@ -203,8 +203,12 @@ void describe_scene(std::ostream& out, const SceneModel& m) {
   out << "scene: " << d.title << "\n"
       << "  element " << d.options.element << "; " << d.materials.size() << " material(s)"
       << (d.rate ? "; rate card (saac3)" : "") << "\n"
-      << "  mesh " << m.mesh_file << ": " << s.grid.node_count() << " nodes, " << s.mesh.cells.size()
-      << " quadrilaterals, " << s.mesh.triangles.size() << " triangles\n"
+      << "  mesh "
+      << (m.mesh_file.empty() ? "of the I-J generator (" + std::to_string(s.grid.max_i) + " x " +
+                                    std::to_string(s.grid.max_j) + ")"
+                              : m.mesh_file)
+      << ": " << s.grid.node_count() << " nodes, " << s.mesh.cells.size() << " quadrilaterals, "
+      << s.mesh.triangles.size() << " triangles\n"
       << "  " << s.conditions.size() << " node condition(s), " << d.control.numpc << " pressure, "
       << d.control.numsc << " shear and " << d.control.numst << " transverse shear edge(s), " << d.steps()
       << " load step(s)";

@@ -1071,6 +1071,104 @@ TEST_CASE(
     if (row.at("step") == 15 && row.at("element") == 40) CHECK(row.at("eqps") == 0);
   }
 }
+TEST_CASE(
+    "[scene] On the I-J generator: the thick tube and the press fit (held pressure, pushed top, Coulomb "
+    "contact "
+    "keys) write the same files as their decks, byte for byte") {
+  // The same generator, cards and loads in the same order: nothing may differ, not even the last bit.
+  struct Pair {
+    fs::path deck, scene;
+    std::vector<const char*> tables;
+  };
+  for (const Pair& p : {Pair{kExamples / "thick_tube.deck",
+                             kScenes / "thick_tube_grid.toml",
+                             {"nodes.csv", "elements.csv", "reactions.csv"}},
+                        Pair{kExamples / "press_fit.deck",
+                             fs::path(GAPFE_SOURCE_DIR) / "examples" / "scenes" / "press_fit.toml",
+                             {"nodes.csv", "elements.csv", "reactions.csv", "gaps.csv"}}}) {
+    const std::string name = p.scene.filename().string();
+    CAPTURE(name);
+    const fs::path deck  = run_deck_file(p.deck, "grid_deck_" + name);
+    const fs::path scene = run_deck_file(p.scene, "grid_scene_" + name);
+    for (const char* table : p.tables) {
+      CAPTURE(table);
+      CHECK(read_text(deck / table) == read_text(scene / table));
+    }
+  }
+  // The scene's own reactions against Coulomb's push-out force F = mu p 2 pi b L (the press-fit deck's test:
+  // p from the shrink fit of the hub under q, q_c the pressure that closes the radial clearance w): the
+  // shaft's support carries F once every pair slips.
+  const double a = 12.5, b = 25, w = 0.001, c = 50, L = 50, E = 200000, q = 75, mu = 0.15;
+  const double qc      = w * E * (c * c - b * b) / (2 * b * c * c);
+  const double F       = mu * (q - qc) * c * c * (b * b - a * a) / (b * b * (c * c - a * a)) * kTwoPi * b * L;
+  const auto reactions = read_csv(scratch("grid_scene_press_fit.toml") / "reactions.csv");
+  double shaft         = 0;
+  for (const auto& row : reactions)
+    if (row.at("inc") == reactions.back().at("inc") && row.at("r") < b + w / 2) shaft += row.at("R_z");
+  MESSAGE("press fit scene: the shaft's support carries " << shaft << " N, closed form " << F);
+  CHECK(std::abs(shaft - F) < 0.01 * F);
+}
+
+TEST_CASE(
+    "[scene] Load histories (amplitude): pressure, a prescribed displacement and spin follow their factors") {
+  const std::string tube = read_text(kScenes / "thick_tube_grid.toml");
+  const auto with        = [&](const std::string& name, const std::string& from, const std::string& to,
+                        const std::string& extra) {
+    std::string s = tube;
+    const auto at = s.find(from);
+    REQUIRE(at != std::string::npos);
+    const fs::path scene = scratch("amplitude") / (name + ".toml");
+    std::ofstream(scene) << s.replace(at, from.size(), to) << extra;
+    return read_csv(run_deck_file(scene, "amplitude_" + name) / "nodes.csv");
+  };
+  // u_r at (r, z = 0) after each step.
+  const auto at_step = [](const std::vector<std::map<std::string, double>>& rows, double r) {
+    std::map<int, double> u;
+    for (const auto& row : rows)
+      if (row.at("r") == r && row.at("z") == 0) u[static_cast<int>(row.at("step"))] = row.at("u_r");
+    return u;
+  };
+  const test::Lame lame{100, 200, 100, 200000, 0.3};
+  {  // pressure: factors 0.5, 1, 0.25, -0.5 (linear to 1 at step 2, then to -0.5 at step 4)
+    const auto u =
+        at_step(with("pressure", "pressure = 100.0", "pressure = 100.0\namplitude = [[2, 1.0], [4, -0.5]]",
+                     "[steps]\ncount = 4\n"),
+                100);
+    const std::array<double, 4> factor{0.5, 1.0, 0.25, -0.5};
+    REQUIRE(u.size() == 4);
+    for (int k = 1; k <= 4; ++k) {
+      CAPTURE(k);
+      CHECK(test::rel(u.at(k), factor[k - 1] * lame.displacement(100)) < 5e-3);  // Lame, as the deck's test
+      CHECK(std::abs(u.at(k) - factor[k - 1] * u.at(2)) <= 1e-12 * std::abs(u.at(2)));  // linear: exact
+    }
+  }
+  {  // a prescribed bore displacement 0.05 with factors 1, 0, -1: the bore follows exactly, the rim in ratio
+    const auto rows = with("displacement", "[[load]]\ncurves = \"bore\"\npressure = 100.0\n",
+                           "[[boundary]]\ngroups = \"bore\"\ndisplacement = { r = 0.05 }\n"
+                           "amplitude = [[1, 1.0], [3, -1.0]]\n",
+                           "[steps]\ncount = 3\n");
+    const auto bore = at_step(rows, 100), rim = at_step(rows, 200);
+    const std::array<double, 3> factor{1.0, 0.0, -1.0};
+    REQUIRE(bore.size() == 3);
+    for (int k = 1; k <= 3; ++k) {
+      CAPTURE(k);
+      CHECK(std::abs(bore.at(k) - 0.05 * factor[k - 1]) <= 1e-15);
+      CHECK(std::abs(rim.at(k) - factor[k - 1] * rim.at(1)) <= 1e-12 * std::abs(rim.at(1)));
+    }
+    CHECK(rim.at(1) > 0);
+    CHECK(rim.at(1) < 0.05);  // a tube opened at its bore opens less at its rim (u ~ A r + B / r)
+  }
+  {  // spin: omega 1000 then 500: the centrifugal load goes with omega^2, so a quarter
+    const auto u = at_step(with("spin", "[[load]]\ncurves = \"bore\"\npressure = 100.0\n",
+                                "[inertia]\nangular_velocity = 1000.0\namplitude = [[1, 1.0], [2, 0.5]]\n",
+                                "[steps]\ncount = 2\n"),
+                           200);
+    REQUIRE(u.size() == 2);
+    CHECK(u.at(1) > 0);
+    CHECK(std::abs(u.at(2) - 0.25 * u.at(1)) <= 1e-12 * u.at(1));
+  }
+}
+
 TEST_CASE("[scene] Malformed scene and mesh files: a clear error naming the key or line, a non-zero exit") {
   const std::string tubes = (kScenes / "two_tubes.msh").string();
   const std::string thick = (kScenes / "thick_tube.msh").string();
@@ -1104,7 +1202,7 @@ TEST_CASE("[scene] Malformed scene and mesh files: a clear error naming the key 
   struct Case {
     std::string name, scene, expected;
   };
-  const std::vector<Case> cases{
+  std::vector<Case> cases{
       {"unknown top-level key", "titel = \"x\"\n" + good, "unknown key 'titel' (line 1)"},
       {"unknown material key", edit("E = 200000.0", "Ee = 200000.0"),
        "unknown key 'materials.steel.Ee' (line 6)"},
@@ -1154,7 +1252,60 @@ TEST_CASE("[scene] Malformed scene and mesh files: a clear error naming the key 
        "truncated.msh: the file ends in $Elements"},
       {"mesh without the named group", bad_mesh("\"bottom\"", "\"base\"", "renamed"),
        "no curve or surface group \"bottom\""},
+      // Load histories and the contact keys.
+      {"amplitude past the last step", edit("pressure = 100.0", "pressure = 100.0\namplitude = [[2, 1.0]]"),
+       "key 'load[1].amplitude' (line 17): expected [[step, factor], ...]: whole steps from 0 to the last, "
+       "1"},
+      {"amplitude steps not increasing",
+       good + "[steps]\ncount = 4\n" +
+           "[inertia]\nangular_velocity = 1.0\namplitude = [[2, 1.0], [1, 0.0]]\n",
+       "key 'inertia.amplitude' (line 24): expected [[step, factor]"},
+      {"contact policy against [options]",
+       edit("soft = \"gap\"", "soft = \"gap\"\npolicy = \"active-set\"") + "[options]\ncontact = \"saac\"\n",
+       "key 'contact[1].policy' (line 20): contact = 'active-set', but key 'options.contact' (line 22) set "
+       "it to "
+       "'saac'; a run has one contact"},
+      {"unknown friction model", edit("soft = \"gap\"", "soft = \"gap\"\nslip = \"sticky\""),
+       "key 'contact[1].slip' (line 20): option slip = 'sticky': expected one of"},
   };
+  // The I-J generator's scenes: a valid one (the thick tube of tests/data/scenes), each case edits it once.
+  const std::string grid = read_text(kScenes / "thick_tube_grid.toml");
+  const auto edit_grid   = [&](const std::string& from, const std::string& to) {
+    std::string s = grid;
+    const auto at = s.find(from);
+    REQUIRE(at != std::string::npos);
+    return s.replace(at, from.size(), to);
+  };
+  const std::vector<Case> grid_cases{
+      {"grid and file", edit_grid("grid = [9, 3]", "grid = [9, 3]\nfile = \"x.msh\""),
+       "give either file (a Gmsh mesh) or grid with segments"},
+      {"grid of zero rows", edit_grid("grid = [9, 3]", "grid = [9, 0]"),
+       "key 'mesh.grid' (line 5): expected [MAXI, MAXJ], whole numbers >= 1"},
+      {"segment type", edit_grid("[[mesh.segments]]", "[[mesh.segments]]\ntype = \"spline\""),
+       "key 'mesh.segments[1].type' (line 8): expected \"point\", \"line\""},
+      {"segment point outside the grid", edit_grid("[9, 1, 200.0, 0.0]]", "[10, 1, 200.0, 0.0]]"),
+       "key 'mesh.segments[1].points' (line 8): expected 2 point(s) [I, J, r, z] (a line) with I within "
+       "1..9"},
+      {"arc without its three points", edit_grid("[[mesh.segments]]", "[[mesh.segments]]\ntype = \"arc\""),
+       "expected 3 point(s) [I, J, r, z] (a arc)"},
+      {"segment the generator refuses", edit_grid("[9, 1, 200.0, 0.0]]", "[8, 3, 200.0, 0.0]]"),
+       "[mesh.segments[1]] (line 7): line segment card 1: from (1, 1) to (8, 3) is neither a row"},
+      {"a curve used as a surface", edit_grid("[materials.steel]", "[materials.steel]\nsurfaces = \"bore\""),
+       "key 'materials.steel.surfaces' (line 23): the group \"bore\" is one grid line (I = 1, J = 1-3), a "
+       "curve"},
+      {"unknown group", edit_grid("curves = \"bore\"", "curves = \"bores\""),
+       "the grid has no group \"bores\" (its [mesh.groups] are \"bore\", \"bottom\", \"steel\", \"top\")"},
+      {"a surface used as a curve", edit_grid("curves = \"bore\"", "curves = \"steel\""),
+       "the group \"steel\" (I = 1-9, J = 1-3) spans a range of both I and J, a surface"},
+      {"group index outside the grid",
+       edit_grid("bore = { i = 1, j = [1, 3] }", "bore = { i = 1, j = [1, 4] }"),
+       "key 'mesh.groups.bore.j' (line 20): expected one index or [first, last] within 1..MAXJ = 3"},
+      {"group with an unknown key", edit_grid("bore = { i = 1, j = [1, 3] }", "bore = { i = 1, k = [1, 3] }"),
+       "unknown key 'mesh.groups.bore.k' (line 20)"},
+      {"segments with a Gmsh file", edit(tubes + "\"", tubes + "\"\nsegments = []"),
+       "key 'mesh.segments' (line 4): expected no segments with a Gmsh file"},
+  };
+  cases.insert(cases.end(), grid_cases.begin(), grid_cases.end());
   for (const Case& c : cases) {
     CAPTURE(c.name);
     const fs::path file = scratch("scene_bad") / "scene.toml";

@@ -74,7 +74,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 #ifdef GAPFE_HAS_SCENE
   if (size < (1u << 14)) {  // a scene: its deck and scene as the command would run them
     try {
-      const gapfe::SceneModel m = gapfe::read_scene(text, scene_mesh);
+      const gapfe::SceneModel m = gapfe::read_scene(text, scene_mesh, {}, limits);
       for (int step = 1; step <= m.deck.steps() && step <= 3; ++step)
         (void)gapfe::step_totals(m.deck, m.scene, step);
       for (const auto& p : m.scene.gaps.pairs)

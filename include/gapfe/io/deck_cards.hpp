@@ -4,6 +4,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gapfe/io/deck_options.hpp"
@@ -61,14 +62,36 @@ struct DeckMaterial {  // Data 10 (+ 11)
   CardRef ref;
 };
 
+/// A load history, which a scene file can give (issue 16) and a deck cannot: the factor on a load's value at
+/// the end of each load step, linear between (step, factor) points at whole steps, 0 at step 0 unless a
+/// point says otherwise, and the last point's factor after it. Within a step the load moves linearly, as
+/// every load does (io/deck_scene.hpp, interpolate).
+struct Amplitude {
+  std::vector<std::pair<int, double>> points;  ///< (step, factor), steps increasing, from 0
+
+  double at(int step) const {
+    std::pair<int, double> before{0, 0.0};
+    for (const auto& p : points) {
+      if (p.first >= step)
+        return p.first == before.first ? p.second
+                                       : before.second + (p.second - before.second) * (step - before.first) /
+                                                             static_cast<double>(p.first - before.first);
+      before = p;
+    }
+    return before.second;
+  }
+};
+
 struct EdgeCard {              // Data 13-15
   int node_m = 0, node_n = 0;  ///< 1-based, as on the card
-  double value = 0;
+  double value = 0;            ///< the increment of each step; with an amplitude, the value it multiplies
   CardRef ref;
+  int amplitude = -1;  ///< index into Deck::amplitudes (scene files); -1: a deck's card
 };
 
 struct LoadBlock {  // Data 12-15 of one load step
   std::optional<InertiaLoad> inertia;
+  int inertia_amplitude = -1;  ///< as EdgeCard::amplitude, for the inertia card
   std::vector<EdgeCard> pressure, shear, transverse_shear;
 };
 
@@ -88,6 +111,10 @@ struct Deck {
   std::optional<double> constant_temperature;
   std::vector<DeckMaterial> materials;
   std::vector<LoadBlock> blocks_read;  ///< the blocks as read (one per step, or the first only)
+  /// Load histories of a scene file (EdgeCard::amplitude, LoadBlock::inertia_amplitude,
+  /// DeckScene::condition_amplitude); a deck has none. They act only in a block given once (INCI = 0 for
+  /// inertia, INCF = 0 for surface loads), which is how a scene gives its loads.
+  std::vector<Amplitude> amplitudes;
 
   int steps() const { return control.nlinc; }
   /// Whether the law is rate dependent (SAAC3): a rate card (Data 0) with b != 0.

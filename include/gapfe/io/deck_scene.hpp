@@ -62,7 +62,10 @@ struct DeckScene {
   std::vector<int> ijdir;                  ///< per grid cell: IJDIR of its block (gap direction)
   std::vector<Orthotropic> materials;      ///< in deck order; CellTag::material indexes this
   std::vector<NodalCondition> conditions;  ///< one step's BC values (0-based nodes), later cards last
-  VecX temperature;                        ///< nodal [deg]; empty: TREF everywhere
+  /// Per condition (parallel to `conditions`, or empty): an index into Deck::amplitudes, whose factor then
+  /// multiplies the condition's values in place of the step count (a scene file's load history); -1: none.
+  std::vector<int> condition_amplitude;
+  VecX temperature;  ///< nodal [deg]; empty: TREF everywhere
   double reference_temperature = 0;
   DeckNeeds needs;
   GapLayout gaps;         ///< pairs of the material-2 elements (saac formats), soft corners
@@ -87,13 +90,15 @@ inline std::string ij_text(int i, int j) {
   return "(I = " + std::to_string(i) + ", J = " + std::to_string(j) + ")";
 }
 
-/// Per-step edge loads keyed by (M, N) so that repeated cards merge; values accumulate.
-inline void add_edges(std::map<std::pair<int, int>, EdgeLoad>& acc, const std::vector<EdgeCard>& cards,
-                      int kind, double scale) {
+/// Per-step edge loads keyed by (M, N) so that repeated cards merge; values accumulate, each times
+/// factor(card).
+template <class Factor>
+void add_edges(std::map<std::pair<int, int>, EdgeLoad>& acc, const std::vector<EdgeCard>& cards, int kind,
+               const Factor& factor) {
   for (const auto& c : cards) {
     EdgeLoad& l = acc[{c.node_m - 1, c.node_n - 1}];
     l.node_m = c.node_m - 1, l.node_n = c.node_n - 1;
-    (kind == 0 ? l.pressure : kind == 1 ? l.shear : l.transverse_shear) += scale * c.value;
+    (kind == 0 ? l.pressure : kind == 1 ? l.shear : l.transverse_shear) += factor(c) * c.value;
   }
 }
 
@@ -202,11 +207,31 @@ inline void finish_scene(const Deck& d, DeckScene& s) {
 
 }  // namespace detail
 
+namespace detail {
+
+/// A generated I-J grid as the scene's grid and mesh, every node checked to belong to an element.
+inline void grid_scene_mesh(IJGrid&& grid, DeckScene& s) {
+  s.grid          = std::move(grid);
+  const IJGrid& g = s.grid;
+  s.mesh          = g.to_mesh();
+  std::vector<char> used(static_cast<std::size_t>(g.node_count()), 0);
+  for (const auto& c : g.cells)
+    for (int k = 0; k < c.corners; ++k) used[c.node[k]] = 1;
+  for (int n = 0; n < g.node_count(); ++n)
+    if (!used[n])
+      throw InputError("mesh: node " + std::to_string(n + 1) + " " +
+                       ij_text(g.node_ij[n][0], g.node_ij[n][1]) +
+                       " belongs to no element; check the line segment cards of its row");
+}
+
+}  // namespace detail
+
 /// Build the scene (mesh, tags, conditions, temperatures, checked loads) of a read deck.
 inline DeckScene build_scene(const Deck& d) {
   DeckScene s;
+  IJGrid grid;
   try {
-    s.grid = generate_ij_grid(d.mesh.max_i, d.mesh.max_j, d.segments);
+    grid = generate_ij_grid(d.mesh.max_i, d.mesh.max_j, d.segments);
   } catch (const InputError& e) {
     // The generator numbers segment cards from 1 in deck order: add their lines.
     std::string msg       = e.what();
@@ -219,21 +244,8 @@ inline DeckScene build_scene(const Deck& d) {
     }
     throw InputError("DATA NO. 3-4 (mesh generation): " + msg);
   }
+  detail::grid_scene_mesh(std::move(grid), s);
   const IJGrid& g = s.grid;
-  s.mesh          = g.to_mesh();
-  const int nn    = g.node_count();
-
-  // ---- every node must belong to an element
-  {
-    std::vector<char> used(static_cast<std::size_t>(nn), 0);
-    for (const auto& c : g.cells)
-      for (int k = 0; k < c.corners; ++k) used[c.node[k]] = 1;
-    for (int n = 0; n < nn; ++n)
-      if (!used[n])
-        throw InputError("mesh: node " + std::to_string(n + 1) + " " +
-                         detail::ij_text(g.node_ij[n][0], g.node_ij[n][1]) +
-                         " belongs to no element; check the line segment cards of its row");
-  }
 
   // ---- materials
   const bool saac = d.options.format != DeckFormat::elastic;
@@ -346,27 +358,37 @@ inline StepTotals interpolate(const StepTotals& a, const StepTotals& b, double f
   return t;
 }
 
-/// Loads in force after step `step` (1-based): the sum of the increments of steps 1..step.
+/// Loads in force after step `step` (1-based): the sum of the increments of steps 1..step, or where a scene
+/// file gave a load history (Deck::amplitudes), its factor at `step` times the load's value.
 inline StepTotals step_totals(const Deck& d, const DeckScene& s, int step) {
-  StepTotals t;
-  t.conditions = s.conditions;
-  for (auto& c : t.conditions)
-    for (double& v : c.value) v *= step;
-  std::map<std::pair<int, int>, EdgeLoad> edges;
   // A block given once (INCI = 0, INCF = 0) repeats: its total is `step` times the increment.
   const int inertia_blocks = d.control.inci == 0 ? 1 : step, surface_blocks = d.control.incf == 0 ? 1 : step;
   const double inertia_scale = d.control.inci == 0 ? step : 1, surface_scale = d.control.incf == 0 ? step : 1;
+  const auto factor = [&](int amplitude, double scale) {
+    return amplitude < 0 ? scale : d.amplitudes[static_cast<std::size_t>(amplitude)].at(step);
+  };
+  StepTotals t;
+  t.conditions = s.conditions;
+  for (std::size_t k = 0; k < t.conditions.size(); ++k) {
+    const double f = factor(s.condition_amplitude.empty() ? -1 : s.condition_amplitude[k], step);
+    for (double& v : t.conditions[k].value) v *= f;
+  }
+  std::map<std::pair<int, int>, EdgeLoad> edges;
   for (int k = 1; k <= inertia_blocks; ++k) {
     const InertiaLoad in = d.inertia(k);
-    t.inertia.axial_acceleration += inertia_scale * in.axial_acceleration;
-    t.inertia.angular_velocity += inertia_scale * in.angular_velocity;
-    t.inertia.angular_acceleration += inertia_scale * in.angular_acceleration;
+    const int amplitude =
+        d.control.inert != 0 && d.control.inci == 0 ? d.blocks_read[0].inertia_amplitude : -1;
+    const double f = factor(amplitude, inertia_scale);
+    t.inertia.axial_acceleration += f * in.axial_acceleration;
+    t.inertia.angular_velocity += f * in.angular_velocity;
+    t.inertia.angular_acceleration += f * in.angular_acceleration;
   }
+  const auto card_factor = [&](const EdgeCard& c) { return factor(c.amplitude, surface_scale); };
   for (int k = 1; k <= surface_blocks; ++k) {
     const LoadBlock& b = d.surface(k);
-    detail::add_edges(edges, b.pressure, 0, surface_scale);
-    detail::add_edges(edges, b.shear, 1, surface_scale);
-    detail::add_edges(edges, b.transverse_shear, 2, surface_scale);
+    detail::add_edges(edges, b.pressure, 0, card_factor);
+    detail::add_edges(edges, b.shear, 1, card_factor);
+    detail::add_edges(edges, b.transverse_shear, 2, card_factor);
   }
   if (const StrainRateTest& x = s.strain_rate_test; x.active()) {
     // The faces' conditions come last, so they win (dof_map.hpp); they keep the deck's own components of

@@ -1,16 +1,18 @@
 #pragma once
-// The scene file (issue 16): a model in TOML, by name instead of by card column, on a Gmsh mesh. It says
-// what a deck says (io/deck.hpp): materials by physical surface, conditions and loads by physical curve or
-// surface, load steps, temperatures, inertia, the rate card, contact between two facing curves, and the
-// deck options. read_scene turns it into the Deck and DeckScene a deck becomes (with the Gmsh mesh in
-// place of the I-J grid), so everything after it (run/deck_run.hpp, the command, io/deck_output.hpp) is
-// one path for decks and scenes, and one model given both ways gives the same answers.
+// The scene file (issue 16): a model in TOML, by name instead of by card column, on a Gmsh mesh or on the
+// seed's I-J grid. It says what a deck says (io/deck.hpp): materials by surface, conditions and loads by
+// curve or surface, load steps and their histories, temperatures, inertia, the rate card, contact between
+// two facing curves, and the deck options. read_scene turns it into the Deck and DeckScene a deck becomes,
+// so everything after it (run/deck_run.hpp, the command, io/deck_output.hpp) is one path for decks and
+// scenes, and one model given both ways gives the same answers.
 //
 // Needs toml++ (Debian's libtomlplusplus-dev; CMake target gapfe::scene), so gapfe.hpp does not include
 // it. The keys, their units and defaults are in README "Scene files" and examples/scenes/; in short:
 //
 //   title = "..."
-//   [mesh]        file = "part.msh"                       (relative to the scene file)
+//   [mesh]        file = "part.msh" (relative to the scene file; physical groups name its parts), or
+//                 grid = [MAXI, MAXJ] with [[mesh.segments]] type, points = [[I, J, r, z], ...], centre and
+//                 [mesh.groups] NAME = {i = [I1, I2], j = [J1, J2]} (io/scene_mesh.hpp)
 //   [options]     any deck option (io/deck_options.hpp) except format, which the scene implies
 //   [steps]       count = N (load steps, default 1); time = dt (a step's duration, with [rate])
 //   [materials.NAME]  surfaces = [...] (default [NAME]); number = k (its number in the output, default
@@ -24,18 +26,23 @@
 //   [inertia]     axial_acceleration, angular_velocity, angular_acceleration
 //   [temperature] reference = T_ref; value = T or points = [[r, z, T], ...]
 //   [rate]        b, transition_rate, strain_rate, shear_step (the seed's card 0)
-//   [[contact]]   faces = ["A", "B"] (face A's side first: the gap closes from A towards B); soft = "S"
+//   [[contact]]   faces = ["A", "B"] (face A's side first: the gap closes from A towards B); soft = "S";
+//                 policy, friction, slip, penalty, events (the deck options contact, friction, slip,
+//                 gap_penalty, events: one value per run)
 //
 // Loads, displacements and angular velocities are the totals at the end of the last step, reached in
-// equal increments (a deck with INCI = INCF = 0); a deck's step-by-step load blocks have no scene form yet.
+// equal increments (a deck with INCI = INCF = 0), unless the table has `amplitude = [[step, factor], ...]`:
+// then the value times the factor at each step's end (Amplitude: linear between whole steps, 0 at step 0
+// unless given, held after the last point), which says what a deck's per-step load blocks say and also
+// lets prescribed displacements follow a history.
 //
 // Gap pairs (contact): every node of face A pairs with the node of face B nearest to it, which must be
-// closer than half of each face's shortest edge at those nodes and must itself have A's node as its
-// nearest; each edge of face A with its two partners is one gap element (corners in the seed's order
-// IX1..IX4 = a, A(a), A(b), b, gap direction 1: seed Eq. 1-3 unchanged), numbered after the mesh's cells
-// unless the soft surface S has a cell with those four corners (then it is that cell, soft while open,
-// as a deck's material-2 element). Unequal node counts or a node without a partner is an error naming
-// the node, its position and the nearest candidate.
+// closer than half of each face's shortest edge at those nodes and face no other node of A; each edge of
+// face A with its two partners is one gap element (corners in the seed's order IX1..IX4 = a, A(a), A(b), b,
+// gap direction 1: seed Eq. 1-3 unchanged), numbered after the mesh's cells unless the soft surface S has a
+// cell with those four corners (then it is that cell, soft while open, as a deck's material-2 element).
+// Unequal node counts or a node without a partner is an error naming the node, its position and the
+// nearest candidate (contact/facing_faces.hpp).
 //
 // Errors are InputErrors naming the key, its line in the scene file and what was expected.
 #include <algorithm>
@@ -48,6 +55,7 @@
 #include <iomanip>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -59,6 +67,7 @@
 #include "gapfe/contact/gap_pairs.hpp"
 #include "gapfe/io/deck.hpp"
 #include "gapfe/io/deck_scene.hpp"
+#include "gapfe/io/scene_mesh.hpp"
 #include "gapfe/io/scene_table.hpp"
 #include "gapfe/material/orientation.hpp"
 #include "gapfe/mesh/gmsh_reader.hpp"
@@ -69,54 +78,6 @@ namespace gapfe {
 using SceneMeshLoader = std::function<std::string(const std::string& name)>;
 
 namespace detail {
-
-/// The physical groups of a Gmsh mesh by name: a surface's cells, a curve's edges, and either's nodes.
-struct SceneGroups {
-  const GmshMesh& mesh;
-
-  std::vector<int> surface_cells(const std::string& name) const {
-    const int tag = mesh.physical(2, name);
-    std::vector<int> out;
-    for (std::size_t e = 0; e < mesh.cells.size(); ++e)
-      if (mesh.cells[e].physical == tag) out.push_back(static_cast<int>(e));
-    if (out.empty()) throw InputError("the surface group \"" + name + "\" has no cells in the mesh");
-    return out;
-  }
-  std::vector<int> curve_edges(const std::string& name) const {
-    const int tag = mesh.physical(1, name);
-    std::vector<int> out;
-    for (std::size_t e = 0; e < mesh.edges.size(); ++e)
-      if (mesh.edges[e].physical == tag) out.push_back(static_cast<int>(e));
-    if (out.empty()) throw InputError("the curve group \"" + name + "\" has no line elements in the mesh");
-    return out;
-  }
-  bool has(int dim, const std::string& name) const {
-    for (const auto& [key, n] : mesh.physical_names)
-      if (key.first == dim && n == name) return true;
-    return false;
-  }
-  /// The nodes (Gmsh's node indices, sorted) of a curve or surface group.
-  std::vector<int> nodes(const std::string& name) const {
-    const bool curve = has(1, name), surface = has(2, name);
-    if (curve && surface)
-      throw InputError("the name \"" + name + "\" is both a curve and a surface group; rename one");
-    std::vector<int> out;
-    if (!curve && !surface) {
-      std::string known;
-      for (const auto& [key, n] : mesh.physical_names)
-        if (key.first == 1 || key.first == 2) known += (known.empty() ? "" : ", ") + ("\"" + n + "\"");
-      throw InputError("the mesh has no curve or surface group \"" + name + "\" (it has " +
-                       (known.empty() ? "none" : known) + ")");
-    }
-    for (const int e : curve ? curve_edges(name) : surface_cells(name)) {
-      const GmshElement& x = curve ? mesh.edges[e] : mesh.cells[e];
-      out.insert(out.end(), x.nodes.begin(), x.nodes.begin() + x.node_count);
-    }
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-    return out;
-  }
-};
 
 /// One elastic row from a table holding E, nu and optionally G and alpha, each one number (isotropic) or
 /// three (N, S, T).
@@ -214,7 +175,7 @@ inline SceneMaterial scene_material(const std::string& name, const SceneTable& t
 /// other: options and steps, the mesh and its cells, materials, conditions, loads, temperature, contact.
 class SceneBuilder {
  public:
-  explicit SceneBuilder(const SceneTable& top) : top_(top) {}
+  SceneBuilder(const SceneTable& top, const DeckLimits& limits) : top_(top), limits_(limits) {}
 
   SceneModel build(const SceneMeshLoader& load_mesh,
                    const std::vector<std::pair<std::string, std::string>>& overrides) {
@@ -234,7 +195,43 @@ class SceneBuilder {
  private:
   using Overrides = std::vector<std::pair<std::string, std::string>>;
 
-  /// [options] through DeckOptions::set, then [rate] (card 0: SAAC3's format), then the command line's.
+  /// The [[contact]] keys that set a deck option: (key, option).
+  static constexpr std::array<std::pair<const char*, const char*>, 5> kContactOptions{
+      {{"policy", "contact"},
+       {"friction", "friction"},
+       {"slip", "slip"},
+       {"penalty", "gap_penalty"},
+       {"events", "events"}}};
+  std::vector<SceneTable> contact_tables() const {
+    return top_.tables("contact", {"faces", "soft", "policy", "friction", "slip", "penalty", "events"});
+  }
+
+  /// One deck option from a scene value (a string or a number) at `where`; an option the scene set before
+  /// ([options] and [[contact]] tables alike) must not get another value.
+  void set_option(const std::string& name, const toml::node& node, const std::string& where) {
+    std::ostringstream value;
+    if (node.is_string())
+      value << *node.value<std::string_view>();
+    else if (const auto* i = node.as_integer())
+      value << i->get();
+    else if (const auto v = SceneTable::as_number(node))
+      value << std::setprecision(17) << *v;
+    else
+      throw InputError("scene: " + where + ": expected a string or a number");
+    const auto [before, fresh] = options_set_.emplace(name, std::pair{value.str(), where});
+    if (!fresh && before->second.first != value.str())
+      throw InputError("scene: " + where + ": " + name + " = '" + value.str() + "', but " +
+                       before->second.second + " set it to '" + before->second.first + "'; a run has one " +
+                       name);
+    try {
+      model_.deck.options.set(name, value.str());
+    } catch (const InputError& e) {
+      throw InputError("scene: " + where + ": " + e.what());
+    }
+  }
+
+  /// [options] through DeckOptions::set, [[contact]]'s options, then [rate] (card 0: SAAC3's format), then
+  /// the command line's.
   void options(const Overrides& overrides) {
     Deck& d = model_.deck;
     if (const toml::node* o = top_.get("options")) {
@@ -246,22 +243,13 @@ class SceneBuilder {
           throw InputError("scene: " + where +
                            ": a scene's format follows from what it holds (a [rate] table makes it saac3); "
                            "remove the key");
-        std::ostringstream value;
-        if (node.is_string())
-          value << *node.value<std::string_view>();
-        else if (const auto* i = node.as_integer())
-          value << i->get();
-        else if (const auto v = SceneTable::as_number(node))
-          value << std::setprecision(17) << *v;
-        else
-          throw InputError("scene: " + where + ": expected a string or a number");
-        try {
-          d.options.set(name, value.str());
-        } catch (const InputError& e) {
-          throw InputError("scene: " + where + ": " + e.what());
-        }
+        set_option(name, node, where);
       }
     }
+    // [[contact]]'s policy, friction, slip, penalty and events are deck options too; one value per run.
+    for (const SceneTable& c : contact_tables())
+      for (const auto& [key, option] : kContactOptions)
+        if (const toml::node* node = c.get(key)) set_option(option, *node, c.where(key));
     d.options.format = DeckFormat::saac;
     if (const auto r = top_.table("rate", {"b", "transition_rate", "strain_rate", "shear_step"})) {
       d.options.format = DeckFormat::saac3;
@@ -279,7 +267,7 @@ class SceneBuilder {
     Deck& d         = model_.deck;
     d.control.nlinc = 1;
     if (const auto s = top_.table("steps", {"count", "time"})) {
-      const int most = DeckLimits{}.max_load_steps;
+      const int most = limits_.max_load_steps;
       const double n = s->number("count", 1.0);
       if (!(n >= 1 && n <= most && n == std::floor(n)))
         s->fail("count", "a whole number of load steps from 1 to " + std::to_string(most));
@@ -293,11 +281,24 @@ class SceneBuilder {
       throw InputError("scene: [rate] has b != 0, so a load step's duration matters: give key 'steps.time'");
   }
 
-  /// [mesh]: the Gmsh file's cells as the scene's grid cells (file order: the element numbers), its nodes
-  /// that some cell uses (Gmsh's geometry points dropped) in file order.
+  /// [mesh]: a Gmsh file, or the I-J generator's grid, segments and groups (io/scene_mesh.hpp).
   void mesh(const SceneMeshLoader& load_mesh) {
-    const auto table = top_.table("mesh", {"file"});
-    if (!table) throw InputError("scene: no [mesh] table: give [mesh] file = \"part.msh\" (a Gmsh mesh)");
+    const auto table = top_.table("mesh", {"file", "grid", "segments", "groups"});
+    if (!table)
+      throw InputError(
+          "scene: no [mesh] table: give [mesh] file = \"part.msh\" (a Gmsh mesh) or grid = [MAXI, MAXJ] "
+          "with [[mesh.segments]] (the I-J generator)");
+    if (table->has("file") == table->has("grid"))
+      throw InputError("scene: " + table->where() +
+                       ": give either file (a Gmsh mesh) or grid with segments (the I-J generator)");
+    if (!table->has("file")) {
+      mesh_name_ = "the I-J grid";
+      mesh_      = std::make_unique<GridSceneMesh>(*table, model_.scene, limits_);
+      return;
+    }
+    for (const char* key : {"segments", "groups"})
+      if (table->has(key))
+        table->fail(key, std::string("no ") + key + " with a Gmsh file (its physical groups name it)");
     mesh_name_       = table->text("file");
     model_.mesh_file = mesh_name_;
     std::string text;
@@ -306,54 +307,7 @@ class SceneBuilder {
     } catch (const InputError& e) {
       throw InputError("scene: " + table->where("file") + ": " + e.what());
     }
-    try {
-      gmsh_ = read_gmsh(text);
-    } catch (const InputError& e) {
-      throw InputError(mesh_name_ + ": " + e.what());
-    }
-    DeckScene& s = model_.scene;
-    node_index_.assign(gmsh_.nodes.size(), -1);
-    for (const GmshElement& c : gmsh_.cells) {
-      if (c.type != 2 && c.type != 3)
-        throw InputError(mesh_name_ + ", line " + std::to_string(c.line) + ": a " +
-                         (c.type == 9 ? "6-node triangle" : "8-node quadrangle") +
-                         "; scenes take linear cells (3-node triangles, 4-node quadrangles): mesh with "
-                         "Mesh.ElementOrder = 1");
-      for (int k = 0; k < c.node_count; ++k) node_index_[c.nodes[k]] = 0;
-    }
-    IJGrid& g = s.grid;  // a Gmsh mesh has no grid indices: I = J = 0
-    for (std::size_t n = 0; n < gmsh_.nodes.size(); ++n)
-      if (node_index_[n] == 0) {
-        node_index_[n] = g.node_count();
-        g.nodes.push_back(gmsh_.nodes[n]);
-        labels_.push_back(gmsh_.node_tags[n]);
-      }
-    g.node_ij.assign(g.nodes.size(), {0, 0});
-    g.placed.assign(g.nodes.size(), 1);
-    s.mesh.nodes = g.nodes;
-    for (const GmshElement& c : gmsh_.cells) {
-      GridCell cell;
-      cell.corners = c.node_count;
-      for (int k = 0; k < c.node_count; ++k) cell.node[k] = node_index_[c.nodes[k]];
-      if (c.node_count == 4) {
-        cell.group_index = static_cast<int>(s.mesh.cells.size());
-        s.mesh.cells.push_back(cell.node);
-      } else {
-        cell.group_index = static_cast<int>(s.mesh.triangles.size());
-        s.mesh.triangles.push_back({cell.node[0], cell.node[1], cell.node[2]});
-      }
-      g.cells.push_back(cell);
-    }
-    const std::size_t cells = g.cells.size();
-    s.material_id.assign(cells, 0);
-    s.ijdir.assign(cells, 0);
-    s.mesh.cell_tags.resize(s.mesh.cells.size());
-    s.mesh.triangle_tags.resize(s.mesh.triangles.size());
-    s.element_of_cell.resize(s.mesh.cells.size());
-    s.element_of_triangle.resize(s.mesh.triangles.size());
-    for (std::size_t e = 0; e < cells; ++e)
-      (g.cells[e].corners == 4 ? s.element_of_cell : s.element_of_triangle)[g.cells[e].group_index] =
-          static_cast<int>(e);
+    mesh_ = std::make_unique<GmshSceneMesh>(mesh_name_, text, model_.scene);
   }
 
   CellTag& tag(int cell) {
@@ -365,10 +319,34 @@ class SceneBuilder {
   template <class Lookup>
   auto in_group(const SceneTable& t, const char* key, Lookup&& lookup) const {
     try {
-      return lookup(SceneGroups{gmsh_});
+      return lookup(*mesh_);
     } catch (const InputError& e) {
       throw InputError("scene: " + t.where(key) + ": " + e.what() + " (mesh " + mesh_name_ + ")");
     }
+  }
+
+  /// A load history (`amplitude = [[step, factor], ...]`, Amplitude) as an index into Deck::amplitudes, -1
+  /// without one.
+  int amplitude(const SceneTable& t) {
+    const toml::node* node = t.get("amplitude");
+    if (!node) return -1;
+    const int steps            = model_.deck.steps();
+    const std::string expected = "[[step, factor], ...]: whole steps from 0 to the last, " +
+                                 std::to_string(steps) + ", increasing, with finite factors";
+    const toml::array* a = node->as_array();
+    if (!a || a->empty()) t.fail("amplitude", expected);
+    Amplitude amp;
+    for (const toml::node& e : *a) {
+      const toml::array* q = e.as_array();
+      const auto step      = q && q->size() == 2 ? SceneTable::as_number(*q->get(0)) : std::nullopt;
+      const auto factor    = q && q->size() == 2 ? SceneTable::as_number(*q->get(1)) : std::nullopt;
+      if (!step || !factor || !std::isfinite(*factor) || !(*step >= 0 && *step <= steps) ||
+          *step != std::floor(*step) || (!amp.points.empty() && !(*step > amp.points.back().first)))
+        t.fail("amplitude", expected);
+      amp.points.emplace_back(static_cast<int>(*step), *factor);
+    }
+    model_.deck.amplitudes.push_back(std::move(amp));
+    return static_cast<int>(model_.deck.amplitudes.size()) - 1;
   }
 
   /// [materials.NAME] on their surfaces: material numbers (given, or the next free in name order), the
@@ -408,11 +386,10 @@ class SceneBuilder {
                              helical_frame(m.beta_deg * deg, m.helix_deg * deg, 0, 0, 0)};
       for (const std::string& surface : m.surfaces)
         for (const int e :
-             in_group(t, "surfaces", [&](const SceneGroups& g) { return g.surface_cells(surface); })) {
+             in_group(t, "surfaces", [&](const SceneMesh& g) { return g.surface_cells(surface); })) {
           if (s.material_id[e] != 0 && s.material_id[e] != m.deck.id)
-            throw InputError("scene: " + t.where("surfaces") + ": the cell at line " +
-                             std::to_string(gmsh_.cells[e].line) + " of the mesh (surface \"" + surface +
-                             "\") already has material " + std::to_string(s.material_id[e]) +
+            throw InputError("scene: " + t.where("surfaces") + ": " + mesh_->cell_where(e) + ", in \"" +
+                             surface + "\", already has material " + std::to_string(s.material_id[e]) +
                              "; a cell takes one material, so a surface is in two materials");
           s.material_id[e] = m.deck.id;
           tag(e)           = cell_tag;
@@ -421,23 +398,21 @@ class SceneBuilder {
         s.needs.theta.push_back("helix = " + number_text(m.helix_deg) + " in " + m.deck.ref.where());
     }
     for (std::size_t e = 0; e < s.material_id.size(); ++e)
-      if (s.material_id[e] == 0) {
-        const int group = gmsh_.cells[e].physical;
-        const auto name = gmsh_.physical_names.find({2, group});
-        throw InputError("scene: the cell at line " + std::to_string(gmsh_.cells[e].line) + " of the mesh " +
-                         (name != gmsh_.physical_names.end() ? "(surface group \"" + name->second + "\")"
-                                                             : std::string("(in no named surface group)")) +
+      if (s.material_id[e] == 0)
+        throw InputError("scene: " + mesh_->cell_where(static_cast<int>(e)) +
                          " has no material: name its surface in some [materials.NAME] surfaces");
-      }
     scene_materials(d, s);
   }
 
-  /// [[boundary]]: a condition on every node of the groups; values are totals, so each step adds 1 / N.
+  /// [[boundary]]: a condition on every node of the groups; values are totals, so each step adds 1 / N,
+  /// unless an amplitude gives their history.
   void boundary() {
     DeckScene& s                          = model_.scene;
-    const double steps                    = model_.deck.control.nlinc;
     const std::array<const char*, 3> dirs = {"r", "z", "theta"};
-    for (const SceneTable& b : top_.tables("boundary", {"groups", "fix", "displacement", "force"})) {
+    for (const SceneTable& b :
+         top_.tables("boundary", {"groups", "fix", "displacement", "force", "amplitude"})) {
+      const int history  = amplitude(b);
+      const double steps = history < 0 ? model_.deck.control.nlinc : 1.0;
       int code = 0, given = 0;  // prescribed displacements (seed Data 5's code bits); directions given
       std::array<double, 3> value{};
       if (b.has("fix"))
@@ -459,8 +434,10 @@ class SceneBuilder {
       if (given == 0)
         throw InputError("scene: " + b.where() + ": a [[boundary]] needs fix, displacement or force");
       for (const std::string& name : b.names("groups"))
-        for (const int n : in_group(b, "groups", [&](const SceneGroups& g) { return g.nodes(name); }))
-          s.conditions.push_back({node_index_[n], code, value});
+        for (const int n : in_group(b, "groups", [&](const SceneMesh& g) { return g.nodes(name); })) {
+          s.conditions.push_back({n, code, value});
+          s.condition_amplitude.push_back(history);
+        }
       if (value[2] != 0)
         s.needs.theta.push_back(std::string("a theta ") + ((code & 4) ? "displacement" : "force") + " in " +
                                 b.where());
@@ -468,17 +445,20 @@ class SceneBuilder {
   }
 
   /// [[load]] on curves as the deck's edge cards (Data 13-15), each edge from M to N with its cell on the
-  /// left; [inertia] as the first block's inertia card. Both repeat every step (INCI = INCF = 0).
+  /// left; [inertia] as the first block's inertia card. Both repeat every step (INCI = INCF = 0), or follow
+  /// their amplitude.
   void loads() {
-    Deck& d            = model_.deck;
-    const IJGrid& g    = model_.scene.grid;
-    const double steps = d.control.nlinc;
+    Deck& d         = model_.deck;
+    const IJGrid& g = model_.scene.grid;
     std::set<std::pair<int, int>> ccw;  // every cell side, counterclockwise
     for (const auto& c : g.cells)
       for (int k = 0; k < c.corners; ++k) ccw.insert({c.node[k], c.node[(k + 1) % c.corners]});
     LoadBlock block;
     const std::array<const char*, 3> kinds = {"pressure", "shear", "transverse_shear"};
-    for (const SceneTable& l : top_.tables("load", {"curves", "pressure", "shear", "transverse_shear"})) {
+    for (const SceneTable& l :
+         top_.tables("load", {"curves", "pressure", "shear", "transverse_shear", "amplitude"})) {
+      const int history  = amplitude(l);
+      const double steps = history < 0 ? d.control.nlinc : 1.0;
       std::array<std::optional<double>, 3> value;
       for (int k = 0; k < 3; ++k)
         if (l.has(kinds[k])) value[k] = l.number(kinds[k]) / steps;
@@ -487,14 +467,12 @@ class SceneBuilder {
       const CardRef ref{"scene key '" + l.path() + ".curves'",
                         l.has("curves") ? SceneTable::line(*l.get("curves")) : 0};
       for (const std::string& name : l.names("curves"))
-        for (const int e :
-             in_group(l, "curves", [&](const SceneGroups& groups) { return groups.curve_edges(name); })) {
-          const GmshElement& x = gmsh_.edges[e];
-          int m = node_index_[x.nodes[0]], n = node_index_[x.nodes[1]];
-          const std::string edge =
-              "the line element at line " + std::to_string(x.line) + " of the mesh (curve \"" + name + "\")";
-          const bool forward  = m >= 0 && n >= 0 && ccw.count({m, n}),
-                     backward = m >= 0 && n >= 0 && ccw.count({n, m});
+        for (const SceneEdge& e :
+             in_group(l, "curves", [&](const SceneMesh& groups) { return groups.curve_edges(name); })) {
+          int m = e.m, n = e.n;
+          const std::string& edge = e.where;
+          const bool forward      = m >= 0 && n >= 0 && ccw.count({m, n}),
+                     backward     = m >= 0 && n >= 0 && ccw.count({n, m});
           if (!forward && !backward)
             throw InputError("scene: " + l.where("curves") + ": " + edge + " is not a side of a cell");
           if (forward && backward)
@@ -506,18 +484,20 @@ class SceneBuilder {
               (k == 0   ? block.pressure
                : k == 1 ? block.shear
                         : block.transverse_shear)
-                  .push_back({m + 1, n + 1, *value[k], ref});
+                  .push_back({m + 1, n + 1, *value[k], ref, history});
         }
     }
     d.control.numpc = static_cast<int>(block.pressure.size());
     d.control.numsc = static_cast<int>(block.shear.size());
     d.control.numst = static_cast<int>(block.transverse_shear.size());
-    if (const auto in =
-            top_.table("inertia", {"axial_acceleration", "angular_velocity", "angular_acceleration"})) {
-      block.inertia   = InertiaLoad{in->number("axial_acceleration", 0.0) / steps,
+    if (const auto in = top_.table(
+            "inertia", {"axial_acceleration", "angular_velocity", "angular_acceleration", "amplitude"})) {
+      block.inertia_amplitude = amplitude(*in);
+      const double steps      = block.inertia_amplitude < 0 ? d.control.nlinc : 1.0;
+      block.inertia           = InertiaLoad{in->number("axial_acceleration", 0.0) / steps,
                                   in->number("angular_velocity", 0.0) / steps,
                                   in->number("angular_acceleration", 0.0) / steps};
-      d.control.inert = 1;
+      d.control.inert         = 1;
     }
     d.control.inci = d.control.incf = 0;
     d.blocks_read.push_back(std::move(block));
@@ -558,15 +538,15 @@ class SceneBuilder {
     DeckScene& s            = model_.scene;
     const std::size_t cells = s.grid.cells.size();
     std::vector<char> soft(cells, 0);  // 1: a soft cell, 2: one that bridges the faces
-    for (const SceneTable& c : top_.tables("contact", {"faces", "soft"})) {
+    for (const SceneTable& c : contact_tables()) {
       const std::vector<std::string> faces = c.names("faces");
       if (faces.size() != 2 || faces[0] == faces[1])
         c.fail("faces", "two different curve groups [\"A\", \"B\"]");
       std::array<std::vector<std::array<int, 2>>, 2> edges;
       for (int f = 0; f < 2; ++f)
-        for (const int e :
-             in_group(c, "faces", [&](const SceneGroups& g) { return g.curve_edges(faces[f]); })) {
-          const int m = node_index_[gmsh_.edges[e].nodes[0]], n = node_index_[gmsh_.edges[e].nodes[1]];
+        for (const SceneEdge& e :
+             in_group(c, "faces", [&](const SceneMesh& g) { return g.curve_edges(faces[f]); })) {
+          const int m = e.m, n = e.n;
           if (m < 0 || n < 0)
             throw InputError("scene: " + c.where("faces") + ": curve \"" + faces[f] +
                              "\" has a node no cell uses");
@@ -575,7 +555,7 @@ class SceneBuilder {
       std::map<std::array<int, 4>, int> soft_by_corners;  // sorted corners -> cell
       if (c.has("soft")) {
         const std::string name = c.text("soft");
-        for (const int e : in_group(c, "soft", [&](const SceneGroups& g) { return g.surface_cells(name); })) {
+        for (const int e : in_group(c, "soft", [&](const SceneMesh& g) { return g.surface_cells(name); })) {
           if (s.gap_material >= 0 && s.gap_material != tag(e).material)
             c.fail("soft", "the soft cells of every contact in one material");
           s.gap_material             = tag(e).material;
@@ -587,7 +567,7 @@ class SceneBuilder {
       }
       std::vector<std::array<int, 4>> elements;
       try {
-        elements = facing_gap_elements(s.grid.nodes, edges[0], edges[1], faces[0], faces[1], labels_);
+        elements = facing_gap_elements(s.grid.nodes, edges[0], edges[1], faces[0], faces[1], mesh_->labels());
       } catch (const InputError& e) {
         throw InputError("scene: " + c.where("faces") + ": " + e.what());
       }
@@ -609,19 +589,22 @@ class SceneBuilder {
   }
 
   const SceneTable& top_;
+  DeckLimits limits_;
   SceneModel model_;
   std::string mesh_name_;
-  GmshMesh gmsh_;
-  std::vector<int> node_index_;  ///< Gmsh node -> scene node (-1: no cell uses it)
-  std::vector<long> labels_;     ///< scene node -> its Gmsh tag, for messages
+  std::unique_ptr<SceneMesh> mesh_;
+  /// Deck options the scene set, with the value and the key that set it (one value per run).
+  std::map<std::string, std::pair<std::string, std::string>> options_set_;
 };
 
 }  // namespace detail
 
 /// Read a scene file's text; `load_mesh` reads the mesh it names (read_scene_file: a file beside the
-/// scene). `overrides` are option settings (the command's --set) applied after the scene's [options].
+/// scene). `overrides` are option settings (the command's --set) applied after the scene's [options];
+/// `limits` bound the grid and the load steps as a deck's (io/deck_cards.hpp).
 inline SceneModel read_scene(std::string_view text, const SceneMeshLoader& load_mesh,
-                             const std::vector<std::pair<std::string, std::string>>& overrides = {}) {
+                             const std::vector<std::pair<std::string, std::string>>& overrides = {},
+                             const DeckLimits& limits                                          = {}) {
   toml::table root;
   try {
     root = toml::parse(text);
@@ -632,7 +615,7 @@ inline SceneModel read_scene(std::string_view text, const SceneMeshLoader& load_
   const detail::SceneTable top(root, "",
                                {"title", "mesh", "options", "steps", "materials", "boundary", "load",
                                 "inertia", "temperature", "rate", "contact"});
-  return detail::SceneBuilder(top).build(load_mesh, overrides);
+  return detail::SceneBuilder(top, limits).build(load_mesh, overrides);
 }
 
 /// Read a scene file from disk, its mesh path relative to the file's directory.
@@ -649,7 +632,7 @@ inline SceneModel read_scene_file(const std::string& path,
   SceneModel m                     = read_scene(
                           slurp(path, "scene file"), [&](const std::string& name) { return slurp(base / name, "mesh"); },
                           overrides);
-  m.mesh_file = (base / m.mesh_file).string();
+  if (!m.mesh_file.empty()) m.mesh_file = (base / m.mesh_file).string();
   return m;
 }
 
