@@ -1244,7 +1244,7 @@ TEST_CASE("[scene] Malformed scene and mesh files: a clear error naming the key 
        "two materials"},
       {"quadratic cells",
        edit(tubes, (fs::path(GAPFE_SOURCE_DIR) / "tests/data/tube_quad8_v41.msh").string()),
-       "scenes take linear cells"},
+       "an 8-node quadrangle, but this mesh takes 4-node quadrangles and 3-node triangles"},
       {"negative r in the mesh",
        bad_mesh("\n2 1.1250000000000000e+02", "\n2 -1.1250000000000000e+02", "negative_r"),
        "< 0: an axisymmetric section lies at r >= 0"},

@@ -2,6 +2,10 @@
 // SAGA vs SAAS, helical orthotropic tube, free thermal expansion. Tolerances are the issue's. Last, the
 // unsymmetric-ready solver policy (EigenLu, full storage) against LDL^T through the linear and Newton
 // drivers.
+#include <fstream>
+#include <iterator>
+#include <string>
+
 #include <Eigen/LU>
 
 #include "gapfe/solver/eigen_lu.hpp"
@@ -99,6 +103,41 @@ TEST_CASE("[verification] Lame tube: observed L2 convergence order ~2 for Quad4,
   const double q8 = lame_convergence_order<Quad8>(2);
   CHECK(q8 > 2.8);
   CHECK(q8 < 3.3);
+}
+
+TEST_CASE("[verification] a Gmsh mesh of 8-node quadrangles (meshio's MSH 4.1) as Quad8: Lame within 0.1%") {
+  // tests/data/tube_quad8_v41.msh (make_meshes.py): 100 <= r <= 200, 0 <= z <= 25 as one row of four 8-node
+  // quadrangles, physical surface "steel"; its lines carry no physical group, so the ends and the bore are
+  // found by position here. Units mm, MPa: p = 100, E = 200000, nu = 0.3, plane strain.
+  std::ifstream in(std::string(GAPFE_SOURCE_DIR) + "/tests/data/tube_quad8_v41.msh");
+  REQUIRE(in);
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const GmshMesh g = read_gmsh(text);
+  using M          = Model<Axisym2, Quad8, Isotropic>;
+  auto fe_mesh     = gmsh_fe_mesh<8>(g, {{"steel", 0}});
+  REQUIRE(fe_mesh.mesh.cells.size() == 4);
+  CHECK(fe_mesh.mesh.node_count() == 23);
+  CHECK(fe_mesh.group_nodes(g, 2, "steel").size() == 23);
+  Problem<M> p;
+  p.mesh      = fe_mesh.mesh;
+  p.materials = {Isotropic::constant(200000, 0.3)};
+  for (int n = 0; n < p.mesh.node_count(); ++n)
+    if (p.mesh.nodes[n](1) == 0 || p.mesh.nodes[n](1) == 25) p.conditions.push_back({n, 2, {}});
+  for (const auto& cell :
+       p.mesh.cells)  // the bore side runs from corner 3 down to corner 0, the cell on its left
+    if (p.mesh.nodes[cell[0]](0) == 100) p.edge_loads.push_back({cell[3], cell[0], 100.0, 0, 0});
+  REQUIRE(p.edge_loads.size() == 1);
+  LinearStatic<M> fe(std::move(p));
+  const Solution& u = fe.solve();
+  const Lame lame{100, 200, 100, 200000, 0.3};
+  for (int n = 0; n < fe.problem().mesh.node_count(); ++n) {
+    const double r = fe.problem().mesh.nodes[n](0);
+    CAPTURE(r);
+    CHECK(std::abs(u.displacement(n, 0) - lame.displacement(r)) < 1e-3 * lame.displacement(100));
+  }
+  // The other element orders are refused with the setting that makes the right cells.
+  CHECK_THROWS_WITH_AS(gmsh_fe_mesh<4>(g),
+                       doctest::Contains("an 8-node quadrangle, but this mesh takes 4-node"), InputError);
 }
 
 TEST_CASE_TEMPLATE("[verification] spinning hollow tube, plane strain: u_r within 0.5%", M,

@@ -13,6 +13,7 @@
 #include "gapfe/io/vtu_writer.hpp"
 #include "gapfe/material/drysdale_zak.hpp"
 #include "gapfe/material/hill.hpp"
+#include "gapfe/mesh/gmsh_mesh.hpp"
 #include "gapfe/mesh/gmsh_reader.hpp"
 #include "gapfe/mesh/ij_grid.hpp"
 #include "gapfe/mesh/structured.hpp"

@@ -26,6 +26,7 @@
 #include "gapfe/io/deck_cards.hpp"
 #include "gapfe/io/deck_scene.hpp"
 #include "gapfe/io/scene_table.hpp"
+#include "gapfe/mesh/gmsh_mesh.hpp"
 #include "gapfe/mesh/gmsh_reader.hpp"
 #include "gapfe/mesh/ij_grid.hpp"
 
@@ -72,48 +73,31 @@ inline void size_scene_cells(DeckScene& s) {
         static_cast<int>(e);
 }
 
-/// A Gmsh mesh: its linear cells as the scene's (file order: the element numbers), the nodes some cell uses
-/// (Gmsh's geometry points dropped) in file order, physical groups as the names.
+/// A Gmsh mesh: its linear cells as the scene's (gmsh_fe_mesh<4>: file order, the element numbers; the nodes
+/// some cell uses, in file order), physical groups as the names.
 class GmshSceneMesh final : public SceneMesh {
  public:
   GmshSceneMesh(const std::string& file, std::string_view text, DeckScene& s) : file_(file) {
     try {
       gmsh_ = read_gmsh(text);
+      fe_   = gmsh_fe_mesh<4>(gmsh_);
     } catch (const InputError& e) {
       throw InputError(file_ + ": " + e.what());
     }
-    node_index_.assign(gmsh_.nodes.size(), -1);
-    for (const GmshElement& c : gmsh_.cells) {
-      if (c.type != 2 && c.type != 3)
-        throw InputError(file_ + ", line " + std::to_string(c.line) + ": a " +
-                         (c.type == 9 ? "6-node triangle" : "8-node quadrangle") +
-                         "; scenes take linear cells (3-node triangles, 4-node quadrangles): mesh with "
-                         "Mesh.ElementOrder = 1");
-      for (int k = 0; k < c.node_count; ++k) node_index_[c.nodes[k]] = 0;
-    }
     IJGrid& g = s.grid;  // a Gmsh mesh has no grid indices: I = J = 0
-    for (std::size_t n = 0; n < gmsh_.nodes.size(); ++n)
-      if (node_index_[n] == 0) {
-        node_index_[n] = g.node_count();
-        g.nodes.push_back(gmsh_.nodes[n]);
-        labels_.push_back(gmsh_.node_tags[n]);
-      }
+    g.nodes   = fe_.mesh.nodes;
     g.node_ij.assign(g.nodes.size(), {0, 0});
     g.placed.assign(g.nodes.size(), 1);
-    s.mesh.nodes = g.nodes;
-    for (const GmshElement& c : gmsh_.cells) {
+    for (const int n : fe_.gmsh_node) labels_.push_back(gmsh_.node_tags[static_cast<std::size_t>(n)]);
+    int quads = 0, triangles = 0;
+    for (const GmshElement& c : gmsh_.cells) {  // the file's order, as gmsh_fe_mesh keeps it
       GridCell cell;
-      cell.corners = c.node_count;
-      for (int k = 0; k < c.node_count; ++k) cell.node[k] = node_index_[c.nodes[k]];
-      if (c.node_count == 4) {
-        cell.group_index = static_cast<int>(s.mesh.cells.size());
-        s.mesh.cells.push_back(cell.node);
-      } else {
-        cell.group_index = static_cast<int>(s.mesh.triangles.size());
-        s.mesh.triangles.push_back({cell.node[0], cell.node[1], cell.node[2]});
-      }
+      cell.corners     = c.node_count;
+      cell.group_index = c.node_count == 4 ? quads++ : triangles++;
+      for (int k = 0; k < c.node_count; ++k) cell.node[k] = fe_.node[c.nodes[k]];
       g.cells.push_back(cell);
     }
+    s.mesh = std::move(fe_.mesh);  // fe_ keeps the node map
     size_scene_cells(s);
   }
 
@@ -131,7 +115,7 @@ class GmshSceneMesh final : public SceneMesh {
     for (const GmshElement& x : gmsh_.edges)
       if (x.physical == tag)
         out.push_back(
-            {node_index_[x.nodes[0]], node_index_[x.nodes[1]],
+            {fe_.node[x.nodes[0]], fe_.node[x.nodes[1]],
              "the line element at line " + std::to_string(x.line) + " of the mesh (curve \"" + name + "\")"});
     if (out.empty()) throw InputError("the curve group \"" + name + "\" has no line elements in the mesh");
     return out;
@@ -147,18 +131,10 @@ class GmshSceneMesh final : public SceneMesh {
       throw InputError("the mesh has no curve or surface group \"" + name + "\" (it has " +
                        (known.empty() ? "none" : known) + ")");
     }
-    std::vector<int> out;
-    if (curve) {
-      for (const SceneEdge& e : curve_edges(name)) out.insert(out.end(), {e.m, e.n});
-    } else {
-      const int tag = gmsh_.physical(2, name);
-      for (const GmshElement& x : gmsh_.cells)
-        if (x.physical == tag)
-          for (int k = 0; k < x.node_count; ++k) out.push_back(node_index_[x.nodes[k]]);
-    }
-    out.erase(std::remove(out.begin(), out.end(), -1), out.end());  // a curve's nodes no cell uses
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
+    std::vector<int> out = fe_.group_nodes(gmsh_, curve ? 1 : 2, name);
+    if (out.empty())
+      throw InputError("the " + std::string(curve ? "curve" : "surface") + " group \"" + name +
+                       "\" has no node that a cell uses");
     return out;
   }
   std::string cell_where(int cell) const override {
@@ -178,7 +154,7 @@ class GmshSceneMesh final : public SceneMesh {
 
   std::string file_;
   GmshMesh gmsh_;
-  std::vector<int> node_index_;  ///< Gmsh node -> scene node (-1: no cell uses it)
+  GmshFeMesh<4> fe_;  ///< its node map (Gmsh node -> scene node, -1: no cell uses it); the mesh moved out
 };
 
 /// The seed's I-J generator: [mesh] grid = [MAXI, MAXJ], [[mesh.segments]] (one line segment card each:

@@ -1,0 +1,107 @@
+#pragma once
+// A Gmsh mesh (mesh/gmsh_reader.hpp) as a finite-element Mesh<N> for a Problem: 4-node quadrangles with
+// 3-node triangles beside them (Quad4, Quad4BBar, LegacyQuad; the triangles as constant-strain triangles),
+// or 8-node quadrangles only (Quad8; gapfe has no 6-node triangle, and a 3-node triangle beside an 8-node
+// quadrangle would not conform). Nodes no cell uses (Gmsh's geometry points, a curve meshed alone) are
+// dropped, since they would carry no stiffness; `node` maps Gmsh's node indices to the mesh's. Cells keep
+// the file's order. A material index per physical surface sets each cell's tag (its material, default
+// axes). The scene files (io/scene_mesh.hpp) build their meshes with it too.
+//
+//   const GmshMesh g  = read_gmsh(text);
+//   auto fe           = gmsh_fe_mesh<8>(g, {{"steel", 0}});
+//   problem.mesh      = fe.mesh;
+//   for (int n : fe.group_nodes(g, 1, "bottom")) problem.conditions.push_back({n, 2, {}});
+#include <algorithm>
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "gapfe/core/error.hpp"
+#include "gapfe/mesh/gmsh_reader.hpp"
+#include "gapfe/mesh/mesh.hpp"
+
+namespace gapfe {
+
+template <int NodesPerCell>
+struct GmshFeMesh {
+  Mesh<NodesPerCell> mesh;
+  std::vector<int> node;       ///< Gmsh node index -> mesh node, -1 where no cell uses it
+  std::vector<int> gmsh_node;  ///< mesh node -> Gmsh node index
+
+  /// The mesh nodes (sorted) of a physical curve (dim 1) or surface (dim 2) of `g`, the mesh this was made
+  /// from; a curve's nodes that no cell uses are left out. InputError for a name `g` does not have.
+  std::vector<int> group_nodes(const GmshMesh& g, int dim, const std::string& name) const {
+    const int tag = g.physical(dim, name);
+    std::vector<int> out;
+    for (const GmshElement& e : dim == 1 ? g.edges : g.cells)
+      if (e.physical == tag)
+        for (int k = 0; k < e.node_count; ++k)
+          if (const int n = node[static_cast<std::size_t>(e.nodes[static_cast<std::size_t>(k)])]; n >= 0)
+            out.push_back(n);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+};
+
+/// The cells of `g` as a Mesh<4> (quadrangles 4, triangles 3) or Mesh<8> (quadrangles 8); others are an
+/// InputError naming the line. `material_of_surface` (physical surface name -> material index): when given,
+/// every cell must be in one of its surfaces.
+template <int NodesPerCell>
+GmshFeMesh<NodesPerCell> gmsh_fe_mesh(const GmshMesh& g,
+                                      const std::map<std::string, int>& material_of_surface = {}) {
+  static_assert(NodesPerCell == 4 || NodesPerCell == 8, "Gmsh meshes give 4- or 8-node cells");
+  constexpr int kQuad = NodesPerCell == 4 ? 3 : 16;  // Gmsh's element type of the cells taken
+  GmshFeMesh<NodesPerCell> fe;
+  fe.node.assign(g.nodes.size(), -1);
+  for (const GmshElement& c : g.cells) {
+    if (c.type != kQuad && !(NodesPerCell == 4 && c.type == 2)) {
+      const char* names[] = {"a 3-node triangle", "a 6-node triangle", "a 4-node quadrangle",
+                             "an 8-node quadrangle"};
+      const char* what    = names[c.type == 2 ? 0 : c.type == 9 ? 1 : c.type == 3 ? 2 : 3];
+      throw InputError(
+          "line " + std::to_string(c.line) + ": " + what + ", but this mesh takes " +
+          (NodesPerCell == 4
+               ? "4-node quadrangles and 3-node triangles (mesh with Mesh.ElementOrder = 1)"
+               : "8-node quadrangles only (recombine into quadrangles, Mesh.RecombineAll = 1, with "
+                 "Mesh.ElementOrder = 2 and Mesh.SecondOrderIncomplete = 1; gapfe has no 6-node "
+                 "triangle)"));
+    }
+    for (int k = 0; k < c.node_count; ++k)
+      fe.node[static_cast<std::size_t>(c.nodes[static_cast<std::size_t>(k)])] = 0;
+  }
+  for (std::size_t n = 0; n < g.nodes.size(); ++n)
+    if (fe.node[n] == 0) {
+      fe.node[n] = static_cast<int>(fe.gmsh_node.size());
+      fe.gmsh_node.push_back(static_cast<int>(n));
+      fe.mesh.nodes.push_back(g.nodes[n]);
+    }
+  std::map<int, int> material_of_tag;  // physical surface tag -> material index
+  for (const auto& [name, material] : material_of_surface) material_of_tag[g.physical(2, name)] = material;
+  for (const GmshElement& c : g.cells) {
+    CellTag tag;
+    if (!material_of_tag.empty()) {
+      const auto it = material_of_tag.find(c.physical);
+      if (it == material_of_tag.end())
+        throw InputError("line " + std::to_string(c.line) +
+                         ": the cell is in no physical surface that has a material");
+      tag.material = it->second;
+    }
+    const auto at = [&](int k) {
+      return fe.node[static_cast<std::size_t>(c.nodes[static_cast<std::size_t>(k)])];
+    };
+    if (c.type == 2) {
+      fe.mesh.triangles.push_back({at(0), at(1), at(2)});
+      fe.mesh.triangle_tags.push_back(tag);
+    } else {
+      std::array<int, NodesPerCell> cell{};
+      for (int k = 0; k < NodesPerCell; ++k) cell[static_cast<std::size_t>(k)] = at(k);
+      fe.mesh.cells.push_back(cell);
+      fe.mesh.cell_tags.push_back(tag);
+    }
+  }
+  return fe;
+}
+
+}  // namespace gapfe
