@@ -42,21 +42,20 @@ void note_relaxation(RunTimes& times, const Deck& d, int step, double inc, const
 
 template <class M>
 void run_linear(const RunRequest& r, RunTimes& times) {
-  StepFiles files(r.dir, r.scene, r.deck.step_time(), increments(r.deck.options.output_csv),
-                  increments(r.deck.options.output_vtu));
+  StepFiles files = step_files(r);
+  FinishFiles finish{r, times, files};
   run_deck<M>(r.deck, r.scene, [&](int step, double inc, const LinearStatic<M>& fe) {
     const auto& t = fe.timings();
     times.assemble += t.assemble, times.factorize += t.factorize, times.solve += t.solve + t.reactions;
     write_increment(r, times, files, step, inc, fe);
   });
-  progress_done(r);
-  finish_files(times, files, r.deck.title);
+  finish.now();
 }
 
 template <class M>
 void run_plastic(const RunRequest& r, RunTimes& times) {
-  StepFiles files(r.dir, r.scene, r.deck.step_time(), increments(r.deck.options.output_csv),
-                  increments(r.deck.options.output_vtu));
+  StepFiles files = step_files(r);
+  FinishFiles finish{r, times, files};
   // plasticity.csv: the Newton record of every accepted increment (residuals: |R| / |F_int| after each
   // linear solve, separated by spaces; drift: max |sqrt f - 1| over the plastic points).
   std::ofstream record = detail::open_output(r.dir + "/plasticity.csv");
@@ -88,17 +87,17 @@ void run_plastic(const RunRequest& r, RunTimes& times) {
     }
     record << row << '\n' << std::flush;
     last_step = step;
-    write_increment(r, times, files, step, inc, fe);
+    write_increment(r, times, files, step, inc, fe, {}, {rep.iterations, rep.plastic_points, 0, 0});
   });
-  progress_done(r);
-  finish_files(times, files, r.deck.title);
+  finish.now();
 }
 
 template <class M, ContactPolicy P, FrictionModel F = NoFriction>
 void run_contact(const RunRequest& r, RunTimes& times) {
-  StepFiles files(r.dir, r.scene, r.deck.step_time(), increments(r.deck.options.output_csv),
-                  increments(r.deck.options.output_vtu));
+  StepFiles files = step_files(r);
+  FinishFiles finish{r, times, files};
   GapFile gaps(r.dir, r.scene, F::kFriction, r.deck.step_time());
+  int solves_before = 0;  // the contact counters' solves at the last increment
   run_deck_contact<M, P, F>(
       r.deck, r.scene, r.deck.options.gap_penalty,
       [&](int step, double inc, const ContactStatic<M, P, F>& c) {
@@ -107,12 +106,19 @@ void run_contact(const RunRequest& r, RunTimes& times) {
         times.assemble = t.assemble, times.factorize = t.factorize, times.solve = t.solve + t.reactions;
         times.contact = c.counters(), ++times.increments, times.penalty = c.penalty_factor();
         times.pairs = static_cast<int>(c.pairs().size()), times.closed = 0;
-        for (const auto& st : c.states()) times.closed += st.closed;
-        if constexpr (!M::Material::kLinear) note_relaxation(times, r.deck, step, inc, c.fe().states());
-        write_increment(r, times, files, step, inc, c.fe(), gaps.write(step, inc, c.pairs(), c.states()));
+        IncrementSummary summary{c.counters().solves - solves_before, 0, 0, 0};
+        solves_before = c.counters().solves;
+        for (const auto& st : c.states())
+          times.closed += st.closed, summary.slipping += st.closed && st.slipping;
+        summary.closed = times.closed;
+        if constexpr (!M::Material::kLinear) {
+          note_relaxation(times, r.deck, step, inc, c.fe().states());
+          summary.plastic_points = c.fe().report().plastic_points;
+        }
+        write_increment(r, times, files, step, inc, c.fe(), gaps.write(step, inc, c.pairs(), c.states()),
+                        summary);
       });
-  progress_done(r);
-  finish_files(times, files, r.deck.title);
+  finish.now();
 }
 
 }  // namespace gapfe::cli

@@ -47,6 +47,9 @@ struct RunTimes {
   std::vector<double> step_residual;
   /// Rate-dependent laws: per accepted increment, lambda dt over the yielding points (the log prints it).
   std::vector<std::string> relaxation;
+  /// The pictures StepFiles drew at the end (paths), and why any asked for were not.
+  std::vector<std::string> pictures;
+  std::string pictures_skipped;
 };
 
 /// What a run needs: the deck, its scene, where to write, and the resolved variant choices.
@@ -59,6 +62,8 @@ struct RunRequest {
   std::string solver;   ///< eigen | cholmod (resolved)
   std::ostream& err;
   bool progress;
+  std::vector<std::string> pictures;  ///< fields drawn for the last increment (StepFiles::draw_fields)
+  PlotUnits units;
 };
 
 /// Run the request on the compiled variant that matches it (cli_variants.hpp); InputError when the
@@ -103,7 +108,8 @@ void progress_done(const RunRequest& r);
 /// One accepted increment: refuse a non-finite solution, write the files (timed), show progress.
 template <class Fe>
 void write_increment(const RunRequest& r, RunTimes& times, StepFiles& files, int step, double inc,
-                     const Fe& fe, std::vector<VtuField> extra_cells = {}) {
+                     const Fe& fe, std::vector<VtuField> extra_cells = {},
+                     const IncrementSummary& summary = {}) {
   if (!std::isfinite(fe.solution().residual) || !fe.solution().displacement.allFinite())
     throw SolveError("load step " + std::to_string(step) + ": the solution is not finite");
   // A law with history reports Newton's out-of-balance here instead (the tangent integration leaves
@@ -116,16 +122,45 @@ void write_increment(const RunRequest& r, RunTimes& times, StepFiles& files, int
   double& worst    = times.step_residual[static_cast<std::size_t>(step - 1)];
   worst            = std::max(worst, residual);
   const auto start = std::chrono::steady_clock::now();
-  files.write(step, inc, fe.solution(), fe.centroid_values(Recovered::stress), std::move(extra_cells));
+  files.write(step, inc, fe.solution(), fe.centroid_values(Recovered::stress), std::move(extra_cells),
+              summary);
   times.write += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   progress_line(r, step);
 }
 
-/// The end of a run: the held increment (output = last) and deformed.svg, timed as writing.
-inline void finish_files(RunTimes& times, StepFiles& files, const std::string& title) {
-  const auto start = std::chrono::steady_clock::now();
-  files.finish(title);
-  times.write += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+/// The result files of a run (the deck's output options and the pictures it asks for).
+inline StepFiles step_files(const RunRequest& r) {
+  StepFiles files(r.dir, r.scene, r.deck.step_time(), increments(r.deck.options.output_csv),
+                  increments(r.deck.options.output_vtu));
+  files.draw_fields(r.pictures, r.units);
+  files.keep_history(r.deck.steps());
+  return files;
 }
+
+/// The end of a run, however it ends: the held increment (output = last), deformed.svg and the pictures,
+/// timed as writing. A run that fails (a step Newton cannot take) still leaves them for the increments it
+/// accepted; an error while writing them then gives way to the run's own.
+struct FinishFiles {
+  const RunRequest& r;
+  RunTimes& times;
+  StepFiles& files;
+  bool done = false;
+
+  void now() {
+    done = true;
+    progress_done(r);
+    const auto start = std::chrono::steady_clock::now();
+    files.finish(r.deck.title);
+    times.pictures = files.pictures_written(), times.pictures_skipped = files.pictures_skipped();
+    times.write += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  ~FinishFiles() {
+    if (done) return;
+    try {
+      now();
+    } catch (...) {
+    }
+  }
+};
 
 }  // namespace gapfe::cli

@@ -4,20 +4,29 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
+#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <map>
+#include <spawn.h>
 #include <sstream>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <vector>
 
 #include "gapfe/io/deck_output.hpp"
+#include "gapfe/io/field_plot.hpp"
+#include "gapfe/io/vtu_reader.hpp"
 #ifdef GAPFE_HAS_SCENE
 #include "gapfe/io/scene_file.hpp"
 #endif
 #include "gapfe/solver/threads.hpp"
 #include "gapfe/version.hpp"
 
+#include "cli_args.hpp"
 #include "cli_run.hpp"
 
 namespace gapfe::cli {
@@ -64,84 +73,6 @@ void log_step_residuals(std::ostream& log, const std::vector<double>& per_step, 
   const auto worst = std::max_element(per_step.begin(), per_step.end());
   log << " " << per_step.size() << " steps, median " << sorted[sorted.size() / 2] << ", largest " << *worst
       << " (step " << (worst - per_step.begin()) + 1 << ")\n";
-}
-
-constexpr const char* kUsage =
-    "usage: gapfe run DECK --out DIR [options]   solve every load step; CSV, VTU and PVD files in DIR\n"
-    "       gapfe mesh DECK --out DIR [options]  the mesh only: mesh.svg with numbers, tables, mesh.vtu\n"
-    "       gapfe info DECK [options]            what the deck asks for and which variant serves it\n"
-    "DECK: a card deck (BRL-CR-670 Appendix A) or a scene file NAME.toml with its Gmsh mesh (README)\n"
-    "options:\n"
-    "  --variant saas|saga      force a model variant (default: the smallest the deck needs)\n"
-    "  --set KEY=VALUE          a deck extension option (README: format, element, solver, bc_loads, ...)\n"
-    "  --format F, --element E, --solver S, --contact C, --plasticity P, --output all|last|none\n"
-    "                           shorthands for --set (output: which increments the CSV tables and VTU\n"
-    "                           files get; output_csv, output_vtu set one kind)\n"
-    "  --threads N              OpenBLAS threads for the factorization's dense kernels (default 1)\n"
-    "  --quiet                  no log on standard output\n";
-
-struct Args {
-  std::string command, deck, out, variant;
-  std::vector<std::pair<std::string, std::string>> options;
-  bool quiet  = false;
-  int threads = 1;
-};
-
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-Args parse(const std::vector<std::string>& a) {
-  Args r;
-  if (a.empty()) throw UsageError("no command given");
-  r.command = a[0];
-  if (r.command != "run" && r.command != "mesh" && r.command != "info")
-    throw UsageError("unknown command '" + r.command + "'");
-  for (std::size_t k = 1; k < a.size(); ++k) {
-    const std::string& s = a[k];
-    const auto value     = [&]() -> const std::string& {
-      if (k + 1 >= a.size()) throw UsageError(s + " needs a value");
-      return a[++k];
-    };
-    if (s == "--out") {
-      r.out = value();
-    } else if (s == "--variant") {
-      r.variant = value();
-      if (r.variant != "saas" && r.variant != "saga")
-        throw UsageError("--variant: '" + r.variant + "' is not a compiled variant (saas, saga)");
-    } else if (s == "--set") {
-      const std::string& kv = value();
-      const auto eq         = kv.find('=');
-      if (eq == std::string::npos) throw UsageError("--set needs KEY=VALUE, got '" + kv + "'");
-      r.options.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
-    } else if (s == "--format" || s == "--element" || s == "--solver" || s == "--contact" ||
-               s == "--plasticity" || s == "--output") {
-      r.options.emplace_back(s.substr(2), value());
-    } else if (s == "--threads") {
-      const std::string& n = value();
-      std::size_t used     = 0;
-      int count            = 0;
-      try {
-        count = std::stoi(n, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != n.size() || count < 1 || count > 1024)
-        throw UsageError("--threads: '" + n + "' is not a thread count (a whole number from 1 to 1024)");
-      r.threads = count;
-    } else if (s == "--quiet") {
-      r.quiet = true;
-    } else if (!s.empty() && s[0] == '-') {
-      throw UsageError("unknown option '" + s + "'");
-    } else if (r.deck.empty()) {
-      r.deck = s;
-    } else {
-      throw UsageError("more than one deck given ('" + r.deck + "', '" + s + "')");
-    }
-  }
-  if (r.deck.empty()) throw UsageError("no deck given");
-  if (r.command != "info" && r.out.empty()) throw UsageError(r.command + " needs --out DIR");
-  return r;
 }
 
 std::string read_file(const std::string& path) {
@@ -215,6 +146,92 @@ void describe_scene(std::ostream& out, const SceneModel& m) {
   if (d.control.numtc != 0) out << ", temperature field";
   if (d.control.inert != 0) out << ", inertia loads";
   out << "\n";
+}
+
+/// PNG beside an SVG picture through rsvg-convert (Debian's librsvg2-bin) when it is installed: run directly
+/// (no shell), its output discarded; false when it is not there or fails.
+bool rasterize(const std::string& svg) {
+  static const bool present = [] {
+    const char* path = std::getenv("PATH");
+    std::string dirs = path ? path : "/usr/bin:/bin";
+    for (std::size_t at = 0; at <= dirs.size();) {
+      const std::size_t end = std::min(dirs.find(':', at), dirs.size());
+      if (end > at && ::access((dirs.substr(at, end - at) + "/rsvg-convert").c_str(), X_OK) == 0) return true;
+      at = end + 1;
+    }
+    return false;
+  }();
+  if (!present) return false;
+  const std::string png = svg.substr(0, svg.size() - 4) + ".png";
+  std::vector<std::string> words{"rsvg-convert", "--background-color=white", "-o", png, svg};
+  std::vector<char*> argv;
+  for (auto& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  pid_t pid         = 0;
+  const int spawned = posix_spawnp(&pid, "rsvg-convert", &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  int status = 0;
+  return spawned == 0 && waitpid(pid, &status, 0) == pid && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
+/// Unit names from "L,F,S" (the deck option `units`, or plot --units); generic names when empty.
+PlotUnits plot_units(const std::string& text) {
+  if (text.empty()) return {};
+  const auto names = unit_names(text);
+  return {names[0], names[1], names[2]};
+}
+
+/// The columns of a CSV file by name (history.csv), every row read as numbers.
+std::map<std::string, std::vector<double>> read_columns(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError("cannot open '" + path + "' (a run of more than one load step writes it)");
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> names{""};
+  for (const char c : line) {
+    if (c == ',')
+      names.emplace_back();
+    else
+      names.back().push_back(c);
+  }
+  std::map<std::string, std::vector<double>> columns;
+  for (int row = 2; std::getline(in, line); ++row) {
+    std::size_t at = 0;
+    for (const auto& name : names) {
+      const std::size_t end  = std::min(line.find(',', at), line.size());
+      char* stop             = nullptr;
+      const std::string word = line.substr(at, end - at);
+      const double v         = std::strtod(word.c_str(), &stop);
+      if (word.empty() || *stop != '\0')
+        throw InputError(path + ", line " + std::to_string(row) + ", column " + name + ": '" + word +
+                         "' is not a number");
+      columns[name].push_back(v);
+      at = end + 1;
+    }
+  }
+  return columns;
+}
+
+/// curve_Y_X.svg in `dir`: history.csv's column `y` against column `x`; returns its path.
+std::string draw_curve(const std::string& dir, const std::string& x, const std::string& y,
+                       const std::string& title) {
+  const auto columns = read_columns(dir + "/history.csv");
+  for (const std::string* c : {&x, &y})
+    if (!columns.count(*c)) {
+      std::vector<std::string> names;
+      std::string list;
+      for (const auto& [name, values] : columns)
+        names.push_back(name), list += (list.empty() ? "" : ", ") + name;
+      throw InputError("history.csv has no column '" + *c + "'" + suggestion(*c, names) + " (it has " + list +
+                       ")");
+    }
+  const std::string path = dir + "/curve_" + y + "_" + x + ".svg";
+  write_curve_svg(path, columns.at(x), columns.at(y), x, y, title);
+  return path;
 }
 
 int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
@@ -328,7 +345,16 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
   set_solver_threads(a.threads);  // CHOLMOD's OpenMP and OpenBLAS; one thread unless asked (threads.hpp)
   log << "threads: " << a.threads << (a.threads == 1 ? " (--threads N for more)" : "") << "\n";
   RunTimes times;
-  const RunRequest request{d, s, a.out, variant, element, solver, err, progress};
+  const RunRequest request{d,
+                           s,
+                           a.out,
+                           variant,
+                           element,
+                           solver,
+                           err,
+                           progress,
+                           a.plots.value_or(std::vector<std::string>{"mises"}),
+                           plot_units(d.options.units)};
   t0 = Clock::now();
   run_deck_request(request, times);
   // setup: the Problem, DOF map, sparsity pattern, symbolic analysis and stress recovery.
@@ -383,6 +409,64 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
       << (s.needs.gaps.empty() ? "" : "gaps.csv, ")
       << (plastic && s.needs.gaps.empty() ? "plasticity.csv, " : "") << (fields ? "result.pvd, " : "")
       << "deformed.svg\n";
+  std::vector<std::string> pictures = times.pictures;
+  if (d.steps() > 1 && !pictures.empty())  // the load-displacement curve of history.csv
+    pictures.push_back(draw_curve(a.out, "u_max", "load_factor", d.title));
+  for (const std::string& picture : pictures)
+    log << "wrote " << picture << (a.png && rasterize(picture) ? " and its .png" : "") << "\n";
+  if (!times.pictures_skipped.empty()) log << "pictures not drawn: " << times.pictures_skipped << "\n";
+  return ok;
+}
+
+/// `gapfe plot DIR`: a field of one step (result.pvd's VTU files) or a curve of history.csv.
+int plot(const Args& a, std::ostream& out) {
+  std::ostringstream null_stream;
+  std::ostream& log     = a.quiet ? null_stream : out;
+  const std::string dir = a.deck;
+  const PlotUnits units = plot_units(a.units);
+  std::vector<std::string> written;
+  if (!a.curve_x.empty()) {
+    written.push_back(draw_curve(dir, a.curve_x, a.curve_y, std::filesystem::path(dir).filename().string()));
+  } else {
+    const std::string pvd = dir + "/result.pvd";
+    std::ifstream in(pvd);
+    if (!in) throw InputError("cannot open '" + pvd + "' (a run with output_vtu = none writes no VTU files)");
+    std::stringstream text;
+    text << in.rdbuf();
+    const auto datasets = read_pvd(text.str(), pvd);
+    if (datasets.empty()) throw InputError(pvd + " lists no files");
+    std::string file = datasets.back().second;
+    if (a.step > 0) {
+      char name[32];
+      std::snprintf(name, sizeof name, "step_%04d.vtu", a.step);
+      const auto it =
+          std::find_if(datasets.begin(), datasets.end(), [&](const auto& d) { return d.second == name; });
+      if (it == datasets.end()) {
+        std::string steps;
+        for (const auto& d : datasets)
+          if (d.second.find("_split_") == std::string::npos) steps += (steps.empty() ? "" : ", ") + d.second;
+        throw InputError("load step " + std::to_string(a.step) + " is not in " + pvd + " (it has " + steps +
+                         ")");
+      }
+      file = it->second;
+    }
+    std::ifstream vin(dir + "/" + file, std::ios::binary);
+    if (!vin) throw InputError("cannot open '" + dir + "/" + file + "', listed in " + pvd);
+    std::stringstream vtext;
+    vtext << vin.rdbuf();
+    const VtuData data     = read_vtu(vtext.str(), dir + "/" + file);
+    const std::string stem = file.substr(0, file.size() - 4);
+    for (const std::string& field : a.plots.value_or(std::vector<std::string>{"mises"})) {
+      const std::string path = dir + "/plot_" + field + (a.step > 0 ? "_" + stem : std::string()) + ".svg";
+      write_field_svg(path, data, plot_field(data, field, units),
+                      std::filesystem::path(dir).filename().string() + ", " + stem, units);
+      written.push_back(path);
+    }
+  }
+  for (const std::string& path : written) {
+    const bool png = !a.no_png && rasterize(path);
+    log << "wrote " << path << (png ? " and its .png" : "") << "\n";
+  }
   return ok;
 }
 
@@ -390,23 +474,25 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
 
 int main(const std::vector<std::string>& args, std::ostream& out, std::ostream& err, bool progress,
          const std::function<void()>& large_model) {
-  if (!args.empty() && (args[0] == "--help" || args[0] == "-h" || args[0] == "help")) {
-    out << kUsage;
-    return ok;
-  }
-  if (!args.empty() && args[0] == "--version") {
-    out << "gapfe " << GAPFE_VERSION_STRING << "\n";
-    return ok;
-  }
   Args a;
   try {
     a = parse(args);
   } catch (const UsageError& e) {
-    err << "gapfe: " << e.what() << "\n" << kUsage;
+    err << "gapfe: " << e.what() << "\n"
+        << (args.empty() ? help_text("")
+                         : "(gapfe --help lists the commands, gapfe COMMAND --help the options)\n");
     return usage;
   }
+  if (a.help) {
+    out << help_text(a.command);
+    return ok;
+  }
+  if (a.version) {
+    out << "gapfe " << GAPFE_VERSION_STRING << "\n";
+    return ok;
+  }
   try {
-    return execute(a, out, err, progress, large_model);
+    return a.command == "plot" ? plot(a, out) : execute(a, out, err, progress, large_model);
   } catch (const InputError& e) {
     err << "gapfe: error in " << a.deck << ": " << e.what() << "\n";
     return input;

@@ -1355,3 +1355,180 @@ TEST_CASE(
   CHECK(limit < thin);                           // ...less than turning the whole tube down to its root
 }
 #endif
+
+// ---- Pictures, history.csv and the command line (issue 17). tests/check_output.py reads the same kinds of
+// files with meshio and Python's XML parser.
+
+TEST_CASE("[history] the plastic tube past its limit: history.csv's load climbs to p_L and flattens there") {
+  // examples/decks/plastic_tube.deck at 30 per step to 450 (as the past-the-limit test): the run fails in
+  // step 11 and keeps the history of every accepted increment. Closed form (THEORY.md V6): p_L = (2 / sqrt 3)
+  // 400 ln 2 = 320.15 for the perfectly plastic tube, Mises at nu = 0.3 within ~1% of it.
+  const fs::path deck =
+      edited_example("plastic_tube.deck", "   42    1      20.0", "   42    1      30.0", "history_limit");
+  const fs::path out = scratch("history_limit");
+  std::ostringstream o, e;
+  CHECK(gapfe::cli::main({"run", deck.string(), "--out", out.string(), "--quiet"}, o, e) ==
+        gapfe::cli::solve);
+  const auto history = read_csv(out / "history.csv");
+  REQUIRE(history.size() > 10);
+  const double p_limit = 2 / std::sqrt(3.0) * 400 * std::log(2.0);
+  const auto& last     = history.back();
+  const double reached = 450 * last.at("load_factor");
+  MESSAGE("history.csv: " << history.size() << " increments, pressure reached " << reached << " against p_L "
+                          << p_limit << "; u_max " << last.at("u_max"));
+  CHECK(std::abs(reached - p_limit) < 0.01 * p_limit);
+  CHECK(last.at("inc") == doctest::Approx(reached / 30).epsilon(1e-12));
+  CHECK(last.at("plastic_points") > 0);
+  // The curve bends: the last increments' stiffness dp/du is under 5% of the first (elastic) one.
+  const auto& first    = history.front();
+  const auto& prev     = history[history.size() - 2];
+  const double elastic = first.at("load_factor") / first.at("u_max"),
+               final =
+                   (last.at("load_factor") - prev.at("load_factor")) / (last.at("u_max") - prev.at("u_max"));
+  CHECK(final < 0.05 * elastic);
+  // The pictures of the accepted increments are there although the run failed.
+  CHECK(fs::exists(out / "deformed.svg"));
+  CHECK(fs::exists(out / "plot_mises.svg"));
+}
+
+TEST_CASE(
+    "[history] columns: each BC card's reaction where it prescribes, pairs, iterations; one step: none") {
+  // The press fit (grid scene): the shaft's support and the pushed hub top carry equal and opposite axial
+  // forces (nothing else holds the model along z), closed and slipping pairs counted from gaps.csv.
+  const fs::path out = run_deck_file(fs::path(GAPFE_SOURCE_DIR) / "examples" / "scenes" / "press_fit.toml",
+                                     "history_press_fit");
+  const auto history = read_csv(out / "history.csv");
+  const auto gaps    = read_csv(out / "gaps.csv");
+  REQUIRE(!history.empty());
+  for (const auto& row : history) {
+    CHECK(std::abs(row.at("R_z_shaft_bottom") + row.at("R_z_hub_top")) <=
+          1e-6 * std::max(1.0, std::abs(row.at("R_z_hub_top"))));
+    CHECK(row.at("iterations") >= 1);
+    int closed = 0, slipping = 0;
+    for (const auto& g : gaps)
+      if (g.at("inc") == row.at("inc")) closed += g.at("status") >= 2, slipping += g.at("status") == 3;
+    CHECK(row.at("closed") == closed);
+    CHECK(row.at("slipping") == slipping);
+  }
+  CHECK(history.back().at("load_factor") == 1.0);
+  CHECK(history.back().at("R_z_shaft_bottom") > 60000);  // pushed out: Coulomb's 67,858 N (the deck test)
+  // One load step: no history.csv.
+  CHECK(!fs::exists(run_deck_file(kExamples / "thick_tube.deck", "history_one_step") / "history.csv"));
+}
+
+TEST_CASE("[vtu] read_vtu reads back a run's files: every array equals the tables") {
+  const fs::path out = run_deck_file(kExamples / "two_tubes.deck", "vtu_reader");
+  std::ifstream in(out / "step_0020.vtu");
+  REQUIRE(in);
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const VtuData d = read_vtu(text, "step_0020.vtu");
+  std::vector<std::map<std::string, double>> nodes, elements;
+  for (const auto& row : read_csv(out / "nodes.csv"))
+    if (row.at("step") == 20 && row.at("inc") == 20) nodes.push_back(row);
+  for (const auto& row : read_csv(out / "elements.csv"))
+    if (row.at("step") == 20 && row.at("inc") == 20) elements.push_back(row);
+  REQUIRE(d.points.size() == nodes.size());
+  REQUIRE(d.cells.size() == elements.size());
+  const VtuField* u = d.point("displacement");
+  const VtuField* s = d.cell("stress");
+  REQUIRE(u);
+  REQUIRE(s);
+  for (std::size_t n = 0; n < nodes.size(); ++n) {
+    CHECK(d.points[n](0) == nodes[n].at("r"));
+    CHECK(u->values[3 * n] == nodes[n].at("u_r"));
+    CHECK(u->values[3 * n + 1] == nodes[n].at("u_z"));
+  }
+  for (std::size_t e = 0; e < elements.size(); ++e) {
+    CHECK(s->values[6 * e + voigt::hoop] == elements[e].at("s_tt"));
+    CHECK(d.cells[e].size() == 4);
+  }
+  const PlotField hoop = plot_field(d, "s_tt");
+  CHECK(hoop.values.size() == elements.size());
+  CHECK_THROWS_WITH_AS(plot_field(d, "s_t"), doctest::Contains("unknown field 's_t' (known: u, u_r"),
+                       InputError);
+  CHECK_THROWS_WITH_AS(
+      read_vtu("<VTKFile type=\"UnstructuredGrid\"><Piece NumberOfPoints=\"1\" NumberOfCells=\"0\">"
+               "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"binary\">"
+               "AAA*</DataArray></Points>",
+               "bad.vtu"),
+      doctest::Contains("bad.vtu, array '': a character that is not base64"), InputError);
+}
+
+TEST_CASE("[cli] --help on every command, --version, suggestions for misspelt commands and options") {
+  for (const char* command : {"run", "mesh", "info", "plot"}) {
+    CAPTURE(command);
+    for (const char* flag : {"--help", "-h"}) {
+      std::ostringstream out, err;
+      CHECK(gapfe::cli::main({command, flag}, out, err) == gapfe::cli::ok);
+      CHECK(out.str().find(std::string("usage: gapfe ") + command) != std::string::npos);
+      CHECK(out.str().find("--quiet") != std::string::npos);
+      CHECK(err.str().empty());
+    }
+  }
+  std::ostringstream run_help, e0;
+  gapfe::cli::main({"run", "--help"}, run_help, e0);
+  CHECK(run_help.str().find("--plot FIELD") != std::string::npos);
+  CHECK(run_help.str().find("--field") == std::string::npos);  // plot's option, not run's
+  std::ostringstream version, e1;
+  CHECK(gapfe::cli::main({"run", "--version"}, version, e1) == gapfe::cli::ok);
+  CHECK(version.str().rfind("gapfe ", 0) == 0);
+  struct Case {
+    std::vector<std::string> args;
+    std::string expected;
+  };
+  for (const Case& c :
+       {Case{{"run", "x.deck", "--outt", "d"}, "unknown option '--outt'; did you mean '--out'?"},
+        Case{{"plto", "d"}, "unknown command 'plto'; did you mean 'plot'?"},
+        Case{{"plot", "d", "--feild", "u"}, "did you mean '--field'?"},
+        Case{{"run", "x.deck", "--out", "d", "--field", "u"},
+             "--field is not an option of gapfe run (it belongs to: plot)"},
+        Case{{"plot", "d", "--x", "u_max"}, "--x and --y go together"},
+        Case{{"plot", "d", "--step", "0"}, "--step: '0' is not a load step"}}) {
+    CAPTURE(c.expected);
+    std::ostringstream out, err;
+    CHECK(gapfe::cli::main(c.args, out, err) == gapfe::cli::usage);
+    CHECK(err.str().find(c.expected) != std::string::npos);
+  }
+}
+
+TEST_CASE("[plot] gapfe plot: any field of any step, a history curve, and clear errors") {
+  const fs::path out = run_deck_file(kExamples / "two_tubes.deck", "plot_cli");
+  CHECK(fs::exists(out / "plot_mises.svg"));  // gapfe run's default picture
+  CHECK(fs::exists(out / "curve_load_factor_u_max.svg"));
+  std::ostringstream o, e;
+  CHECK(gapfe::cli::main(
+            {"plot", out.string(), "--field", "s_tt", "--step", "5", "--no-png", "--units", "mm,N,MPa"}, o,
+            e) == gapfe::cli::ok);
+  const std::string svg = read_text(out / "plot_s_tt_step_0005.svg");
+  CHECK(svg.find("s_tt [MPa]") != std::string::npos);
+  CHECK(svg.find("r [mm]") != std::string::npos);
+  CHECK(gapfe::cli::main({"plot", out.string(), "--x", "u_max", "--y", "R_z_bc1", "--no-png", "--quiet"}, o,
+                         e) == gapfe::cli::ok);
+  CHECK(fs::exists(out / "curve_R_z_bc1_u_max.svg"));
+  struct Case {
+    std::vector<std::string> args;
+    std::string expected;
+  };
+  for (const Case& c :
+       {Case{{"plot", out.string(), "--field", "mieses"}, "unknown field 'mieses' (known: u, u_r"},
+        Case{{"plot", out.string(), "--step", "99"}, "load step 99 is not in"},
+        Case{{"plot", out.string(), "--x", "u_max", "--y", "load"}, "no column 'load'"},
+        Case{{"plot", (out / "missing").string()}, "cannot open"},
+        Case{{"plot", out.string(), "--units", "mm"}, "units 'mm': expected LENGTH,FORCE,STRESS"}}) {
+    CAPTURE(c.expected);
+    std::ostringstream out2, err;
+    CHECK(gapfe::cli::main(c.args, out2, err) == gapfe::cli::input);
+    CHECK(err.str().find(c.expected) != std::string::npos);
+  }
+  // A deck asking for units, and a field the run cannot draw: the run goes on and says why.
+  std::ostringstream o2, e2;
+  CHECK(gapfe::cli::main({"run", (kExamples / "thick_tube.deck").string(), "--out",
+                          scratch("plot_gaps").string(), "--plot", "gap_state", "--set", "units=mm,N,MPa"},
+                         o2, e2) == gapfe::cli::ok);
+  CHECK(o2.str().find("pictures not drawn: field gap_state: the file has no cell array 'gap_state'") !=
+        std::string::npos);
+  std::ostringstream o3, e3;
+  CHECK(gapfe::cli::main({"info", (kExamples / "thick_tube.deck").string(), "--set", "units=mm;N;MPa"}, o3,
+                         e3) == gapfe::cli::input);
+  CHECK(e3.str().find("units 'mm;N;MPa': expected LENGTH,FORCE,STRESS") != std::string::npos);
+}

@@ -12,6 +12,7 @@
 // Sign: tension positive; a pressure is positive in compression (seed Data 13).
 // DOF order per node: (u_r, u_z, u_theta); the 2-DOF (SAAS) kinematics drops u_theta.
 #include <array>
+#include <cmath>
 #include <numbers>
 
 #include <Eigen/Core>
@@ -43,6 +44,13 @@ inline Mat<3, 3> stress_tensor(const Vec<6>& s) {
   Mat<3, 3> t;
   for (int k = 0; k < 6; ++k) t(kPairs[k][0], kPairs[k][1]) = t(kPairs[k][1], kPairs[k][0]) = s(k);
   return t;
+}
+/// The von Mises equivalent stress sqrt(3 J2) of a stress in Voigt form (the same invariant in any axes).
+inline double von_mises(const Vec<6>& s) {
+  const double normal = (s(rr) - s(zz)) * (s(rr) - s(zz)) + (s(zz) - s(hoop)) * (s(zz) - s(hoop)) +
+                        (s(hoop) - s(rr)) * (s(hoop) - s(rr));
+  const double shear = s(rz) * s(rz) + s(z_theta) * s(z_theta) + s(theta_r) * s(theta_r);
+  return std::sqrt(0.5 * normal + 3 * shear);
 }
 }  // namespace voigt
 

@@ -2,6 +2,7 @@
 // Deck extensions: the options the seed's input lacks, set by lines `$ key = value` before the first card
 // or from the command line (gapfe --set key=value), so legacy decks stay untouched. Each key's values and
 // default are documented at its field; io/deck_reader.hpp reads them.
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <initializer_list>
@@ -12,6 +13,21 @@
 namespace gapfe {
 
 enum class DeckFormat { saac, saac3, elastic };
+
+/// The three names of a `units` value "LENGTH,FORCE,STRESS" (e.g. mm,N,MPa); InputError otherwise.
+inline std::array<std::string, 3> unit_names(const std::string& text) {
+  std::array<std::string, 3> names;
+  std::size_t k = 0;
+  for (const char c : text) {
+    if (c != ',')
+      names[k] += c;
+    else if (++k == 3)
+      break;
+  }
+  if (k != 2 || names[0].empty() || names[1].empty() || names[2].empty())
+    throw InputError("units '" + text + "': expected LENGTH,FORCE,STRESS, e.g. mm,N,MPa");
+  return names;
+}
 
 /// Options a deck sets with `$ key = value` lines or the command line sets with --set key=value.
 struct DeckOptions {
@@ -52,6 +68,9 @@ struct DeckOptions {
   /// segment cards' grid indices (I3, at most 999) and the edge load cards' node numbers (I5, at most
   /// 99,999); every other card keeps its columns (CardLayout, io/deck_reader.hpp).
   bool wide_fields = false;
+  /// units = LENGTH,FORCE,STRESS (e.g. mm,N,MPa): names for the pictures' labels (issue 17); gapfe never
+  /// converts units, so this only says which consistent set the deck uses. Empty: generic names.
+  std::string units;
 
   /// The friction model a run uses: "none" without friction, else the slip option with auto resolved.
   std::string friction_model() const {
@@ -114,6 +133,9 @@ struct DeckOptions {
         throw InputError("option newton_tolerance = '" + value + "': expected a number in (0, 1)");
     } else if (key == "fields") {
       wide_fields = one_of({"legacy", "wide"}) == "wide";
+    } else if (key == "units") {
+      (void)unit_names(value);  // checked here, used by the pictures
+      units = value;
     } else if (key == "newton_iterations") {
       const double n = number(1.0);
       if (n != std::floor(n) || n > 10000)
@@ -123,7 +145,7 @@ struct DeckOptions {
       throw InputError("unknown option '" + key +
                        "' (known: format, element, solver, bc_loads, contact, friction, slip, gap_penalty, "
                        "events, gap_direction, plasticity, output, output_csv, output_vtu, newton_tolerance, "
-                       "newton_iterations, fields)");
+                       "newton_iterations, fields, units)");
     }
   }
 };

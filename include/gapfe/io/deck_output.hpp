@@ -9,6 +9,9 @@
 //  * result.pvd    one step_NNNN.vtu per completed step (step_NNNN_split_K.vtu at the points where a
 //                  contact policy split the step), for ParaView
 //  * deformed.svg  the last increment's deformed mesh (magnified), gap elements coloured open/closed
+//  * plot_FIELD.svg the last increment's field on the deformed mesh (io/field_plot.hpp;
+//  StepFiles::draw_fields)
+//  * history.csv   one row per increment of a run of several steps (io/history_file.hpp)
 //  * mesh.svg, mesh_nodes.csv, mesh_elements.csv, mesh.vtu (gapfe mesh: the grid with its numbers)
 // One header line per CSV, one block of rows per completed step, steps from 1; `inc` is the number
 // of load increments applied so far and t = inc x the time a load step lasts (card 0's delta t in a
@@ -25,6 +28,9 @@
 
 #include "gapfe/contact/pair_state.hpp"
 #include "gapfe/io/deck_scene.hpp"
+#include "gapfe/io/field_plot.hpp"
+#include "gapfe/io/history_file.hpp"
+#include "gapfe/io/svg_canvas.hpp"
 #include "gapfe/io/vtu_writer.hpp"
 #include "gapfe/problem/results.hpp"
 
@@ -95,51 +101,6 @@ inline void csv_increment(std::string& s, int step, double inc, double step_time
   csv_number(s, inc * step_time);
 }
 
-/// An SVG picture of a meridian section: r to the right, z up, 1000 px wide, fitted to `nodes`.
-struct SvgCanvas {
-  Vec2 lo, hi;
-  double width = 1000.0, margin = 40.0, scale = 1.0, height = 0.0;
-  std::string t;
-
-  SvgCanvas(const std::vector<Vec2>& nodes, const std::string& title, double extra_height = 30) {
-    lo = hi = nodes.front();
-    for (const auto& x : nodes) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
-    scale  = (width - 2 * margin) / std::max((hi - lo).maxCoeff(), 1e-300);
-    height = (hi(1) - lo(1)) * scale + 2 * margin + extra_height;
-    t += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"";
-    num(width), t += "\" height=\"", num(height), t += "\" font-family=\"sans-serif\">\n";
-    t += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"10\" y=\"20\" font-size=\"14\">";
-    for (const char c : title)
-      t += c == '<' ? std::string("&lt;") : c == '&' ? std::string("&amp;") : std::string(1, c);
-    t += "</text>\n";
-  }
-  double extent() const { return (hi - lo).maxCoeff(); }
-  void num(double v) { append_number(t, std::round(v * 100) / 100); }
-  std::array<double, 2> px(const Vec2& x) const {
-    return {margin + (x(0) - lo(0)) * scale, height - margin - (x(1) - lo(1)) * scale};
-  }
-  /// A closed polygon through `corners` points of `x`.
-  template <class Points>
-  void polygon(const Points& x, int corners, const char* fill, const char* stroke, double stroke_width) {
-    t += "<polygon points=\"";
-    for (int k = 0; k < corners; ++k) {
-      const auto p = px(x[k]);
-      num(p[0]), t += ',', num(p[1]), t += ' ';
-    }
-    t += "\" fill=\"" + std::string(fill) + "\" stroke=\"" + stroke + "\" stroke-width=\"";
-    num(stroke_width), t += "\"/>\n";
-  }
-  void text(double x, double y, double size, const std::string& what, const char* fill = "black",
-            const char* anchor = "start") {
-    t += "<text x=\"", num(x), t += "\" y=\"", num(y), t += "\" font-size=\"", num(size),
-        t += "\" fill=\"" + std::string(fill) + "\" text-anchor=\"" + anchor + "\">" + what + "</text>\n";
-  }
-  void save(const std::string& path) {
-    t += "</svg>\n";
-    write_file_atomically(path, t);
-  }
-};
-
 inline constexpr const char* kMaterialFill[] = {"#dbe8f6", "#f6e3c9", "#d8f0d2",
                                                 "#eed8f0", "#f3f0c8", "#d5eeee"};
 
@@ -176,7 +137,8 @@ class StepFiles {
   /// One increment: the nodal solution and the centroid values (one per cell, cells then triangles, as
   /// a driver's centroid_values() gives them); `extra_cells` are more VTU cell arrays (GapFile's).
   void write(int step, double inc, const Solution& solution, const std::vector<PointValues>& values,
-             std::vector<VtuField> extra_cells = {}) {
+             std::vector<VtuField> extra_cells = {}, const IncrementSummary& summary = {}) {
+    if (history_) history_->write(step, inc, solution, summary);
     last_displacement_ = solution.displacement;  // deformed.svg's
     for (const auto& f : extra_cells)
       if (f.name == "gap_state") last_gap_state_ = f.values;
@@ -184,8 +146,29 @@ class StepFiles {
     if (tables_ == Increments::last || fields_ == Increments::last)
       held_ = Held{step, inc, solution, values, fields ? std::vector<VtuField>{} : extra_cells};
     if (tables) write_tables(step, inc, solution, values);
-    if (fields) write_fields(step, inc, solution, values, std::move(extra_cells));
+    const bool picture = !pictures_.empty() && scene_.grid.cells.size() <= kSvgCellLimit;
+    if (!fields && !picture) return;
+    VtuData arrays = vtu_arrays(solution, values, std::move(extra_cells));
+    if (fields) write_fields(step, inc, arrays);
+    if (picture) last_arrays_ = std::move(arrays);
   }
+
+  /// history.csv (io/history_file.hpp) for a run of `steps` load steps, when there is more than one.
+  void keep_history(int steps) {
+    if (steps > 1) history_.emplace(dir_, scene_, steps, step_time_);
+  }
+
+  /// The fields (io/field_plot.hpp) finish() draws for the last increment, as plot_FIELD.svg, in `units`;
+  /// none by default. Meshes of more than kSvgCellLimit cells are left to `gapfe plot`.
+  void draw_fields(std::vector<std::string> fields, PlotUnits units) {
+    for (const auto& f : fields)
+      if (std::find(plot_field_names().begin(), plot_field_names().end(), f) == plot_field_names().end())
+        throw InputError("unknown field '" + f + "' to plot (known: " + detail::names_text() + ")");
+    pictures_ = std::move(fields), units_ = std::move(units);
+  }
+  /// The pictures finish() wrote (paths), and the fields it did not draw with why.
+  const std::vector<std::string>& pictures_written() const { return pictures_written_; }
+  const std::string& pictures_skipped() const { return pictures_skipped_; }
 
   /// The end of a run: the held increment (a kind written `last`), then deformed.svg.
   void finish(const std::string& title) {
@@ -194,9 +177,27 @@ class StepFiles {
       held_.reset();
       if (tables_ == Increments::last) write_tables(h.step, h.inc, h.solution, h.values);
       if (fields_ == Increments::last)
-        write_fields(h.step, h.inc, h.solution, h.values, std::move(h.extra_cells));
+        write_fields(h.step, h.inc, vtu_arrays(h.solution, h.values, std::move(h.extra_cells)));
     }
     write_deformed(title);
+    pictures_written_.clear(), pictures_skipped_.clear();
+    if (pictures_.empty()) return;
+    if (scene_.grid.cells.size() > kSvgCellLimit) {
+      pictures_skipped_ = std::to_string(scene_.grid.cells.size()) + " cells, more than " +
+                          std::to_string(kSvgCellLimit) + " (gapfe plot draws them on request)";
+      return;
+    }
+    if (last_arrays_.points.empty()) return;  // no increment
+    for (const VtuField& f : detail::element_ids(scene_)) last_arrays_.cell_data.push_back(f);  // material
+    for (const auto& name : pictures_) {
+      const std::string path = dir_ + "/plot_" + name + ".svg";
+      try {
+        write_field_svg(path, last_arrays_, plot_field(last_arrays_, name, units_), title, units_);
+        pictures_written_.push_back(path);
+      } catch (const InputError& e) {  // a field this run has not got (gap_state without gaps)
+        pictures_skipped_ += (pictures_skipped_.empty() ? "" : "; ") + std::string(e.what());
+      }
+    }
   }
 
  private:
@@ -278,19 +279,15 @@ class StepFiles {
     detail::csv_number(s, v.r), detail::csv_number(s, v.z);
   }
 
-  /// A VTU file of the increment. The mesh and the element ids are the same in every file: from the second
-  /// file on they are encoded once and copied.
-  void write_fields(int step, double inc, const Solution& solution, const std::vector<PointValues>& values,
-                    std::vector<VtuField> extra_cells) {
+  /// The increment's VTU arrays: displacement and reaction per node; stress, eqps and `extra_cells` per cell
+  /// (the mesh itself only for the pictures: the files encode theirs once).
+  VtuData vtu_arrays(const Solution& solution, const std::vector<PointValues>& values,
+                     std::vector<VtuField> extra_cells) const {
     const IJGrid& g = scene_.grid;
     const auto& u   = solution.displacement;
-    char name[48];
-    split_ = step == last_step_ ? split_ + 1 : 0, last_step_ = step;
-    if (inc < step - 1e-12)  // a split point of a contact step; the step's own file comes last
-      std::snprintf(name, sizeof name, "step_%04d_split_%d.vtu", step, split_ + 1);
-    else
-      std::snprintf(name, sizeof name, "step_%04d.vtu", step);
-    std::vector<VtuField> point{{"displacement", 3, {}}, {"reaction", 3, {}}};
+    VtuData d;
+    std::vector<VtuField>& point = d.point_data;
+    point                        = {{"displacement", 3, {}}, {"reaction", 3, {}}};
     point[0].values.reserve(3 * static_cast<std::size_t>(g.node_count()));
     point[1].values.reserve(3 * static_cast<std::size_t>(g.node_count()));
     for (int n = 0; n < g.node_count(); ++n)
@@ -302,8 +299,26 @@ class StepFiles {
       for (int k = 0; k < 6; ++k) stress[6 * e + k] = v.stress(k);
       eqps[e] = v.eqps;
     }
-    std::vector<VtuField> cell{{"stress", 6, std::move(stress)}, {"eqps", 1, std::move(eqps)}};
-    for (auto& f : extra_cells) cell.push_back(std::move(f));
+    d.cell_data = {{"stress", 6, std::move(stress)}, {"eqps", 1, std::move(eqps)}};
+    for (auto& f : extra_cells) d.cell_data.push_back(std::move(f));
+    if (!pictures_.empty() && g.cells.size() <= kSvgCellLimit) {
+      d.points = g.nodes;
+      for (const GridCell& c : g.cells) d.cells.emplace_back(c.node.begin(), c.node.begin() + c.corners);
+    }
+    return d;
+  }
+
+  /// A VTU file of the increment. The mesh and the element ids are the same in every file: from the second
+  /// file on they are encoded once and copied.
+  void write_fields(int step, double inc, const VtuData& arrays) {
+    const IJGrid& g = scene_.grid;
+    char name[48];
+    split_ = step == last_step_ ? split_ + 1 : 0, last_step_ = step;
+    if (inc < step - 1e-12)  // a split point of a contact step; the step's own file comes last
+      std::snprintf(name, sizeof name, "step_%04d_split_%d.vtu", step, split_ + 1);
+    else
+      std::snprintf(name, sizeof name, "step_%04d.vtu", step);
+    const std::vector<VtuField>&point = arrays.point_data, &cell = arrays.cell_data;
     if (vtu_mesh_) {
       write_vtu(dir_ + "/" + name, *vtu_mesh_, point, cell, vtu_ids_);
     } else {
@@ -334,16 +349,9 @@ class StepFiles {
   void write_deformed(const std::string& title) const {
     const IJGrid& g = scene_.grid;
     if (last_displacement_.rows() != g.node_count()) return;  // no increment written
-    const double u_max = last_displacement_.leftCols<2>().rowwise().norm().maxCoeff();
+    const double factor =
+        picture_magnification(g.nodes, last_displacement_.leftCols<2>().rowwise().norm().maxCoeff());
     std::vector<Vec2> deformed(g.nodes), both(g.nodes);
-    Vec2 lo = g.nodes.front(), hi = g.nodes.front();
-    for (const auto& x : g.nodes) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
-    double factor = 1;
-    if (u_max > 0) {
-      const double want   = 0.05 * (hi - lo).maxCoeff() / u_max,
-                   decade = std::pow(10.0, std::floor(std::log10(want)));
-      factor              = want >= 5 * decade ? 5 * decade : want >= 2 * decade ? 2 * decade : decade;
-    }
     for (int n = 0; n < g.node_count(); ++n) {
       deformed[n] = g.nodes[n] + factor * last_displacement_.row(n).head<2>().transpose();
       both.push_back(deformed[n]);
@@ -405,6 +413,12 @@ class StepFiles {
   std::optional<Held> held_;  ///< a kind written `last`: the latest increment, written by finish()
   Eigen::Matrix<double, Eigen::Dynamic, 3> last_displacement_;
   std::vector<double> last_gap_state_;
+  std::optional<HistoryFile> history_;
+  std::vector<std::string> pictures_;  ///< fields drawn at the end (draw_fields)
+  PlotUnits units_;
+  VtuData last_arrays_;  ///< the last increment's arrays and mesh, for the pictures
+  std::vector<std::string> pictures_written_;
+  std::string pictures_skipped_;
   std::ofstream nodes_, elements_, reactions_;
   std::vector<int> prescribed_;  ///< per node: the OR of its BC codes (1 u_r, 2 u_z, 4 u_theta)
   int tables_written_ = 0, fields_written_ = 0;
@@ -428,12 +442,14 @@ class GapFile {
     out_ << "step,inc,t,element,pair,status,gap,f_n,f_t\n";
   }
   /// Writes the rows and returns the VTU cell arrays: gap_state (0 structural, -1 a gap element that
-  /// stays soft, else the seed's contact state 1-4) and gap_size (smallest pair gap, 0 elsewhere).
+  /// stays soft, else the seed's contact state 1-4), gap_size (smallest pair gap, 0 elsewhere) and
+  /// contact_force (the sum of its pairs' normal forces f_n, total ring force, compression positive).
   std::vector<VtuField> write(int step, double inc, const std::vector<GapPair>& pairs,
                               const std::vector<PairState>& states) {
     const std::size_t ne = scene_.grid.cells.size();
     VtuField state{"gap_state", 1, std::vector<double>(ne, 0.0), true},
-        size{"gap_size", 1, std::vector<double>(ne, 0.0)};
+        size{"gap_size", 1, std::vector<double>(ne, 0.0)},
+        force{"contact_force", 1, std::vector<double>(ne, 0.0)};
     for (const int e : scene_.gaps.soft) state.values[static_cast<std::size_t>(e)] = -1;
     std::string s;
     for (std::size_t q = 0; q < pairs.size(); ++q) {
@@ -449,12 +465,13 @@ class GapFile {
       if (e >= ne) continue;  // a scene's gap element without a cell (io/scene_file.hpp): no cell to mark
       if (state.values[e] == 0) state.values[e] = 1, size.values[e] = st.gap;
       size.values[e] = std::min(size.values[e], st.gap);
+      force.values[e] += st.normal_force;
       if (st.closed) state.values[e] += p.pair == 0 ? 1 : 2;  // 1 none, 2 first, 3 second, 4 both
     }
     out_ << s;
     out_.flush();
     if (!out_) throw InputError("error while writing gaps.csv");
-    return {std::move(state), std::move(size)};
+    return {std::move(state), std::move(size), std::move(force)};
   }
 
  private:

@@ -65,6 +65,11 @@ struct DeckScene {
   /// Per condition (parallel to `conditions`, or empty): an index into Deck::amplitudes, whose factor then
   /// multiplies the condition's values in place of the step count (a scene file's load history); -1: none.
   std::vector<int> condition_amplitude;
+  /// Per condition (parallel to `conditions`): the card that gave it (a deck's BC card, a scene's
+  /// [[boundary]]), an index into condition_cards, their names (bc1, bc2, ...; a scene's groups):
+  /// history.csv's reactions.
+  std::vector<int> condition_card;
+  std::vector<std::string> condition_cards;
   VecX temperature;  ///< nodal [deg]; empty: TREF everywhere
   double reference_temperature = 0;
   DeckNeeds needs;
@@ -313,10 +318,13 @@ inline DeckScene build_scene(const Deck& d) {
 
   // ---- boundary conditions on the grid points of each card's rectangle
   for (const auto& b : d.boundary) {
-    int found = 0;
+    int found      = 0;
+    const int card = static_cast<int>(s.condition_cards.size());
+    s.condition_cards.push_back("bc" + std::to_string(card + 1));
     for (int j = b.j1; j <= b.j2; ++j)
       for (int i = b.i1; i <= b.i2; ++i)
-        if (const int n = g.node(i, j); n >= 0) s.conditions.push_back({n, b.code, b.value}), ++found;
+        if (const int n = g.node(i, j); n >= 0)
+          s.conditions.push_back({n, b.code, b.value}), s.condition_card.push_back(card), ++found;
     if (found == 0)
       throw InputError(b.ref.where() + ": no grid point lies in I " + std::to_string(b.i1) + "-" +
                        std::to_string(b.i2) + ", J " + std::to_string(b.j1) + "-" + std::to_string(b.j2));

@@ -433,11 +433,17 @@ class SceneBuilder {
             }
       if (given == 0)
         throw InputError("scene: " + b.where() + ": a [[boundary]] needs fix, displacement or force");
-      for (const std::string& name : b.names("groups"))
+      const std::vector<std::string> groups = b.names("groups");
+      const int card                        = static_cast<int>(s.condition_cards.size());
+      s.condition_cards.emplace_back();
+      for (const std::string& name : groups) {
+        s.condition_cards.back() += (s.condition_cards.back().empty() ? "" : "+") + name;
         for (const int n : in_group(b, "groups", [&](const SceneMesh& g) { return g.nodes(name); })) {
           s.conditions.push_back({n, code, value});
           s.condition_amplitude.push_back(history);
+          s.condition_card.push_back(card);
         }
+      }
       if (value[2] != 0)
         s.needs.theta.push_back(std::string("a theta ") + ((code & 4) ? "displacement" : "force") + " in " +
                                 b.where());

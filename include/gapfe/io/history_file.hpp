@@ -1,0 +1,111 @@
+#pragma once
+// history.csv (issue 17): one row per accepted increment of a run of more than one load step, the numbers a
+// load-displacement, torque-twist or stress-time curve is drawn from (`gapfe plot DIR --x COL --y COL`):
+//   step, inc, t           as in every table (io/deck_output.hpp): t = inc x the time a load step lasts
+//   load_factor            inc / the number of load steps: the fraction of the deck's total load applied
+//                          (of each load's value, where a scene gives it a history: its amplitude)
+//   R_r_CARD, R_z_CARD, R_t_CARD   the total reaction of each boundary card in the components it prescribes
+//                          (CARD: bc1, bc2, ... for a deck's cards in order; a scene's [[boundary]] groups
+//                          joined by '+'; saac3x_bottom, saac3x_top for the faces SAAC3X drives); total ring
+//                          forces, R_t a force along theta (its torque about the axis is sum R_t r)
+//   u_max                  the largest displacement |u| of any node
+//   closed, slipping       gap node pairs closed, and of those slipping (friction)
+//   plastic_points         integration points on the yield surface
+//   iterations             linear solves of the increment (1 for a linear step; Newton's, or the contact
+//                          policy's, otherwise)
+//   residual               the increment's relative residual (|K u - f| / |f|, or Newton's |R| / |F_int|)
+// Rows are flushed as they are written, so a run that fails keeps the history of what it accepted.
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "gapfe/core/error.hpp"
+#include "gapfe/io/deck_scene.hpp"
+#include "gapfe/io/vtu_writer.hpp"
+#include "gapfe/problem/results.hpp"
+
+namespace gapfe {
+
+/// What an increment's driver knows beyond its solution.
+struct IncrementSummary {
+  int iterations = 1, plastic_points = 0, closed = 0, slipping = 0;
+};
+
+class HistoryFile {
+ public:
+  HistoryFile(const std::string& dir, const DeckScene& scene, int steps, double step_time)
+      : steps_(steps), step_time_(step_time) {
+    // Each card's nodes (each once) and the components it prescribes.
+    std::map<int, Card> by_index;
+    for (std::size_t k = 0; k < scene.conditions.size(); ++k) {
+      const int card = scene.condition_card.empty() ? 0 : scene.condition_card[k];
+      Card& c        = by_index[card];
+      c.name         = card < static_cast<int>(scene.condition_cards.size())
+                           ? scene.condition_cards[static_cast<std::size_t>(card)]
+                           : "bc" + std::to_string(card + 1);
+      c.code |= scene.conditions[k].code;
+      c.nodes.push_back(scene.conditions[k].node);
+    }
+    for (auto& [index, card] : by_index) cards_.push_back(std::move(card));
+    if (const StrainRateTest& x = scene.strain_rate_test; x.active()) {
+      cards_.push_back({"saac3x_bottom", 2 | 4, x.bottom});
+      cards_.push_back({"saac3x_top", 2, x.top});
+    }
+    std::string head = "step,inc,t,load_factor";
+    std::set<std::string> used;
+    for (Card& c : cards_) {
+      std::sort(c.nodes.begin(), c.nodes.end());
+      c.nodes.erase(std::unique(c.nodes.begin(), c.nodes.end()), c.nodes.end());
+      std::string name = c.name;
+      for (int k = 2; !used.insert(name).second; ++k) name = c.name + "_" + std::to_string(k);
+      for (int comp = 0; comp < 3; ++comp)
+        if ((c.code >> comp) & 1) head += std::string(",R_") + "rzt"[comp] + "_" + name;
+    }
+    head += ",u_max,closed,slipping,plastic_points,iterations,residual\n";
+    out_.open(dir + "/history.csv", std::ios::binary);
+    if (!out_) throw InputError("cannot write " + dir + "/history.csv");
+    out_ << head << std::flush;
+  }
+
+  void write(int step, double inc, const Solution& s, const IncrementSummary& summary) {
+    std::string row;
+    for (const double v : {static_cast<double>(step), inc, inc * step_time_, inc / steps_}) {
+      detail::append_number(row, v);
+      row += ',';
+    }
+    for (const Card& c : cards_)
+      for (int comp = 0; comp < 3; ++comp)
+        if ((c.code >> comp) & 1) {
+          double total = 0;
+          for (const int n : c.nodes) total += s.reaction(n, comp);
+          detail::append_number(row, total);
+          row += ',';
+        }
+    const double u_max = s.displacement.rows() > 0 ? s.displacement.rowwise().norm().maxCoeff() : 0.0;
+    detail::append_number(row, u_max);
+    for (const int v : {summary.closed, summary.slipping, summary.plastic_points, summary.iterations}) {
+      row += ',';
+      detail::append_number(row, static_cast<long long>(v));
+    }
+    row += ',';
+    detail::append_number(row, s.residual);
+    out_ << row << '\n' << std::flush;
+    if (!out_) throw InputError("error while writing history.csv");
+  }
+
+ private:
+  struct Card {
+    std::string name;
+    int code = 0;
+    std::vector<int> nodes;
+  };
+  std::vector<Card> cards_;
+  int steps_        = 1;
+  double step_time_ = 1;
+  std::ofstream out_;
+};
+
+}  // namespace gapfe

@@ -1,0 +1,117 @@
+#pragma once
+// An SVG picture of a meridian section (r to the right, z up), the canvas of every picture the command
+// draws (mesh.svg, deformed.svg, the field and curve plots): 1000 px wide, the section fitted between the
+// margins, the title wrapped onto as many lines as it needs at the top (a title never runs off the page:
+// kTitleChar is a generous mean glyph width for sans-serif, so a wrapped line fits in any common font).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "gapfe/core/types.hpp"
+#include "gapfe/io/vtu_writer.hpp"
+
+namespace gapfe::detail {
+
+/// Text escaped for SVG/XML character data and attribute values.
+inline std::string xml_text(const std::string& s) {
+  std::string out;
+  out.reserve(s.size());
+  for (const char c : s)
+    out += c == '<'   ? std::string("&lt;")
+           : c == '>' ? std::string("&gt;")
+           : c == '&' ? std::string("&amp;")
+           : c == '"' ? std::string("&quot;")
+                      : std::string(1, c);
+  return out;
+}
+
+struct SvgCanvas {
+  static constexpr double kTitleSize = 14, kTitleLine = 18;
+  static constexpr double kTitleChar = 0.6;  ///< mean glyph width / font size, generous for sans-serif
+  /// Space around the section [px]; `top` is below the title's lines.
+  struct Margins {
+    double left = 40, right = 40, top = 40, bottom = 40;
+  };
+
+  Vec2 lo, hi;
+  double width = 1000.0, scale = 1.0, height = 0.0;
+  Margins margin;
+  std::vector<std::string> title_lines;
+  std::string t;
+
+  /// The section of `nodes` below `title`, with `extra_height` more room at the top (legends).
+  SvgCanvas(const std::vector<Vec2>& nodes, const std::string& title, double extra_height = 30)
+      : SvgCanvas(nodes, title, Margins{40, 40, 40 + extra_height, 40}) {}
+  /// `min_height`: a flat section is centred in at least this height [px] (room for a colour bar).
+  SvgCanvas(const std::vector<Vec2>& nodes, const std::string& title, Margins m, double min_height = 0)
+      : margin(m) {
+    title_lines = wrap(title, static_cast<std::size_t>((width - 20) / (kTitleChar * kTitleSize)));
+    margin.top += kTitleLine * static_cast<double>(title_lines.size() - 1);
+    lo = hi = nodes.front();
+    for (const auto& x : nodes) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+    scale  = (width - margin.left - margin.right) / std::max((hi - lo).maxCoeff(), 1e-300);
+    height = (hi(1) - lo(1)) * scale + margin.top + margin.bottom;
+    if (height < min_height)
+      margin.top += 0.5 * (min_height - height), margin.bottom += 0.5 * (min_height - height),
+          height = min_height;
+    t += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"";
+    num(width), t += "\" height=\"", num(height), t += "\" font-family=\"sans-serif\">\n";
+    t += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+    for (std::size_t k = 0; k < title_lines.size(); ++k)
+      text(10, 20 + kTitleLine * static_cast<double>(k), kTitleSize, title_lines[k], "black", "start",
+           "title");
+  }
+
+  /// `title` in lines of at most `columns` characters, broken at spaces (a longer word on its own line).
+  static std::vector<std::string> wrap(const std::string& title, std::size_t columns) {
+    std::vector<std::string> lines{""};
+    std::size_t at = 0;
+    while (at < title.size()) {
+      const std::size_t end  = std::min(title.find(' ', at), title.size());
+      const std::string word = title.substr(at, end - at);
+      if (!lines.back().empty() && lines.back().size() + 1 + word.size() > columns) lines.emplace_back();
+      lines.back() += (lines.back().empty() ? "" : " ") + word;
+      at = end + 1;
+    }
+    return lines;
+  }
+
+  double extent() const { return (hi - lo).maxCoeff(); }
+  void num(double v) { append_number(t, std::round(v * 100) / 100); }
+  std::array<double, 2> px(const Vec2& x) const {
+    return {margin.left + (x(0) - lo(0)) * scale, height - margin.bottom - (x(1) - lo(1)) * scale};
+  }
+  /// A closed polygon through `corners` points of `x`; `attributes` are added as they are (` class="cell"`).
+  template <class Points>
+  void polygon(const Points& x, int corners, const char* fill, const char* stroke, double stroke_width,
+               const std::string& attributes = {}) {
+    t += "<polygon points=\"";
+    for (int k = 0; k < corners; ++k) {
+      const auto p = px(x[k]);
+      num(p[0]), t += ',', num(p[1]), t += ' ';
+    }
+    t += "\" fill=\"" + std::string(fill) + "\" stroke=\"" + stroke + "\" stroke-width=\"";
+    num(stroke_width), t += "\"" + attributes + "/>\n";
+  }
+  void line(double x0, double y0, double x1, double y1, const char* stroke = "black",
+            double stroke_width = 1) {
+    t += "<line x1=\"", num(x0), t += "\" y1=\"", num(y0), t += "\" x2=\"", num(x1), t += "\" y2=\"", num(y1);
+    t += "\" stroke=\"" + std::string(stroke) + "\" stroke-width=\"", num(stroke_width), t += "\"/>\n";
+  }
+  void text(double x, double y, double size, const std::string& what, const char* fill = "black",
+            const char* anchor = "start", const char* css_class = nullptr, double rotate = 0) {
+    t += "<text x=\"", num(x), t += "\" y=\"", num(y), t += "\" font-size=\"", num(size),
+        t += "\" fill=\"" + std::string(fill) + "\" text-anchor=\"" + anchor + "\"";
+    if (css_class) t += " class=\"" + std::string(css_class) + "\"";
+    if (rotate != 0) t += " transform=\"rotate(", num(rotate), t += " ", num(x), t += " ", num(y), t += ")\"";
+    t += ">" + xml_text(what) + "</text>\n";
+  }
+  void save(const std::string& path) {
+    t += "</svg>\n";
+    write_file_atomically(path, t);
+  }
+};
+
+}  // namespace gapfe::detail

@@ -1,0 +1,249 @@
+#pragma once
+// Reading back what io/vtu_writer.hpp writes, for `gapfe plot` (the pictures of a finished run): a VTK XML
+// UnstructuredGrid (.vtu) with inline arrays, `binary` (base64 of a UInt32 or UInt64 byte count and the
+// little-endian values, uncompressed) or `ascii`, and a ParaView collection (.pvd). Not a general VTK reader:
+// appended data and compressed arrays are refused by name. tests/check_output.py reads the same files with
+// meshio (a reader independent of this one) and compares them with the CSV tables.
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "gapfe/core/error.hpp"
+#include "gapfe/core/types.hpp"
+#include "gapfe/io/vtu_writer.hpp"
+
+namespace gapfe {
+
+/// A VTU file's mesh and arrays: points (x, y) = (r, z), each cell's nodes, point and cell arrays.
+struct VtuData {
+  std::vector<Vec2> points;
+  std::vector<std::vector<int>> cells;
+  std::vector<VtuField> point_data, cell_data;
+
+  const VtuField* point(const std::string& name) const { return find(point_data, name); }
+  const VtuField* cell(const std::string& name) const { return find(cell_data, name); }
+
+ private:
+  static const VtuField* find(const std::vector<VtuField>& fields, const std::string& name) {
+    for (const auto& f : fields)
+      if (f.name == name) return &f;
+    return nullptr;
+  }
+};
+
+namespace detail {
+
+/// The value of attribute `name` in the tag text `tag` ("" when absent).
+inline std::string xml_attribute(std::string_view tag, const std::string& name) {
+  const std::string key = " " + name + "=\"";
+  const auto at         = tag.find(key);
+  if (at == std::string_view::npos) return {};
+  const auto end = tag.find('"', at + key.size());
+  return end == std::string_view::npos ? std::string()
+                                       : std::string(tag.substr(at + key.size(), end - at - key.size()));
+}
+
+/// Bytes of base64 text (whitespace skipped); InputError on another character.
+inline std::vector<unsigned char> base64_bytes(std::string_view text, const std::string& what) {
+  std::vector<unsigned char> out;
+  out.reserve(text.size() / 4 * 3);
+  std::uint32_t bits = 0;
+  int count          = 0;
+  for (const char c : text) {
+    int v = -1;
+    if (c >= 'A' && c <= 'Z')
+      v = c - 'A';
+    else if (c >= 'a' && c <= 'z')
+      v = c - 'a' + 26;
+    else if (c >= '0' && c <= '9')
+      v = c - '0' + 52;
+    else if (c == '+')
+      v = 62;
+    else if (c == '/')
+      v = 63;
+    else if (c == '=' || c == ' ' || c == '\n' || c == '\r' || c == '\t')
+      continue;
+    else
+      throw InputError(what + ": a character that is not base64 ('" + std::string(1, c) + "')");
+    bits = bits << 6 | static_cast<std::uint32_t>(v);
+    if (++count == 4) {
+      out.push_back(static_cast<unsigned char>(bits >> 16));
+      out.push_back(static_cast<unsigned char>(bits >> 8));
+      out.push_back(static_cast<unsigned char>(bits));
+      bits = 0, count = 0;
+    }
+  }
+  if (count == 2) out.push_back(static_cast<unsigned char>(bits >> 4));
+  if (count == 3)
+    out.push_back(static_cast<unsigned char>(bits >> 10)),
+        out.push_back(static_cast<unsigned char>(bits >> 2));
+  return out;
+}
+
+/// One DataArray's values as doubles.
+inline std::vector<double> vtu_values(std::string_view tag, std::string_view body, const std::string& what,
+                                      const std::string& header_type) {
+  const std::string type = xml_attribute(tag, "type"), format = xml_attribute(tag, "format");
+  std::size_t size = type == "Float64" || type == "Int64" || type == "UInt64"   ? 8
+                     : type == "Float32" || type == "Int32" || type == "UInt32" ? 4
+                     : type == "UInt8" || type == "Int8"                        ? 1
+                                                                                : 0;
+  if (size == 0) throw InputError(what + ": data type '" + type + "' is not read");
+  std::vector<double> out;
+  if (format == "ascii") {
+    std::istringstream in{std::string(body)};
+    for (double v; in >> v;) out.push_back(v);
+    if (!in.eof()) throw InputError(what + ": a value that is not a number");
+    return out;
+  }
+  if (format != "binary") throw InputError(what + ": format '" + format + "' is not read (binary or ascii)");
+  const std::vector<unsigned char> bytes = base64_bytes(body, what);
+  const std::size_t head                 = header_type == "UInt64" ? 8 : 4;
+  if (bytes.size() < head) throw InputError(what + ": no byte count");
+  std::uint64_t count = 0;
+  std::memcpy(&count, bytes.data(), head);  // little-endian, as the file declares
+  if (count % size != 0 || count > bytes.size() - head)
+    throw InputError(what + ": the byte count " + std::to_string(count) + " does not match the data");
+  out.resize(count / size);
+  const unsigned char* d = bytes.data() + head;
+  for (std::size_t k = 0; k < out.size(); ++k, d += size) {
+    if (type == "Float64") {
+      double v;
+      std::memcpy(&v, d, 8);
+      out[k] = v;
+    } else if (type == "Float32") {
+      float v;
+      std::memcpy(&v, d, 4);
+      out[k] = v;
+    } else if (type == "Int64") {
+      std::int64_t v;
+      std::memcpy(&v, d, 8);
+      out[k] = static_cast<double>(v);
+    } else if (type == "UInt64") {
+      std::uint64_t v;
+      std::memcpy(&v, d, 8);
+      out[k] = static_cast<double>(v);
+    } else if (type == "Int32") {
+      std::int32_t v;
+      std::memcpy(&v, d, 4);
+      out[k] = v;
+    } else if (type == "UInt32") {
+      std::uint32_t v;
+      std::memcpy(&v, d, 4);
+      out[k] = v;
+    } else if (type == "Int8") {
+      std::int8_t v;
+      std::memcpy(&v, d, 1);
+      out[k] = v;
+    } else
+      out[k] = *d;
+  }
+  return out;
+}
+
+}  // namespace detail
+
+/// Read a VTU file's text; `name` names it in errors.
+inline VtuData read_vtu(std::string_view text, const std::string& name) {
+  if (text.find("<VTKFile") == std::string_view::npos ||
+      text.find("UnstructuredGrid") == std::string_view::npos)
+    throw InputError(name + ": not a VTK XML UnstructuredGrid file");
+  if (text.find("compressor=") != std::string_view::npos ||
+      text.find("<AppendedData") != std::string_view::npos)
+    throw InputError(name + ": compressed or appended data is not read (gapfe writes inline binary)");
+  const std::string header_type = [&] {
+    const auto at = text.find("<VTKFile");
+    return detail::xml_attribute(text.substr(at, text.find('>', at) - at), "header_type");
+  }();
+  VtuData d;
+  std::vector<double> connectivity, offsets;
+  std::size_t points = 0, cells = 0;
+  {
+    const auto at  = text.find("<Piece");
+    const auto tag = text.substr(at, text.find('>', at) - at);
+    points         = std::stoul("0" + detail::xml_attribute(tag, "NumberOfPoints"));
+    cells          = std::stoul("0" + detail::xml_attribute(tag, "NumberOfCells"));
+  }
+  std::string section;  // Points, Cells, PointData or CellData
+  for (std::size_t at = 0; (at = text.find('<', at)) != std::string_view::npos;) {
+    const std::size_t close = text.find('>', at);
+    if (close == std::string_view::npos) throw InputError(name + ": a tag is not closed");
+    const std::string_view tag = text.substr(at, close - at);
+    for (const char* s : {"Points", "Cells", "PointData", "CellData"})
+      if (tag == std::string("<") + s || tag.rfind(std::string("<") + s + " ", 0) == 0) section = s;
+    if (tag.rfind("<DataArray", 0) != 0) {
+      at = close;
+      continue;
+    }
+    const std::size_t end = text.find("</DataArray>", close);
+    if (end == std::string_view::npos) throw InputError(name + ": a DataArray is not closed");
+    const std::string array = detail::xml_attribute(tag, "Name");
+    const std::string what  = name + ", array '" + array + "'";
+    std::vector<double> values =
+        detail::vtu_values(tag, text.substr(close + 1, end - close - 1), what, header_type);
+    const std::string comps = detail::xml_attribute(tag, "NumberOfComponents");
+    const int components    = comps.empty() ? 1 : std::stoi(comps);
+    if (section == "Points") {
+      if (components != 3 || values.size() != 3 * points)
+        throw InputError(what + ": expected 3 x NumberOfPoints values");
+      for (std::size_t n = 0; n < points; ++n) d.points.emplace_back(values[3 * n], values[3 * n + 1]);
+    } else if (section == "Cells") {
+      if (array == "connectivity") connectivity = std::move(values);
+      if (array == "offsets") offsets = std::move(values);
+    } else if (section == "PointData" || section == "CellData") {
+      const std::size_t count = section == "PointData" ? points : cells;
+      if (values.size() != count * static_cast<std::size_t>(components))
+        throw InputError(what + ": " + std::to_string(values.size()) + " values, expected " +
+                         std::to_string(count * static_cast<std::size_t>(components)));
+      const bool integer = detail::xml_attribute(tag, "type").find("Int") != std::string::npos;
+      (section == "PointData" ? d.point_data : d.cell_data)
+          .push_back({array, components, std::move(values), integer});
+    }
+    at = end;
+  }
+  if (d.points.size() != points || offsets.size() != cells)
+    throw InputError(name + ": the points or the cells' offsets are missing");
+  std::size_t from = 0;
+  for (const double o : offsets) {
+    const auto to = static_cast<std::size_t>(o);
+    if (to < from || to > connectivity.size())
+      throw InputError(name + ": the cells' offsets are not increasing");
+    std::vector<int> cell;
+    for (std::size_t k = from; k < to; ++k) {
+      const double n = connectivity[k];
+      if (!(n >= 0 && n < static_cast<double>(points)))
+        throw InputError(name + ": a cell names a point that does not exist");
+      cell.push_back(static_cast<int>(n));
+    }
+    d.cells.push_back(std::move(cell));
+    from = to;
+  }
+  return d;
+}
+
+/// A ParaView collection's datasets: (timestep, file) in the order given.
+inline std::vector<std::pair<double, std::string>> read_pvd(std::string_view text, const std::string& name) {
+  std::vector<std::pair<double, std::string>> out;
+  for (std::size_t at = 0; (at = text.find("<DataSet", at)) != std::string_view::npos;) {
+    const auto close = text.find('>', at);
+    if (close == std::string_view::npos) throw InputError(name + ": a DataSet tag is not closed");
+    const std::string_view tag = text.substr(at, close - at);
+    const std::string time     = detail::xml_attribute(tag, "timestep"),
+                      file     = detail::xml_attribute(tag, "file");
+    char* end                  = nullptr;
+    const double t             = std::strtod(time.c_str(), &end);
+    if (file.empty() || time.empty() || *end != '\0')
+      throw InputError(name + ": a DataSet without a numeric timestep or a file");
+    out.emplace_back(t, file);
+    at = close;
+  }
+  return out;
+}
+
+}  // namespace gapfe
