@@ -17,7 +17,10 @@ function(gapfe_warnings target)
   endif()
   if(GAPFE_NATIVE)
     # g++ 12 flags Eigen's AVX-512 packet code (avx512fintrin.h '__Y' used uninitialized): false positives.
-    target_compile_options(${target} PRIVATE -march=native -Wno-maybe-uninitialized -Wno-uninitialized)
+    target_compile_options(${target} PRIVATE -march=native -Wno-uninitialized)
+    if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")  # clang has no -Wmaybe-uninitialized
+      target_compile_options(${target} PRIVATE -Wno-maybe-uninitialized)
+    endif()
   endif()
   if(GAPFE_SANITIZE)
     target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer

@@ -187,7 +187,10 @@ class StepFiles {
                           std::to_string(kSvgCellLimit) + " (gapfe plot draws them on request)";
       return;
     }
-    if (last_arrays_.points.empty()) return;  // no increment
+    if (last_arrays_.point_data.empty()) return;  // no increment
+    last_arrays_.points = scene_.grid.nodes;       // the mesh, once
+    for (const GridCell& c : scene_.grid.cells)
+      last_arrays_.cells.emplace_back(c.node.begin(), c.node.begin() + c.corners);
     for (const VtuField& f : detail::element_ids(scene_)) last_arrays_.cell_data.push_back(f);  // material
     for (const auto& name : pictures_) {
       const std::string path = dir_ + "/plot_" + name + ".svg";
@@ -280,7 +283,7 @@ class StepFiles {
   }
 
   /// The increment's VTU arrays: displacement and reaction per node; stress, eqps and `extra_cells` per cell
-  /// (the mesh itself only for the pictures: the files encode theirs once).
+  /// (not the mesh: the files encode theirs once, the pictures take it at the end).
   VtuData vtu_arrays(const Solution& solution, const std::vector<PointValues>& values,
                      std::vector<VtuField> extra_cells) const {
     const IJGrid& g = scene_.grid;
@@ -301,10 +304,6 @@ class StepFiles {
     }
     d.cell_data = {{"stress", 6, std::move(stress)}, {"eqps", 1, std::move(eqps)}};
     for (auto& f : extra_cells) d.cell_data.push_back(std::move(f));
-    if (!pictures_.empty() && g.cells.size() <= kSvgCellLimit) {
-      d.points = g.nodes;
-      for (const GridCell& c : g.cells) d.cells.emplace_back(c.node.begin(), c.node.begin() + c.corners);
-    }
     return d;
   }
 
