@@ -188,7 +188,7 @@ class StepFiles {
       return;
     }
     if (last_arrays_.point_data.empty()) return;  // no increment
-    last_arrays_.points = scene_.grid.nodes;       // the mesh, once
+    last_arrays_.points = scene_.grid.nodes;      // the mesh, once
     for (const GridCell& c : scene_.grid.cells)
       last_arrays_.cells.emplace_back(c.node.begin(), c.node.begin() + c.corners);
     for (const VtuField& f : detail::element_ids(scene_)) last_arrays_.cell_data.push_back(f);  // material
