@@ -202,6 +202,8 @@ std::map<std::string, std::vector<double>> read_columns(const std::string& path)
   for (int row = 2; std::getline(in, line); ++row) {
     std::size_t at = 0;
     for (const auto& name : names) {
+      if (at > line.size())
+        throw InputError(path + ", line " + std::to_string(row) + ": fewer values than the header's columns");
       const std::size_t end  = std::min(line.find(',', at), line.size());
       char* stop             = nullptr;
       const std::string word = line.substr(at, end - at);

@@ -539,6 +539,8 @@ TEST_CASE("[gmsh] malformed meshes: each a clear InputError naming the line and 
        "unterminated quoted name"},
       {head + replaced(nodes, "1 4 1 4", "1 5 1 4") + quad, "the header says 5 nodes"},
       {head + replaced(nodes, "0 0 0\n", "0 zero 0\n") + quad, "expected a finite number, found 'zero'"},
+      // a header claiming a billion nodes in a short file: found short, nothing allocated for the claim
+      {head + "$Nodes\n1 1000000000 1 1000000000\n2 1 0 1000000000\n1\n", "the file ends in $Nodes"},
   };
   for (const auto& c : cases) {
     const std::string& text     = c.first;  // named: CAPTURE's lambda cannot take a structured binding

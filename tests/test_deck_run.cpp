@@ -1412,6 +1412,28 @@ TEST_CASE(
   }
   CHECK(history.back().at("load_factor") == 1.0);
   CHECK(history.back().at("R_z_shaft_bottom") > 60000);  // pushed out: Coulomb's 67,858 N (the deck test)
+  // A history.csv whose row is short, and a group name with a comma (a CSV separator) in a scene: clear
+  // errors or a clean header (found by review).
+  {
+    const fs::path dir = scratch("history_short");
+    std::ofstream(dir / "history.csv") << "step,u_max,load_factor\n1,0.5\n";
+    std::ostringstream o, e;
+    CHECK(gapfe::cli::main({"plot", dir.string(), "--x", "u_max", "--y", "load_factor"}, o, e) ==
+          gapfe::cli::input);
+    CHECK(e.str().find("history.csv, line 2: fewer values than the header's columns") != std::string::npos);
+    std::string scene = read_text(kScenes / "thick_tube_grid.toml");
+    const auto swap   = [&](const std::string& from, const std::string& to) {
+      const auto at = scene.find(from);
+      REQUIRE(at != std::string::npos);
+      scene.replace(at, from.size(), to);
+    };
+    swap("bottom = {", "\"bot,tom\" = {");
+    swap("groups = [\"bottom\", \"top\"]", "groups = [\"bot,tom\", \"top\"]");
+    const fs::path file = scratch("history_comma") / "scene.toml";
+    std::ofstream(file) << scene << "[steps]\ncount = 2\n";
+    const fs::path comma = run_deck_file(file, "history_comma_out");
+    CHECK(read_text(comma / "history.csv").find("R_z_bot_tom+top,") != std::string::npos);
+  }
   // One load step: no history.csv.
   CHECK(!fs::exists(run_deck_file(kExamples / "thick_tube.deck", "history_one_step") / "history.csv"));
 }
@@ -1452,6 +1474,31 @@ TEST_CASE("[vtu] read_vtu reads back a run's files: every array equals the table
                "AAA*</DataArray></Points>",
                "bad.vtu"),
       doctest::Contains("bad.vtu, array '': a character that is not base64"), InputError);
+  // Files a run did not write: each an InputError naming what is wrong, never another exception or a read
+  // past the data (found by review: a missing Piece, a count that overflows 3 x N, a negative offset).
+  const std::string head = "<VTKFile type=\"UnstructuredGrid\">";
+  const std::string ascii_point =
+      "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">0 0 "
+      "0</DataArray></Points>";
+  for (const auto& bad : std::vector<std::pair<std::string, std::string>>{
+           {head + "</VTKFile>", "no Piece tag"},
+           {head + "<Piece NumberOfPoints=\"99999999999999999999\" NumberOfCells=\"0\">", "is not a count"},
+           {head + "<Piece NumberOfPoints=\"12297829382473034411\" NumberOfCells=\"0\">" + ascii_point,
+            "is not a count"},
+           {head + "<Piece NumberOfPoints=\"1\" NumberOfCells=\"0\"><Points><DataArray type=\"Float64\" "
+                   "NumberOfComponents=\"x\" format=\"ascii\">0 0 0</DataArray></Points>",
+            "NumberOfComponents 'x' is not a count"},
+           {head + "<Piece NumberOfPoints=\"1\" NumberOfCells=\"1\">" + ascii_point +
+                "<Cells><DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">0</DataArray>"
+                "<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">-1</DataArray></Cells>",
+            "offsets are not increasing whole numbers"},
+       }) {
+    const std::string& expected = bad.second;  // named: CAPTURE's lambda cannot take a structured binding
+    CAPTURE(expected);
+    CHECK_THROWS_WITH_AS(read_vtu(bad.first, "x.vtu"), doctest::Contains(expected.c_str()), InputError);
+  }
+  // A range of a few round-off steps gets its two ends as ticks, not an endless loop.
+  CHECK(detail::nice_ticks(1.0, 1.0 + 2.2e-16, 6).size() <= 14);
 }
 
 TEST_CASE("[cli] --help on every command, --version, suggestions for misspelt commands and options") {

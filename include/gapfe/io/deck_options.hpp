@@ -92,7 +92,7 @@ struct DeckOptions {
     const auto number = [&](double lo) {
       char* end      = nullptr;
       const double v = std::strtod(value.c_str(), &end);
-      if (value.empty() || *end != '\0' || !std::isfinite(v) || v < lo)
+      if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(v) || v < lo)
         throw InputError("option " + key + " = '" + value + "': expected a number >= " + std::to_string(lo));
       return v;
     };

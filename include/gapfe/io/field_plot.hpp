@@ -117,8 +117,10 @@ inline std::vector<double> nice_ticks(double lo, double hi, int count) {
                       : raw <= 2 * decade ? 2 * decade
                       : raw <= 5 * decade ? 5 * decade
                                           : 10 * decade;
+  if (!(lo + step > lo) || !(hi + step > hi)) return {lo, hi};  // a range of a few round-off steps
   std::vector<double> ticks;
-  for (double v = std::ceil(lo / step - 1e-9) * step; v <= hi + 1e-9 * step; v += step)
+  for (double v = std::ceil(lo / step - 1e-9) * step; v <= hi + 1e-9 * step && ticks.size() <= 2u * count + 2;
+       v += step)
     ticks.push_back(std::abs(v) < 1e-9 * step ? 0.0 : v);
   return ticks;
 }
@@ -196,7 +198,8 @@ inline void write_field_svg(const std::string& path, const VtuData& d, const Plo
                             const std::string& title, const PlotUnits& units = {}) {
   if (d.points.empty() || d.cells.empty()) throw InputError("nothing to draw: the mesh has no cells");
   const VtuField* u = d.point("displacement");
-  double largest    = 0;
+  if (u && u->components != 3) u = nullptr;  // not ours: draw undeformed
+  double largest = 0;
   for (std::size_t n = 0; u && n < d.points.size(); ++n)
     largest = std::max(largest, std::hypot(u->values[3 * n], u->values[3 * n + 1]));
   const double factor        = picture_magnification(d.points, largest);

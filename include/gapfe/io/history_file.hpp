@@ -59,6 +59,8 @@ class HistoryFile {
     for (Card& c : cards_) {
       std::sort(c.nodes.begin(), c.nodes.end());
       c.nodes.erase(std::unique(c.nodes.begin(), c.nodes.end()), c.nodes.end());
+      for (char& ch : c.name)  // a CSV header: no separators or quotes in a name (a group may hold any)
+        if (ch == ',' || ch == '"' || ch == '\n' || ch == '\r') ch = '_';
       std::string name = c.name;
       for (int k = 2; !used.insert(name).second; ++k) name = c.name + "_" + std::to_string(k);
       for (int comp = 0; comp < 3; ++comp)

@@ -4,6 +4,8 @@
 // little-endian values, uncompressed) or `ascii`, and a ParaView collection (.pvd). Not a general VTK reader:
 // appended data and compressed arrays are refused by name. tests/check_output.py reads the same files with
 // meshio (a reader independent of this one) and compares them with the CSV tables.
+#include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -47,6 +49,18 @@ inline std::string xml_attribute(std::string_view tag, const std::string& name) 
   const auto end = tag.find('"', at + key.size());
   return end == std::string_view::npos ? std::string()
                                        : std::string(tag.substr(at + key.size(), end - at - key.size()));
+}
+
+/// A count attribute (NumberOfPoints, NumberOfComponents): a whole number from `least` to 2^31; InputError
+/// else.
+inline std::size_t xml_count(std::string_view tag, const std::string& attribute, const std::string& what,
+                             std::size_t least) {
+  const std::string text  = xml_attribute(tag, attribute);
+  std::size_t v           = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || error != std::errc() || end != text.data() + text.size() || v < least || v > (1u << 31))
+    throw InputError(what + ": " + attribute + " '" + text + "' is not a count");
+  return v;
 }
 
 /// Bytes of base64 text (whitespace skipped); InputError on another character.
@@ -157,19 +171,18 @@ inline VtuData read_vtu(std::string_view text, const std::string& name) {
   if (text.find("compressor=") != std::string_view::npos ||
       text.find("<AppendedData") != std::string_view::npos)
     throw InputError(name + ": compressed or appended data is not read (gapfe writes inline binary)");
-  const std::string header_type = [&] {
-    const auto at = text.find("<VTKFile");
-    return detail::xml_attribute(text.substr(at, text.find('>', at) - at), "header_type");
-  }();
+  const auto tag_of = [&](const char* open) {  // the opening tag's text, InputError when missing
+    const auto at    = text.find(open);
+    const auto close = at == std::string_view::npos ? at : text.find('>', at);
+    if (close == std::string_view::npos) throw InputError(name + ": no " + std::string(open + 1) + " tag");
+    return text.substr(at, close - at);
+  };
+  const std::string header_type = detail::xml_attribute(tag_of("<VTKFile"), "header_type");
   VtuData d;
   std::vector<double> connectivity, offsets;
-  std::size_t points = 0, cells = 0;
-  {
-    const auto at  = text.find("<Piece");
-    const auto tag = text.substr(at, text.find('>', at) - at);
-    points         = std::stoul("0" + detail::xml_attribute(tag, "NumberOfPoints"));
-    cells          = std::stoul("0" + detail::xml_attribute(tag, "NumberOfCells"));
-  }
+  const std::string_view piece = tag_of("<Piece");
+  const std::size_t points     = detail::xml_count(piece, "NumberOfPoints", name, 0),
+                    cells      = detail::xml_count(piece, "NumberOfCells", name, 0);
   std::string section;  // Points, Cells, PointData or CellData
   for (std::size_t at = 0; (at = text.find('<', at)) != std::string_view::npos;) {
     const std::size_t close = text.find('>', at);
@@ -187,23 +200,28 @@ inline VtuData read_vtu(std::string_view text, const std::string& name) {
     const std::string what  = name + ", array '" + array + "'";
     std::vector<double> values =
         detail::vtu_values(tag, text.substr(close + 1, end - close - 1), what, header_type);
-    const std::string comps = detail::xml_attribute(tag, "NumberOfComponents");
-    const int components    = comps.empty() ? 1 : std::stoi(comps);
+    const std::size_t components = detail::xml_attribute(tag, "NumberOfComponents").empty()
+                                       ? 1
+                                       : detail::xml_count(tag, "NumberOfComponents", what, 1);
     if (section == "Points") {
-      if (components != 3 || values.size() != 3 * points)
+      if (components != 3 || values.size() % 3 != 0 || values.size() / 3 != points)
         throw InputError(what + ": expected 3 x NumberOfPoints values");
-      for (std::size_t n = 0; n < points; ++n) d.points.emplace_back(values[3 * n], values[3 * n + 1]);
+      for (std::size_t n = 0; n < points; ++n) {
+        d.points.emplace_back(values[3 * n], values[3 * n + 1]);
+        if (!d.points.back().allFinite())
+          throw InputError(what + ": point " + std::to_string(n + 1) + " is not finite");
+      }
     } else if (section == "Cells") {
       if (array == "connectivity") connectivity = std::move(values);
       if (array == "offsets") offsets = std::move(values);
     } else if (section == "PointData" || section == "CellData") {
       const std::size_t count = section == "PointData" ? points : cells;
-      if (values.size() != count * static_cast<std::size_t>(components))
+      if (values.size() % components != 0 || values.size() / components != count)
         throw InputError(what + ": " + std::to_string(values.size()) + " values, expected " +
-                         std::to_string(count * static_cast<std::size_t>(components)));
+                         std::to_string(components) + " for each of " + std::to_string(count));
       const bool integer = detail::xml_attribute(tag, "type").find("Int") != std::string::npos;
       (section == "PointData" ? d.point_data : d.cell_data)
-          .push_back({array, components, std::move(values), integer});
+          .push_back({array, static_cast<int>(components), std::move(values), integer});
     }
     at = end;
   }
@@ -211,9 +229,11 @@ inline VtuData read_vtu(std::string_view text, const std::string& name) {
     throw InputError(name + ": the points or the cells' offsets are missing");
   std::size_t from = 0;
   for (const double o : offsets) {
+    if (!(o >= static_cast<double>(from) && o <= static_cast<double>(connectivity.size()) &&
+          o == std::floor(o)))
+      throw InputError(name +
+                       ": the cells' offsets are not increasing whole numbers within the connectivity");
     const auto to = static_cast<std::size_t>(o);
-    if (to < from || to > connectivity.size())
-      throw InputError(name + ": the cells' offsets are not increasing");
     std::vector<int> cell;
     for (std::size_t k = from; k < to; ++k) {
       const double n = connectivity[k];

@@ -303,14 +303,18 @@ inline GmshMesh read_gmsh(std::string_view text) {
         const int total  = in.count("the number of nodes", 0, 1'000'000'000);
         in.integer("the smallest node tag");
         in.integer("the largest node tag");
-        m.nodes.reserve(static_cast<std::size_t>(total));
+        // Counts come from the file: reserve no more than its text can hold (a node takes 8 characters or
+        // more), so a header that claims a billion nodes in a short file costs nothing before it is found
+        // short.
+        m.nodes.reserve(std::min(static_cast<std::size_t>(total), text.size() / 8));
         for (int b = 0; b < blocks; ++b) {
           in.count("a block's entity dimension", 0, 3);
           in.integer("a block's entity tag");
           const int parametric = in.count("a block's parametric flag", 0, 1);
           const int n          = in.count("a block's node count", 0, 1'000'000'000);
-          std::vector<long> tags(static_cast<std::size_t>(n));
-          for (long& t : tags) t = in.integer("a node tag");
+          std::vector<long> tags;
+          tags.reserve(std::min(static_cast<std::size_t>(n), text.size() / 2));
+          for (int k = 0; k < n; ++k) tags.push_back(in.integer("a node tag"));
           for (const long t : tags) {
             const double x = in.real("x"), y = in.real("y"), z = in.real("z");
             if (parametric)
