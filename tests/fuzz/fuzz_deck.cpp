@@ -1,8 +1,9 @@
 // libFuzzer target for the input readers: read any bytes as a card deck and build its mesh and scene, as a
-// Gmsh MSH file (mesh/gmsh_reader.hpp), and as a scene file (io/scene_file.hpp) on the test meshes of
-// tests/data/scenes (its [mesh] file names one of them). The only acceptable outcomes are a result or an
-// InputError / SolveError; anything else (a crash, another exception, a sanitizer report, a hang) is a bug.
-// CI runs it for a bounded time over examples/decks, tests/data/*.msh and tests/data/scenes/*.toml.
+// Gmsh MSH file (mesh/gmsh_reader.hpp), as a VTU file drawn as gapfe plot would (io/vtu_reader.hpp), and as a
+// scene file (io/scene_file.hpp) on the test meshes of tests/data/scenes (its [mesh] file names one of them).
+// The only acceptable outcomes are a result or an InputError / SolveError; anything else (a crash, another
+// exception, a sanitizer report, a hang) is a bug. CI runs it for a bounded time over examples/decks,
+// tests/data/*.msh and tests/data/scenes/*.toml.
 //   cmake -S . -B build/fuzz -DCMAKE_CXX_COMPILER=clang++ -DGAPFE_FUZZ=ON ...;
 //   build/fuzz/tests/fuzz/fuzz_deck
 #include <cmath>
@@ -12,6 +13,8 @@
 
 #include "gapfe/io/deck.hpp"
 #include "gapfe/io/deck_scene.hpp"
+#include "gapfe/io/field_plot.hpp"
+#include "gapfe/io/vtu_reader.hpp"
 #include "gapfe/mesh/gmsh_reader.hpp"
 #ifdef GAPFE_HAS_SCENE
 #include <filesystem>
@@ -68,6 +71,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           if (c.nodes[static_cast<std::size_t>(a)] < 0 ||
               c.nodes[static_cast<std::size_t>(a)] >= static_cast<int>(mesh.nodes.size()))
             __builtin_trap();
+    } catch (const gapfe::InputError&) {
+    }
+  }
+  if (size < (1u << 16)) {  // a VTU file as gapfe plot reads it, and its picture: every cell's points exist
+    try {
+      const gapfe::VtuData d = gapfe::read_vtu(text, "fuzz.vtu");
+      for (const auto& cell : d.cells)
+        for (const int n : cell)
+          if (n < 0 || n >= static_cast<int>(d.points.size())) __builtin_trap();
+      if (d.cell("stress") && !d.cells.empty())
+        (void)gapfe::field_svg(d, gapfe::plot_field(d, "mises"), "fuzz");
     } catch (const gapfe::InputError&) {
     }
   }

@@ -191,11 +191,11 @@ inline PlotField plot_field(const VtuData& d, const std::string& name, const Plo
   throw InputError("unknown field '" + name + "' (known: " + detail::names_text() + ")");
 }
 
-/// The deformed section of `d` coloured by `f` (plot_field of the same file) to `path`: every cell once
+/// The deformed section of `d` coloured by `f` (plot_field of the same file) as SVG text: every cell once
 /// (`class="cell"`, its value in `data-value`), a colour bar from the field's least to its greatest value
 /// (`class="colorbar"` with `data-min`, `data-max`), r and z axes, the magnification in the title.
-inline void write_field_svg(const std::string& path, const VtuData& d, const PlotField& f,
-                            const std::string& title, const PlotUnits& units = {}) {
+inline std::string field_svg(const VtuData& d, const PlotField& f, const std::string& title,
+                             const PlotUnits& units = {}) {
   if (d.points.empty() || d.cells.empty()) throw InputError("nothing to draw: the mesh has no cells");
   const VtuField* u = d.point("displacement");
   if (u && u->components != 3) u = nullptr;  // not ours: draw undeformed
@@ -319,7 +319,13 @@ inline void write_field_svg(const std::string& path, const VtuData& d, const Plo
     svg.text(bar_x + 32, y + 4, 11, detail::label_number(v), "black", "start", "tick");
   }
   svg.t += "</g>\n";
-  svg.save(path);
+  return svg.close();
+}
+
+/// field_svg written to `path` (through a temporary file and a rename).
+inline void write_field_svg(const std::string& path, const VtuData& d, const PlotField& f,
+                            const std::string& title, const PlotUnits& units = {}) {
+  detail::write_file_atomically(path, field_svg(d, f, title, units));
 }
 
 /// A curve of column `y` against column `x` (history.csv's), one marker per row, with axes and labels.

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gapfe/core/types.hpp"
@@ -108,10 +109,12 @@ struct SvgCanvas {
     if (rotate != 0) t += " transform=\"rotate(", num(rotate), t += " ", num(x), t += " ", num(y), t += ")\"";
     t += ">" + xml_text(what) + "</text>\n";
   }
-  void save(const std::string& path) {
+  /// The finished picture's text.
+  std::string close() {
     t += "</svg>\n";
-    write_file_atomically(path, t);
+    return std::move(t);
   }
+  void save(const std::string& path) { write_file_atomically(path, close()); }
 };
 
 }  // namespace gapfe::detail
