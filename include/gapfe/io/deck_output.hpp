@@ -59,34 +59,15 @@ inline std::vector<VtuField> element_ids(const DeckScene& s) {
   return f;
 }
 
-/// The cell sides a picture of a large mesh keeps: those of one cell only (the boundary) and those between
-/// cells of different materials (`material` per cell), as node pairs (smaller node first).
+/// The outline (io/svg_canvas.hpp, outline_sides) of an I-J grid's cells.
 inline std::vector<std::array<int, 2>> outline_edges(const IJGrid& g, const std::vector<int>& material) {
-  struct Side {
-    std::array<int, 2> nodes;
-    int material;
-    bool operator<(const Side& o) const { return nodes < o.nodes; }
-  };
-  std::vector<Side> sides;
-  sides.reserve(4 * g.cells.size());
-  for (std::size_t e = 0; e < g.cells.size(); ++e) {
-    const GridCell& c = g.cells[e];
-    for (int k = 0; k < c.corners; ++k) {
-      const int a = c.node[k], b = c.node[(k + 1) % c.corners];
-      sides.push_back({{std::min(a, b), std::max(a, b)}, material[e]});
-    }
-  }
-  std::sort(sides.begin(), sides.end());
-  std::vector<std::array<int, 2>> out;
-  for (std::size_t k = 0; k < sides.size();) {
-    std::size_t end = k + 1;
-    bool interface  = false;
-    for (; end < sides.size() && sides[end].nodes == sides[k].nodes; ++end)
-      interface = interface || sides[end].material != sides[k].material;
-    if (end - k == 1 || interface) out.push_back(sides[k].nodes);
-    k = end;
-  }
-  return out;
+  return outline_sides(
+      g.cells.size(),
+      [&](std::size_t e, auto&& side) {
+        const GridCell& c = g.cells[e];
+        for (int k = 0; k < c.corners; ++k) side(c.node[k], c.node[(k + 1) % c.corners]);
+      },
+      material);
 }
 
 inline void csv_number(std::string& s, double v) {

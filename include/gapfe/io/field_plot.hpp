@@ -18,7 +18,6 @@
 #include <cstddef>
 #include <cstdio>
 #include <limits>
-#include <map>
 #include <string>
 #include <vector>
 
@@ -215,26 +214,24 @@ inline std::string field_svg(const VtuData& d, const PlotField& f, const std::st
                             detail::label_number(factor) + "; grey: undeformed)",
                         detail::SvgCanvas::Margins{90, 200, 40, 70}, 320);
   // ---- the undeformed boundary, thin and grey: cell sides that belong to one cell only
+  const auto corners_of = [](const std::vector<int>& cell) { return cell.size() == 8 ? 4 : cell.size(); };
   {
-    std::map<std::pair<int, int>, int> sides;
-    for (const auto& cell : d.cells) {
-      const std::size_t corners = cell.size() == 8 ? 4 : cell.size();
-      for (std::size_t k = 0; k < corners; ++k) {
-        const int a = cell[k], b = cell[(k + 1) % corners];
-        ++sides[{std::min(a, b), std::max(a, b)}];
-      }
-    }
-    for (const auto& [side, count] : sides)
-      if (count == 1)
-        svg.polygon(std::array<Vec2, 2>{d.points[static_cast<std::size_t>(side.first)],
-                                        d.points[static_cast<std::size_t>(side.second)]},
-                    2, "none", "#a0a0a0", 0.8, " class=\"undeformed\"");
+    const auto sides = detail::outline_sides(d.cells.size(),
+                                             [&](std::size_t e, auto&& side) {
+                                               const auto& cell = d.cells[e];
+                                               for (std::size_t k = 0, n = corners_of(cell); k < n; ++k)
+                                                 side(cell[k], cell[(k + 1) % n]);
+                                             },
+                                             {});
+    for (const auto& [a, b] : sides)
+      svg.polygon(
+          std::array<Vec2, 2>{d.points[static_cast<std::size_t>(a)], d.points[static_cast<std::size_t>(b)]},
+          2, "none", "#a0a0a0", 0.8, " class=\"undeformed\"");
   }
   // ---- cells, each once, in the file's order; slivers (gap elements: a tenth of a percent of the median
   // cell's area or less) after the others with a heavy outline in their colour, which is what stays visible
   // of them. Written straight into the picture: a run draws this for its last increment, and 1e4 cells
   // through temporary strings cost 12 ms of a 0.1 s contact run.
-  const auto corners_of = [](const std::vector<int>& cell) { return cell.size() == 8 ? 4 : cell.size(); };
   std::vector<double> area(d.cells.size());
   for (std::size_t e = 0; e < d.cells.size(); ++e) {  // shoelace, undeformed
     const auto& cell = d.cells[e];

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <string>
 #include <utility>
 #include <vector>
@@ -25,6 +26,37 @@ inline std::string xml_text(const std::string& s) {
            : c == '&' ? std::string("&amp;")
            : c == '"' ? std::string("&quot;")
                       : std::string(1, c);
+  return out;
+}
+
+/// The cell sides a picture keeps as the section's outline: those of one cell only (the boundary) and those
+/// between cells of different materials (`material` per cell; empty: one material), as node pairs (smaller
+/// node first). `sides_of(e, side)` calls side(a, b) for each side of cell e. deck_output.hpp's outline of a
+/// large mesh and the field pictures' undeformed boundary (field_plot.hpp).
+template <class SidesOf>
+std::vector<std::array<int, 2>> outline_sides(std::size_t cells, const SidesOf& sides_of,
+                                              const std::vector<int>& material) {
+  struct Side {
+    std::array<int, 2> nodes;
+    int material;
+    bool operator<(const Side& o) const { return nodes < o.nodes; }
+  };
+  std::vector<Side> sides;
+  sides.reserve(4 * cells);
+  for (std::size_t e = 0; e < cells; ++e)
+    sides_of(e, [&](int a, int b) {
+      sides.push_back({{std::min(a, b), std::max(a, b)}, material.empty() ? 0 : material[e]});
+    });
+  std::sort(sides.begin(), sides.end());
+  std::vector<std::array<int, 2>> out;
+  for (std::size_t k = 0; k < sides.size();) {
+    std::size_t end = k + 1;
+    bool interface  = false;
+    for (; end < sides.size() && sides[end].nodes == sides[k].nodes; ++end)
+      interface = interface || sides[end].material != sides[k].material;
+    if (end - k == 1 || interface) out.push_back(sides[k].nodes);
+    k = end;
+  }
   return out;
 }
 
