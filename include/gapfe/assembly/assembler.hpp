@@ -17,6 +17,7 @@
 // each element matrix's upper triangle, or all of it when the solver reads full storage
 // (assembly/sparsity.hpp).
 #include <algorithm>
+#include <memory>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -25,6 +26,7 @@
 #include "gapfe/assembly/dof_map.hpp"
 #include "gapfe/assembly/edge_index.hpp"
 #include "gapfe/assembly/element_kernel.hpp"
+#include "gapfe/assembly/equation_layout.hpp"
 #include "gapfe/assembly/node_links.hpp"
 #include "gapfe/assembly/problem_check.hpp"
 #include "gapfe/assembly/quad4_batch.hpp"
@@ -32,6 +34,7 @@
 #include "gapfe/core/history.hpp"
 #include "gapfe/problem/problem.hpp"
 #include "gapfe/solver/coordinate_dissection.hpp"
+#include "gapfe/solver/system.hpp"
 
 namespace gapfe {
 
@@ -51,8 +54,17 @@ class Assembler {
   /// Checks the model (assembly/problem_check.hpp) and builds the pattern. `links`: node pairs that may
   /// carry node links; their values start at zero.
   Assembler(const Problem<M>& p, Connectivity<2> links)
-      : links_(std::move(links)), link_values_(links_.size()), cells_(p.mesh.cells.size()) {
+      : links_(std::move(links)),
+        link_values_(links_.size()),
+        cells_(p.mesh.cells.size()),
+        subdomain_(p.subdomain) {
     check_model(p, links_);
+    // A partitioned problem: every part holds every link (the ends of gap pairs are on every part), and the
+    // part that owns a link's first node assembles it, so that the parts' sum counts it once.
+    link_owned_.assign(links_.size(), 1);
+    if (subdomain_)
+      for (std::size_t l = 0; l < links_.size(); ++l)
+        link_owned_[l] = subdomain_->layout().owns(links_[l][0]);
     dofs_ = DofMap<kNd>::build(p.mesh, p.conditions);
     SparsityBuilder<kNd> sb(p.mesh.node_count(), dofs_.equation, dofs_.free_count);
     sb.add(p.mesh.cells);
@@ -105,6 +117,19 @@ class Assembler {
         if (const int eq = dofs_.equation[static_cast<std::size_t>(dofs_.dof(n, c))]; eq >= 0)
           order.push_back(eq);
     return order;
+  }
+  /// The System of the analysis, given the pattern (take_pattern()): with the fill-reducing order for a
+  /// solver that takes one and, for a part of a partitioned problem, the equation layout (collective). A
+  /// distributed solver that takes no order gets the layout on a whole problem too (for its near-null
+  /// space); a RuntimeSolver offering both kinds gets it only for a part.
+  template <class Solver>
+  System<Solver> make_system(const Problem<M>& p) {
+    if (p.subdomain || (DistributedSolver<Solver> && !OrderedSolver<Solver>)) {
+      const EquationLayout layout = equation_layout(dofs_, p.mesh, p.subdomain.get());
+      return System<Solver>(take_pattern(), {}, &layout);
+    }
+    if constexpr (OrderedSolver<Solver>) return System<Solver>(take_pattern(), fill_reducing_order(p));
+    return System<Solver>(take_pattern());
   }
   const Connectivity<2>& links() const { return links_; }
   std::vector<NodeLink>& link_values() { return link_values_; }
@@ -245,7 +270,7 @@ class Assembler {
     constexpr int n = 2 * kNd;
     for (std::size_t l = 0; l < links_.size(); ++l) {
       const NodeLink& link = link_values_[l];
-      if (link.zero()) continue;
+      if (!assembles_link(l)) continue;
       const Mat<n, n> k = link.template element_stiffness<kNd>();
       scatter<kStorage>(values, link_offsets_.data() + l * offset_count(n, kStorage), k);
       add_element_rhs(
@@ -301,7 +326,7 @@ class Assembler {
     if (!values) return;
     constexpr int n = 2 * kNd;
     for (std::size_t l = 0; l < links_.size(); ++l) {
-      if (link_values_[l].zero()) continue;
+      if (!assembles_link(l)) continue;
       const Mat<n, n> k = link_values_[l].template element_stiffness<kNd>();
       scatter<kStorage>(values, link_offsets_.data() + l * offset_count(n, kStorage), k);
       if (prescribed_step) add_predictor(links_[l], k, *prescribed_step, predictor);
@@ -310,6 +335,7 @@ class Assembler {
 
   /// The kNd x kNd diagonal block of every node (zero-padded to 3 x 3), summed over the cells whose tag
   /// passes `keep`, prescribed DOFs included: the "adjacent structure's stiffness" a penalty is scaled by.
+  /// A part of a partitioned problem gets the sum over every part's cells (collective).
   template <class Keep>
   std::vector<Mat33> nodal_stiffness(const Problem<M>& p, Keep&& keep) const {
     std::vector<Mat33> out(static_cast<std::size_t>(p.mesh.node_count()), Mat33::Zero());
@@ -324,6 +350,7 @@ class Assembler {
           for (int a = 0; a < static_cast<int>(NPC); ++a)
             out[cell[a]].template topLeftCorner<kNd, kNd>() += k.template block<kNd, kNd>(a * kNd, a * kNd);
         });
+    if (subdomain_ && !out.empty()) subdomain_->sum_shared(out.front().data(), 9);  // Mat33: 9 contiguous
     return out;
   }
 
@@ -346,6 +373,8 @@ class Assembler {
   }
 
  private:
+  /// Whether link l adds anything here: it is not zero and this part assembles it.
+  bool assembles_link(std::size_t l) const { return link_owned_[l] && !link_values_[l].zero(); }
   /// out(dof) += v over the element's (or link's) DOFs.
   template <std::size_t NPC, class Vector>
   void add_to(const std::array<int, NPC>& nodes, const Vector& v, VecX& out) const {
@@ -356,7 +385,7 @@ class Assembler {
   void add_link_forces(const VecX& u, VecX& internal) const {
     for (std::size_t l = 0; l < links_.size(); ++l) {
       const NodeLink& link = link_values_[l];
-      if (link.zero()) continue;
+      if (!assembles_link(l)) continue;
       const Vec<2 * kNd> f =
           link.template element_stiffness<kNd>() * gather(links_[l], u) - link.template element_load<kNd>();
       add_to(links_[l], f, internal);
@@ -502,9 +531,11 @@ class Assembler {
   std::vector<int> cell_offsets_, tri_offsets_, link_offsets_;
   Connectivity<2> links_;
   std::vector<NodeLink> link_values_;
+  std::vector<char> link_owned_;  ///< per link: whether this part assembles it (all, when whole)
   std::size_t cells_ = 0, points_ = 0;
   EdgeIndex<Elem> edges_;
   LocalLawCache<Law> cache_;
+  std::shared_ptr<const Subdomain> subdomain_;  ///< the problem's, when it is a part
   mutable struct {  // linear_internal's element stiffnesses of the cells with a prescribed DOF
     std::vector<double> values;
     bool valid = false;

@@ -32,6 +32,30 @@ struct DofMap {
     return "equation " + std::to_string(eq);
   }
 
+  /// The errors build() gives for a card (seed Data 5) on a mesh of `nodes` nodes; `on_axis(node)` says
+  /// whether a node lies on the axis (asked only for a node in range). A partitioned problem checks the
+  /// whole problem's cards with it before each part keeps its own (assembly/partition.hpp).
+  template <class OnAxis>
+  static void check(const NodalCondition& c, int nodes, OnAxis&& on_axis) {
+    const std::string where = "boundary condition at node " + std::to_string(c.node + 1);
+    if (c.node < 0 || c.node >= nodes) throw InputError(where + ": no such node");
+    if (c.code < 0 || c.code > 7)
+      throw InputError(where + ": code must be 0-7, got " + std::to_string(c.code));
+    if (!std::isfinite(c.value[0]) || !std::isfinite(c.value[1]) || !std::isfinite(c.value[2]))
+      throw InputError(where + ": non-finite value");
+    const bool axis = on_axis(c.node);
+    for (int k = 0; k < 3; ++k) {
+      if (c.value[k] == 0) continue;
+      if (k == dof::theta && DofsPerNode == 2)
+        throw InputError(where + ": a theta " + (c.prescribed(k) ? "displacement" : "load") +
+                         " needs the 3-DOF (SAGA) kinematics");
+      if (axis && k != dof::z)
+        throw InputError(where + ": the node is on the axis, where " + dof::kName[k] +
+                         " = 0 is imposed; a non-zero " + dof::kName[k] +
+                         (c.prescribed(k) ? " displacement" : " load") + " is not allowed");
+    }
+  }
+
   template <class MeshT>
   static DofMap build(const MeshT& mesh, const std::vector<NodalCondition>& conditions) {
     const int nn = mesh.node_count();
@@ -52,27 +76,10 @@ struct DofMap {
       }
     }
     for (const auto& c : conditions) {  // later cards win, as in the seed
-      const std::string where = "boundary condition at node " + std::to_string(c.node + 1);
-      if (c.node < 0 || c.node >= nn) throw InputError(where + ": no such node");
-      if (c.code < 0 || c.code > 7)
-        throw InputError(where + ": code must be 0-7, got " + std::to_string(c.code));
-      if (!std::isfinite(c.value[0]) || !std::isfinite(c.value[1]) || !std::isfinite(c.value[2]))
-        throw InputError(where + ": non-finite value");
-      for (int k = 0; k < 3; ++k) {
-        if (k == dof::theta && DofsPerNode == 2) {
-          if (c.value[k] != 0)
-            throw InputError(where + ": a theta " + (c.prescribed(k) ? "displacement" : "load") +
-                             " needs the 3-DOF (SAGA) kinematics");
-          continue;
-        }
+      check(c, nn, [&](int node) { return static_cast<bool>(m.on_axis[node]); });
+      for (int k = 0; k < DofsPerNode; ++k) {
         const int d = m.dof(c.node, k);
-        if (m.on_axis[c.node] && k != dof::z) {
-          if (c.value[k] != 0)
-            throw InputError(where + ": the node is on the axis, where " + dof::kName[k] +
-                             " = 0 is imposed; a non-zero " + dof::kName[k] +
-                             (c.prescribed(k) ? " displacement" : " load") + " is not allowed");
-          continue;
-        }
+        if (m.on_axis[c.node] && k != dof::z) continue;
         fixed[d]         = c.prescribed(k);
         m.prescribed(d)  = c.prescribed(k) ? c.value[k] : 0.0;
         m.nodal_force(d) = c.prescribed(k) ? 0.0 : c.value[k];

@@ -14,6 +14,15 @@
 
 namespace gapfe {
 
+/// The error of edge load k (0-based) whose edge M -> N is no element's: `reversed` when N -> M is one.
+inline InputError edge_load_error(std::size_t k, const EdgeLoad& l, bool reversed) {
+  const std::string what = "edge load " + std::to_string(k + 1) + " from node " +
+                           std::to_string(l.node_m + 1) + " to node " + std::to_string(l.node_n + 1);
+  if (reversed)
+    return InputError(what + ": the element must lie to the left going from M to N; swap M and N");
+  return InputError(what + ": the two nodes are not the ends of an element edge");
+}
+
 template <class Elem>
 class EdgeIndex {
  public:
@@ -25,13 +34,7 @@ class EdgeIndex {
     for (std::size_t k = 0; k < loads.size(); ++k) {
       const EdgeLoad& l = loads[k];
       const auto it     = edges_.find(key(l.node_m, l.node_n));
-      if (it == edges_.end()) {
-        const std::string what = "edge load " + std::to_string(k + 1) + " from node " +
-                                 std::to_string(l.node_m + 1) + " to node " + std::to_string(l.node_n + 1);
-        if (edges_.count(key(l.node_n, l.node_m)))
-          throw InputError(what + ": the element must lie to the left going from M to N; swap M and N");
-        throw InputError(what + ": the two nodes are not the ends of an element edge");
-      }
+      if (it == edges_.end()) throw edge_load_error(k, l, edges_.count(key(l.node_n, l.node_m)) > 0);
       const auto [triangle, cell, edge] = it->second;
       if (!triangle) apply<Elem, DofsPerNode>(m.nodes, m.cells[cell], edge, l, out);
       if constexpr (kHasTriangles<Elem>)

@@ -62,6 +62,16 @@ void check_model(const Problem<M>& p, const Connectivity<2>& links) {
                        "): needs two different nodes of the mesh");
 }
 
+/// Edge load number k (0-based) of a list: finite, and within what DofsPerNode components can carry.
+template <int DofsPerNode>
+void check_edge_load(const EdgeLoad& l, std::size_t k) {
+  if (!std::isfinite(l.pressure) || !std::isfinite(l.shear) || !std::isfinite(l.transverse_shear))
+    throw InputError("edge load " + std::to_string(k + 1) + ": non-finite value");
+  if (DofsPerNode == 2 && l.transverse_shear != 0)
+    throw InputError("edge load " + std::to_string(k + 1) +
+                     ": a transverse (theta) shear needs the 3-DOF (SAGA) kinematics");
+}
+
 /// Temperatures, inertia and edge loads of `p`: finite, and within what the kinematics can carry.
 template <class M>
 void check_loads(const Problem<M>& p) {
@@ -72,14 +82,7 @@ void check_loads(const Problem<M>& p) {
   if (!std::isfinite(in.axial_acceleration) || !std::isfinite(in.angular_velocity) ||
       !std::isfinite(in.angular_acceleration))
     throw InputError("inertia load: non-finite value");
-  for (std::size_t k = 0; k < p.edge_loads.size(); ++k) {
-    const auto& l = p.edge_loads[k];
-    if (!std::isfinite(l.pressure) || !std::isfinite(l.shear) || !std::isfinite(l.transverse_shear))
-      throw InputError("edge load " + std::to_string(k + 1) + ": non-finite value");
-    if (kNd == 2 && l.transverse_shear != 0)
-      throw InputError("edge load " + std::to_string(k + 1) +
-                       ": a transverse (theta) shear needs the 3-DOF (SAGA) kinematics");
-  }
+  for (std::size_t k = 0; k < p.edge_loads.size(); ++k) check_edge_load<kNd>(p.edge_loads[k], k);
   if (kNd == 2 && in.angular_acceleration != 0)
     throw InputError(
         "inertia load: angular acceleration loads u_theta and needs the 3-DOF (SAGA) kinematics");

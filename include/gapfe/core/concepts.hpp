@@ -1,6 +1,7 @@
 #pragma once
 // The contracts every policy must meet. A wrong plug-in fails where the Model alias names it.
 #include <concepts>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -98,6 +99,30 @@ concept LinearSolver = std::default_initializable<S> && requires(S s, const SpMa
 template <class S>
 concept OrderedSolver = LinearSolver<S> && requires(S s, const SpMat& K, const std::vector<int>& order) {
   s.analyze(K, order);
+};
+
+/// Where a part's free equations sit in the system of a partitioned problem (core/subdomain.hpp), and what a
+/// solver may want to know of them beyond the pattern. The part's local equations are the rows and columns
+/// of the pattern it assembles; [0, owned) are the rows it holds of the global system (its owned nodes'
+/// free DOFs, numbered contiguously in part order), the rest couple to rows another part holds.
+struct EquationLayout {
+  std::vector<std::int64_t> global;  ///< local equation -> global equation
+  int owned          = 0;            ///< local equations [0, owned) are this part's rows
+  std::int64_t first = 0;            ///< the global number of local equation 0
+  std::int64_t total = 0;            ///< equations over every part
+  /// The rigid-body (and near-rigid) modes over the owned rows, column-major, `modes` columns of `owned`
+  /// values: what an algebraic multigrid builds its coarse spaces from (Assembler::near_null_space).
+  std::vector<double> near_null;
+  int modes = 0;
+};
+
+/// A LinearSolver that solves a partitioned system: given the layout before analyze(), it reads the part's
+/// local pattern and values (its cells' sum, in its storage), sums the parts' entries into the global
+/// system, and solve(b) takes the part's partial right-hand side (its cells' contributions, local
+/// equations) and returns the solution at every local equation, owned or not. Every call is collective.
+template <class S>
+concept DistributedSolver = LinearSolver<S> && requires(S s, const EquationLayout& layout) {
+  s.distribute(layout);
 };
 
 }  // namespace gapfe

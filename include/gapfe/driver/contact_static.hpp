@@ -566,12 +566,21 @@ class ContactStatic {
                      [](const PairState& s) { return s.closed; }))
       return;
     const std::vector<PointValues> values = fe_.centroid_values(Recovered::stress);
+    // Per pair, the sum of the stress tensors around it (9) and their count; a part of a partitioned
+    // problem holds only its own cells around a pair, so the parts' sums are added.
+    std::vector<double> around(10 * pairs_.size(), 0.0);
     for (std::size_t p = 0; p < pairs_.size(); ++p) {
-      if (!history_.committed(p).closed || around_[p].empty()) continue;
-      Mat33 sigma = Mat33::Zero();
-      for (const int c : around_[p])
-        sigma += voigt::stress_tensor(values[static_cast<std::size_t>(c)].stress);
-      sigma /= static_cast<double>(around_[p].size());
+      if (!history_.committed(p).closed) continue;
+      Eigen::Map<Mat33> sum(around.data() + 10 * p);
+      for (const int c : around_[p]) sum += voigt::stress_tensor(values[static_cast<std::size_t>(c)].stress);
+      around[10 * p + 9] = static_cast<double>(around_[p].size());
+    }
+    if (const Subdomain* part = fe_.problem().subdomain.get())
+      part->sum(around.data(), static_cast<int>(around.size()));
+    for (std::size_t p = 0; p < pairs_.size(); ++p) {
+      const double count = around[10 * p + 9];
+      if (!history_.committed(p).closed || count == 0) continue;
+      const Mat33 sigma  = Eigen::Map<const Mat33>(around.data() + 10 * p) / count;
       const Vec2 tangent = pairs_[p].tangent();
       const Vec3 n(pairs_[p].normal(0), pairs_[p].normal(1), 0.0), t(tangent(0), tangent(1), 0.0),
           theta(0, 0, 1);

@@ -36,9 +36,7 @@ class LinearStatic {
   explicit LinearStatic(Problem<M> problem, Connectivity<2> links = {})
       : p_(std::move(problem)),
         assembler_(p_, std::move(links)),
-        system_(assembler_.take_pattern(), OrderedSolver<typename M::LinearSolver>
-                                               ? assembler_.fill_reducing_order(p_)
-                                               : std::vector<int>{}) {}
+        system_(assembler_.template make_system<typename M::LinearSolver>(p_)) {}
 
   /// Loads, temperatures and materials may be changed here between solves.
   Problem<M>& problem() { return p_; }
@@ -157,9 +155,9 @@ class LinearStatic {
     const auto seconds = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
     const auto& dofs   = assembler_.dofs();
     auto t1            = clock::now();
-    if (dofs.free_count > 0 && refactor) system_.factorize([&](int eq) { return dofs.describe(eq); });
+    if (system_.active() && refactor) system_.factorize([&](int eq) { return dofs.describe(eq); });
     auto t2        = clock::now();
-    const VecX u_f = dofs.free_count > 0 ? system_.solve(system_.rhs()) : VecX();
+    const VecX u_f = system_.active() ? system_.solve(system_.rhs()) : VecX();
     auto t3        = clock::now();
     if (!u_f.allFinite()) throw SolveError("the solution has non-finite values (singular stiffness?)");
     u_ = dofs.prescribed;
@@ -183,7 +181,8 @@ class LinearStatic {
   void reactions() const {
     const auto& dofs = assembler_.dofs();
     if (dofs.free_count == 0) {
-      nodal_results(dofs, u_, assembler_.linear_internal(p_, u_), external_, p_.mesh.node_count(), sol_);
+      nodal_results(dofs, u_, assembler_.linear_internal(p_, u_), external_, p_.mesh.node_count(), sol_,
+                    p_.subdomain.get());
       return;
     }
     VecX internal = assembler_.linear_internal(p_, u_, /*prescribed_only=*/true);
@@ -200,7 +199,7 @@ class LinearStatic {
     for (std::size_t d = 0; d < dofs.equation.size(); ++d)
       if (const int eq = dofs.equation[d]; eq >= 0)
         internal(static_cast<Eigen::Index>(d)) = out_of_balance(eq) + external_(static_cast<Eigen::Index>(d));
-    nodal_results(dofs, u_, internal, external_, p_.mesh.node_count(), sol_);
+    nodal_results(dofs, u_, internal, external_, p_.mesh.node_count(), sol_, p_.subdomain.get());
   }
 
   Problem<M> p_;

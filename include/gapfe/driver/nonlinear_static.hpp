@@ -77,9 +77,7 @@ class NonlinearStatic {
   explicit NonlinearStatic(Problem<M> scene, Connectivity<2> link_pairs = {}, NewtonOptions options = {})
       : p_(std::move(scene)),
         assembler_(p_, std::move(link_pairs)),
-        system_(assembler_.take_pattern(), OrderedSolver<typename M::LinearSolver>
-                                               ? assembler_.fill_reducing_order(p_)
-                                               : std::vector<int>{}),
+        system_(assembler_.template make_system<typename M::LinearSolver>(p_)),
         options_(options),
         points_(assembler_.point_count()),
         stress_(assembler_.point_count(), Vec6::Zero()),
@@ -209,7 +207,7 @@ class NonlinearStatic {
     evaluate(tangent, &prescribed_step);
     lap(&SolveTimings::assemble);
     if (extrapolate) {  // the extrapolated start may already be in equilibrium (a proportional elastic step)
-      nodal_results(dofs, u_, internal_, external_, p_.mesh.node_count(), sol_);
+      nodal_results(dofs, u_, internal_, external_, p_.mesh.node_count(), sol_, p_.subdomain.get());
       if (!std::isfinite(sol_.residual)) throw SolveError("the residual is not finite");
       report_.converged = sol_.residual <= options_.tolerance;
       if (report_.converged) report_.residuals.push_back(sol_.residual);
@@ -225,7 +223,7 @@ class NonlinearStatic {
       for (Eigen::Index d = 0; d < u_.size(); ++d)
         if (const int eq = dofs.equation[d]; eq >= 0) rhs(eq) += external_(d) - internal_(d);
       VecX du_free;
-      if (dofs.free_count > 0) {
+      if (system_.active()) {
         system_.factorize([&](int eq) { return dofs.describe(eq); });
         lap(&SolveTimings::factorize);
         du_free = system_.solve(rhs);
@@ -241,7 +239,7 @@ class NonlinearStatic {
       tangent          = again && !converged_next(it + 1, before_last, last);
       evaluate(tangent, nullptr);
       lap(&SolveTimings::assemble);
-      nodal_results(dofs, u_, internal_, external_, p_.mesh.node_count(), sol_);
+      nodal_results(dofs, u_, internal_, external_, p_.mesh.node_count(), sol_, p_.subdomain.get());
       report_.residuals.push_back(sol_.residual);
       report_.iterations = it + 1;
       if (!std::isfinite(sol_.residual)) throw SolveError("the residual is not finite");
@@ -265,6 +263,12 @@ class NonlinearStatic {
     }
     for (const State& s : points_.trial()) report_.plastic_points += s.plastic;
     report_.drift = drift();
+    if (const Subdomain* part = p_.subdomain.get()) {  // a part's points are its own: sum and max over parts
+      double points = report_.plastic_points;
+      part->sum(&points, 1);
+      report_.plastic_points = static_cast<int>(points);
+      report_.drift          = part->max(report_.drift);
+    }
     lap(&SolveTimings::reactions);
     return sol_;
   }

@@ -29,6 +29,9 @@ struct Mesh {
   std::vector<CellTag> cell_tags;                    ///< parallel to cells (empty: all default)
   std::vector<std::array<int, 3>> triangles;         ///< 3-corner cells (CST)
   std::vector<CellTag> triangle_tags;                ///< parallel to triangles (empty: all default)
+  /// A part of a partitioned mesh (mesh/partition.hpp) keeps the whole mesh's size() here, so that the
+  /// tolerances relative to it (nodes on the axis, gap overlaps) are the same on every part; 0: whole.
+  double whole_size = 0;
 
   int node_count() const { return static_cast<int>(nodes.size()); }
   CellTag cell_tag(std::size_t e) const { return cell_tags.empty() ? CellTag{} : cell_tags[e]; }
@@ -36,6 +39,7 @@ struct Mesh {
 
   /// Largest extent of the mesh in r or z, for relative tolerances [length].
   double size() const {
+    if (whole_size > 0) return whole_size;
     Vec2 lo = nodes.front(), hi = nodes.front();
     for (const auto& x : nodes) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
     return (hi - lo).maxCoeff();

@@ -54,24 +54,37 @@ void nodal_displacements(const VecX& u, int nodes, Solution& s) {
 }
 
 /// Displacements, reactions = internal - external at prescribed DOFs, and the relative out-of-balance
-/// |internal - external| / |internal| at the free DOFs (all vectors over all DOFs).
+/// |internal - external| / |internal| at the free DOFs (all vectors over all DOFs). For a part of a
+/// partitioned problem (`part`) `internal` and `external` are the part's partial sums: they are summed over
+/// the parts first (the reactions are then totals at every local node) and the norms count each node once,
+/// at its owner, over every part (collective).
 template <int DofsPerNode>
 void nodal_results(const DofMap<DofsPerNode>& dofs, const VecX& u, const VecX& internal, const VecX& external,
-                   int nodes, Solution& s) {
+                   int nodes, Solution& s, const Subdomain* part = nullptr) {
   nodal_displacements<DofsPerNode>(u, nodes, s);
   s.reaction.setZero(nodes, 3);
-  double out_of_balance = 0, applied = 0;
+  VecX total_internal, total_external;
+  if (part) {
+    total_internal = internal, total_external = external;
+    part->sum_shared(total_internal.data(), DofsPerNode);
+    part->sum_shared(total_external.data(), DofsPerNode);
+  }
+  const VecX& in    = part ? total_internal : internal;
+  const VecX& ex    = part ? total_external : external;
+  const int counted = part ? part->owned_nodes() : nodes;
+  double norms[2]   = {0, 0};  // out of balance, applied: sums of squares
   for (int n = 0; n < nodes; ++n)
     for (int c = 0; c < DofsPerNode; ++c) {
       const int d             = dofs.dof(n, c);
-      const double unbalanced = internal(d) - external(d);
+      const double unbalanced = in(d)-ex(d);
       if (dofs.equation[d] < 0)
         s.reaction(n, c) = unbalanced;
-      else
-        out_of_balance += unbalanced * unbalanced;
-      applied += internal(d) * internal(d);
+      else if (n < counted)
+        norms[0] += unbalanced * unbalanced;
+      if (n < counted) norms[1] += in(d)*in(d);
     }
-  s.residual = applied > 0 ? std::sqrt(out_of_balance / applied) : 0.0;
+  if (part) part->sum(norms, 2);
+  s.residual = norms[1] > 0 ? std::sqrt(norms[0] / norms[1]) : 0.0;
 }
 
 /// Strain and stress at every stiffness point of every cell, or (`centroids`) one value per cell; cells

@@ -2,9 +2,11 @@
 // Problem<M>: everything an analysis of a compile-time Model needs, as plain data: the mesh, one law per
 // material, the nodal conditions, the loads and the temperature field. Drivers own one (and let the
 // caller change loads, temperatures and materials between solves); the deck layer builds one from a deck
-// (run/deck_problem.hpp). Node and material indices are 0-based.
+// (run/deck_run.hpp). Node and material indices are 0-based.
+#include <memory>
 #include <vector>
 
+#include "gapfe/core/subdomain.hpp"
 #include "gapfe/core/types.hpp"
 #include "gapfe/mesh/mesh.hpp"
 #include "gapfe/problem/loads.hpp"
@@ -20,6 +22,10 @@ struct Problem {
   InertiaLoad inertia;                          ///< seed Data 12
   VecX temperature;                             ///< nodal temperatures [deg]; empty: T_ref everywhere
   double reference_temperature = 0.0;           ///< TREF [deg]
+  /// Set when this is one part of a problem partitioned over several processes (assembly/partition.hpp
+  /// makes it): the mesh, conditions, loads and temperatures above are then the part's, in its local
+  /// numbering, and the drivers sum what the parts share through it. Empty: the problem is whole.
+  std::shared_ptr<const Subdomain> subdomain;
 };
 
 }  // namespace gapfe

@@ -49,6 +49,11 @@ class RuntimeSolver {
   void analyze(const SpMat& k) { impl_->analyze(k); }
   /// The caller's elimination order, for the chosen solver if it takes one (OrderedSolver).
   void analyze(const SpMat& k, const std::vector<int>& order) { impl_->analyze(k, order); }
+  /// The layout of a partitioned system, for a distributed solver among Solvers when it is the chosen one
+  /// (DistributedSolver); the others solve on one process and refuse it.
+  void distribute(const EquationLayout& layout) requires(DistributedSolver<Solvers> || ...) {
+    impl_->distribute(layout);
+  }
   bool factorize(const SpMat& k) { return impl_->factorize(k); }
   VecX solve(const VecX& b) const { return impl_->solve(b); }
   std::string failure() const { return impl_->failure(); }
@@ -59,6 +64,7 @@ class RuntimeSolver {
     virtual ~Interface()                                                = default;
     virtual void analyze(const SpMat& k)                                = 0;
     virtual void analyze(const SpMat& k, const std::vector<int>& order) = 0;
+    virtual void distribute(const EquationLayout& layout)               = 0;
     virtual bool factorize(const SpMat& k)                              = 0;
     virtual VecX solve(const VecX& b) const                             = 0;
     virtual std::string failure() const                                 = 0;
@@ -73,6 +79,13 @@ class RuntimeSolver {
         s.analyze(k, order);
       else
         s.analyze(k);
+    }
+    void distribute(const EquationLayout& layout) override {
+      if constexpr (DistributedSolver<S>)
+        s.distribute(layout);
+      else
+        throw InputError(std::string("the solver ") + S::kName +
+                         " solves on one process; a partitioned problem needs a distributed one (PETSc)");
     }
     bool factorize(const SpMat& k) override { return s.factorize(k); }
     VecX solve(const VecX& b) const override { return s.solve(b); }

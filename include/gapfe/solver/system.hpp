@@ -20,11 +20,25 @@ namespace gapfe {
 template <LinearSolver Solver>
 class System {
  public:
-  /// `pattern`: the structure, values ignored. No analysis when there is no free DOF (a pure recovery).
+  /// `pattern`: the structure, values ignored. No analysis when there is no free DOF (a pure recovery) and
+  /// the system is not distributed.
   /// `order`: a fill-reducing elimination order (Assembler::fill_reducing_order) for solvers that take
   /// one (OrderedSolver); others, or an empty order, order the pattern themselves.
-  explicit System(SpMat pattern, const std::vector<int>& order = {}) : k_(std::move(pattern)) {
-    if (k_.rows() == 0) return;
+  /// `layout`: where the equations sit in a partitioned system (a part of a partitioned problem, or a
+  /// distributed solver's near-null space); only a DistributedSolver takes one.
+  explicit System(SpMat pattern, const std::vector<int>& order = {}, const EquationLayout* layout = nullptr)
+      : k_(std::move(pattern)) {
+    if (layout) {
+      if constexpr (DistributedSolver<Solver>) {
+        solver_->distribute(*layout);
+        distributed_ = true;
+      } else {
+        throw InputError(std::string("the solver ") + Solver::kName +
+                         " solves on one process; a partitioned problem needs a distributed solver "
+                         "(PetscSolver, gapfe/solver/petsc.hpp)");
+      }
+    }
+    if (!active()) return;
     if constexpr (OrderedSolver<Solver>)
       if (static_cast<Eigen::Index>(order.size()) == k_.rows()) {
         solver_->analyze(k_, order);
@@ -33,6 +47,9 @@ class System {
     solver_->analyze(k_);
   }
 
+  /// Whether this process factorizes and solves: it has equations, or the system is distributed (then
+  /// every part joins every factorization and solve, with or without rows of its own).
+  bool active() const { return distributed_ || k_.rows() > 0; }
   SpMat& matrix() { return k_; }
   const SpMat& matrix() const { return k_; }
   double* values() { return k_.valuePtr(); }
@@ -57,7 +74,9 @@ class System {
   /// the equation where it broke down (`describe(equation)` says which node and component that is).
   template <class Describe>
   void factorize(Describe&& describe) {
-    if (skip_unchanged_ && factorized_ &&
+    // A distributed system leaves the test to its solver: whether to factorize must be decided over every
+    // part together, or one part would skip a factorization the others join.
+    if (skip_unchanged_ && !distributed_ && factorized_ &&
         std::equal(k_.valuePtr(), k_.valuePtr() + k_.nonZeros(), factorized_values_.begin(),
                    factorized_values_.end())) {
       ++reuses_;
@@ -71,7 +90,8 @@ class System {
                        ": check that the constraints remove every rigid-body motion (axial translation; in "
                        "3-DOF also rotation about the axis) and that no element is degenerate");
     }
-    if (skip_unchanged_) factorized_values_.assign(k_.valuePtr(), k_.valuePtr() + k_.nonZeros());
+    if (skip_unchanged_ && !distributed_)
+      factorized_values_.assign(k_.valuePtr(), k_.valuePtr() + k_.nonZeros());
   }
   VecX solve(const VecX& b) const { return solver_->solve(b); }
 
@@ -102,6 +122,7 @@ class System {
   int reuses_                     = 0;
   bool factorized_                = false;
   bool skip_unchanged_            = false;
+  bool distributed_               = false;
   std::vector<double> factorized_values_;  ///< skip_unchanged: the values of the last factorization
   std::vector<double> saved_values_;
   VecX saved_rhs_;

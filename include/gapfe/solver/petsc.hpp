@@ -1,0 +1,320 @@
+#pragma once
+// PetscSolver: a LinearSolver and DistributedSolver (core/concepts.hpp) over PETSc, for problems partitioned
+// over several processes (core/subdomain.hpp) and for PETSc's solvers on one. Storage: the lower triangle
+// (PetscSolver<>, symmetric tangents: the default Cholesky) or every entry (PetscSolver<MatrixStorage::full>,
+// friction's unsymmetric slip tangent: LU).
+//
+// Assembly is distributed, never gathered: each part hands the entries of its own cells, in global
+// equation numbers, to PETSc's COO interface once (MatSetPreallocationCOO: the pattern, which PETSc sums
+// over parts and duplicates into its AIJ matrix) and then its values at every factorization
+// (MatSetValuesCOO). A lower-triangle entry (i, j), i > j, goes in twice, as (i, j) and (j, i): AIJ holds
+// the whole matrix, which every PETSc preconditioner reads. The right-hand side is the part's partial sum
+// over its local equations, added into the global vector through one VecScatter; the solution comes back
+// through it at every local equation, owned or ghost.
+//
+// The solver is PETSc's choice at run time, from its options database (the program's command line after
+// PetscInitialize, PETSC_OPTIONS, .petscrc): -ksp_type, -pc_type, -pc_factor_mat_solver_type, ... The
+// defaults, set before the options are read, so that any of them can be overridden:
+//   -ksp_type preonly -pc_type cholesky (lu for full storage) -pc_factor_mat_solver_type mumps
+//     MUMPS' multifrontal factorization, distributed over the ranks: the robust choice for contact (penalty
+//     links make the stiffness ill-conditioned) and plasticity (a tangent that may lose definiteness);
+//     MUMPS' null-pivot detection (ICNTL(24) = 1) reports a singular stiffness instead of a huge answer;
+//   -ksp_rtol 1e-10 for an iterative choice (-ksp_type cg -pc_type gamg, or -pc_type hypre): PETSc's 1e-5
+//     would leave answers far less accurate than the direct solve's.
+// With -pc_type gamg the layout's near-null space (the axisymmetric rigid and near-rigid modes,
+// assembly/equation_layout.hpp) is attached to the matrix, and -pc_gamg_reuse_interpolation defaults to true.
+//
+// Repeated solves on one pattern: the COO pattern is set once; PETSc keeps its matrix's nonzero structure,
+// so its factorizations after the first are numeric only (MUMPS' analysis, PETSc's symbolic factorization,
+// is done once), and GAMG rebuilds only its Galerkin products on the kept interpolation. A factorize() whose
+// values are those of the last one bit for bit on every part is skipped (System::skip_unchanged leaves this
+// test to a distributed solver, which must decide it on all parts together).
+//
+// Every call is collective over the communicator (PETSC_COMM_WORLD; PETSC_COMM_SELF without a layout: a
+// whole problem on each process). PETSc must be initialized by the program, and the solver destroyed
+// before PetscFinalize; gapfe never initializes or finalizes PETSc. Needs the gapfe::petsc CMake target.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+#include <petscksp.h>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "gapfe/core/concepts.hpp"
+#include "gapfe/core/error.hpp"
+#include "gapfe/solver/petsc_subdomain.hpp"
+
+namespace gapfe {
+
+// The build's PETSc must be what gapfe's doubles and the CMake configuration expect.
+static_assert(
+    std::is_same_v<PetscScalar, double> && std::is_same_v<PetscReal, double>,
+    "gapfe needs a PETSc built with real double scalars (--with-scalar-type=real --with-precision=double)");
+#ifdef GAPFE_PETSC_INT_BITS
+static_assert(sizeof(PetscInt) * 8 == GAPFE_PETSC_INT_BITS,
+              "PETSc's PetscInt is not the width CMake configured (GAPFE_PETSC_INT_BITS): the headers are "
+              "another PETSc's than the one found at configure time");
+#endif
+
+template <MatrixStorage Storage = MatrixStorage::lower>
+class PetscSolver {
+ public:
+  static constexpr const char* kName =
+      Storage == MatrixStorage::lower ? "PETSc (symmetric storage)" : "PETSc (unsymmetric storage)";
+  static constexpr MatrixStorage kStorage = Storage;
+
+  PetscSolver() {
+    PetscBool up = PETSC_FALSE;
+    detail::petsc_check(PetscInitialized(&up), "PetscInitialized");
+    if (!up)
+      throw InputError(
+          "PetscSolver: PETSc is not initialized; the program calls PetscInitialize (gapfe never "
+          "does)");
+  }
+  ~PetscSolver() {
+    PetscBool finalized = PETSC_TRUE;
+    if (PetscFinalized(&finalized) != 0 || finalized) return;
+    KSPDestroy(&ksp_), MatDestroy(&a_), VecDestroy(&x_), VecDestroy(&b_), VecDestroy(&local_);
+    VecScatterDestroy(&scatter_);
+  }
+  PetscSolver(const PetscSolver&)            = delete;
+  PetscSolver& operator=(const PetscSolver&) = delete;
+
+  /// Where the equations sit in the global system (a part of a partitioned problem, or the identity with
+  /// the near-null space); before analyze().
+  void distribute(const EquationLayout& layout) {
+    if (layout.total > static_cast<std::int64_t>(std::numeric_limits<PetscInt>::max()))
+      throw InputError(
+          "PetscSolver: " + std::to_string(layout.total) + " equations do not fit this PETSc's " +
+          std::to_string(8 * sizeof(PetscInt)) +
+          "-bit indices; use a PETSc configured --with-64-bit-indices (Debian: libpetsc64-real-dev)");
+    layout_      = layout;
+    distributed_ = true;
+  }
+
+  void analyze(const SpMat& k) {
+    using detail::petsc_check;
+    if (!distributed_) {  // a whole problem on this process alone
+      layout_       = {};
+      layout_.owned = static_cast<int>(k.rows());
+      layout_.total = k.rows();
+      layout_.global.resize(static_cast<std::size_t>(k.rows()));
+      std::iota(layout_.global.begin(), layout_.global.end(), std::int64_t{0});
+    }
+    comm_ = distributed_ ? PETSC_COMM_WORLD : PETSC_COMM_SELF;
+    if (static_cast<Eigen::Index>(layout_.global.size()) != k.rows())
+      throw InputError("PetscSolver: the layout has " + std::to_string(layout_.global.size()) +
+                       " equations, the pattern " + std::to_string(k.rows()));
+    // COO pattern in global numbers; a lower-triangle off-diagonal entry twice.
+    std::vector<PetscInt> rows, cols;
+    rows.reserve(static_cast<std::size_t>(2 * k.nonZeros())), cols.reserve(rows.capacity());
+    for (Eigen::Index j = 0; j < k.outerSize(); ++j)
+      for (SpMat::InnerIterator it(k, j); it; ++it) {
+        const auto i = static_cast<PetscInt>(layout_.global[static_cast<std::size_t>(it.row())]);
+        const auto c = static_cast<PetscInt>(layout_.global[static_cast<std::size_t>(j)]);
+        rows.push_back(i), cols.push_back(c);
+        if (kStorage == MatrixStorage::lower && i != c) rows.push_back(c), cols.push_back(i);
+      }
+    coo_.resize(rows.size());
+    const auto owned = static_cast<PetscInt>(layout_.owned), total = static_cast<PetscInt>(layout_.total);
+    petsc_check(MatCreate(comm_, &a_), "MatCreate");
+    petsc_check(MatSetSizes(a_, owned, owned, total, total), "MatSetSizes");
+    petsc_check(MatSetType(a_, MATAIJ), "MatSetType");
+    if constexpr (kStorage == MatrixStorage::lower) {
+      petsc_check(MatSetOption(a_, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
+      petsc_check(MatSetOption(a_, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "MatSetOption");
+    }
+    petsc_check(MatSetPreallocationCOO(a_, static_cast<PetscCount>(rows.size()), rows.data(), cols.data()),
+                "MatSetPreallocationCOO");
+    attach_near_null_space();
+    // The right-hand side in, the solution out: local equations <-> global rows.
+    petsc_check(MatCreateVecs(a_, &x_, &b_), "MatCreateVecs");
+    petsc_check(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(k.rows()), &local_), "VecCreateSeq");
+    std::vector<PetscInt> global(layout_.global.begin(), layout_.global.end());
+    IS is = nullptr;
+    petsc_check(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(global.size()), global.data(),
+                                PETSC_COPY_VALUES, &is),
+                "ISCreateGeneral");
+    petsc_check(VecScatterCreate(x_, is, local_, nullptr, &scatter_), "VecScatterCreate");
+    ISDestroy(&is);
+    // The solver: defaults first, then the options database.
+    petsc_check(KSPCreate(comm_, &ksp_), "KSPCreate");
+    petsc_check(KSPSetOperators(ksp_, a_, a_), "KSPSetOperators");
+    PC pc = nullptr;
+    petsc_check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+    petsc_check(KSPSetType(ksp_, KSPPREONLY), "KSPSetType");
+    petsc_check(PCSetType(pc, kStorage == MatrixStorage::lower ? PCCHOLESKY : PCLU), "PCSetType");
+    petsc_check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+    petsc_check(KSPSetTolerances(ksp_, 1e-10, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT),
+                "KSPSetTolerances");
+    petsc_check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+    PCType type = nullptr;
+    petsc_check(PCGetType(pc, &type), "PCGetType");
+    if (std::string(type) == PCGAMG && !has_option("-pc_gamg_reuse_interpolation"))
+      petsc_check(PCGAMGSetReuseInterpolation(pc, PETSC_TRUE), "PCGAMGSetReuseInterpolation");
+    mumps_ = false;
+    if (std::string(type) == PCLU || std::string(type) == PCCHOLESKY) {
+      MatSolverType package = nullptr;
+      petsc_check(PCFactorGetMatSolverType(pc, &package), "PCFactorGetMatSolverType");
+      mumps_ = package && std::string(package) == MATSOLVERMUMPS;
+      if (mumps_ && !has_option("-mat_mumps_icntl_24")) {  // null pivots: a singular stiffness is reported
+        ::Mat factor = nullptr;
+        petsc_check(PCFactorSetUpMatSolverType(pc), "PCFactorSetUpMatSolverType");
+        petsc_check(PCFactorGetMatrix(pc, &factor), "PCFactorGetMatrix");
+        petsc_check(MatMumpsSetIcntl(factor, 24, 1), "MatMumpsSetIcntl");
+      }
+    }
+  }
+
+  bool factorize(const SpMat& k) {
+    using detail::petsc_check;
+    failure_.clear();
+    std::size_t c = 0;
+    for (Eigen::Index j = 0; j < k.outerSize(); ++j)
+      for (SpMat::InnerIterator it(k, j); it; ++it) {
+        coo_[c++] = it.value();
+        if (kStorage == MatrixStorage::lower && it.row() != j) coo_[c++] = it.value();
+      }
+    // The same values on every part as at the last factorization: keep it (decided together).
+    int changed = !factorized_ || coo_ != factorized_values_;
+    detail::mpi_check(MPI_Allreduce(MPI_IN_PLACE, &changed, 1, MPI_INT, MPI_LOR, comm_), "MPI_Allreduce");
+    if (!changed) return true;
+    petsc_check(MatSetValuesCOO(a_, coo_.data(), INSERT_VALUES), "MatSetValuesCOO");
+    petsc_check(KSPSetUp(ksp_), "KSPSetUp");
+    ++factorizations_;
+    PC pc = nullptr;
+    petsc_check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+    PCFailedReason reason = PC_NOERROR;
+    petsc_check(PCGetFailedReasonRank(pc, &reason), "PCGetFailedReasonRank");
+    int worst = static_cast<int>(reason);
+    detail::mpi_check(MPI_Allreduce(MPI_IN_PLACE, &worst, 1, MPI_INT, MPI_MAX, comm_), "MPI_Allreduce");
+    if (worst != PC_NOERROR)
+      return fail(std::string("stiffness is singular or not factorizable (PETSc: ") + PCFailedReasons[worst] +
+                  ")");
+    if (mumps_) {
+      ::Mat factor         = nullptr;
+      PetscInt null_pivots = 0;
+      petsc_check(PCFactorGetMatrix(pc, &factor), "PCFactorGetMatrix");
+      petsc_check(MatMumpsGetInfog(factor, 28, &null_pivots), "MatMumpsGetInfog");
+      if (null_pivots > 0)
+        return fail("stiffness is singular (MUMPS found " + std::to_string(null_pivots) + " null pivot" +
+                    (null_pivots > 1 ? "s" : "") + ")");
+    }
+    factorized_values_ = coo_;
+    factorized_        = true;
+    return true;
+  }
+
+  VecX solve(const VecX& b) const {
+    using detail::petsc_check;
+    VecX x(b.size());
+    petsc_check(VecZeroEntries(b_), "VecZeroEntries");
+    copy_in(b, local_);
+    petsc_check(VecScatterBegin(scatter_, local_, b_, ADD_VALUES, SCATTER_REVERSE), "VecScatterBegin");
+    petsc_check(VecScatterEnd(scatter_, local_, b_, ADD_VALUES, SCATTER_REVERSE), "VecScatterEnd");
+    petsc_check(KSPSolve(ksp_, b_, x_), "KSPSolve");
+    KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+    PetscInt its              = 0;
+    petsc_check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
+    petsc_check(KSPGetIterationNumber(ksp_, &its), "KSPGetIterationNumber");
+    iterations_ += static_cast<long>(its);
+    if (reason < 0)
+      throw SolveError(std::string("PETSc's solve failed: ") + KSPConvergedReasons[reason] + " after " +
+                       std::to_string(its) + " iterations (-ksp_converged_reason, -ksp_monitor: see why)");
+    petsc_check(VecScatterBegin(scatter_, x_, local_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+    petsc_check(VecScatterEnd(scatter_, x_, local_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+    const PetscScalar* values = nullptr;
+    petsc_check(VecGetArrayRead(local_, &values), "VecGetArrayRead");
+    std::copy_n(values, x.size(), x.data());
+    petsc_check(VecRestoreArrayRead(local_, &values), "VecRestoreArrayRead");
+    int finite = x.allFinite();  // decided together: one part's NaN fails the solve on every part
+    detail::mpi_check(MPI_Allreduce(MPI_IN_PLACE, &finite, 1, MPI_INT, MPI_LAND, comm_), "MPI_Allreduce");
+    if (!finite) throw SolveError("PETSc's solve gave non-finite values (singular stiffness?)");
+    return x;
+  }
+
+  const std::string& failure() const { return failure_; }
+  /// Numeric factorizations PETSc did (not counting those skipped for unchanged values).
+  int factorizations() const { return factorizations_; }
+  /// Krylov iterations over every solve so far (1 per solve for a direct solver).
+  long iterations() const { return iterations_; }
+  /// PETSc's matrix and solver, to inspect (KSPView) or tune after analyze().
+  ::Mat matrix() const { return a_; }
+  KSP ksp() const { return ksp_; }
+
+ private:
+  static bool has_option(const char* name) {
+    PetscBool set = PETSC_FALSE;
+    detail::petsc_check(PetscOptionsHasName(nullptr, nullptr, name, &set), "PetscOptionsHasName");
+    return set;
+  }
+  static void copy_in(const VecX& from, ::Vec to) {
+    PetscScalar* values = nullptr;
+    detail::petsc_check(VecGetArray(to, &values), "VecGetArray");
+    std::copy_n(from.data(), from.size(), values);
+    detail::petsc_check(VecRestoreArray(to, &values), "VecRestoreArray");
+  }
+  /// The layout's near-null modes, orthonormalized, as the matrix's near-null space (GAMG reads it).
+  void attach_near_null_space() {
+    using detail::petsc_check;
+    if (layout_.modes == 0) return;
+    std::vector<::Vec> modes(static_cast<std::size_t>(layout_.modes));
+    for (int m = 0; m < layout_.modes; ++m) {
+      ::Vec& v = modes[static_cast<std::size_t>(m)];
+      petsc_check(MatCreateVecs(a_, &v, nullptr), "MatCreateVecs");
+      PetscScalar* values = nullptr;
+      petsc_check(VecGetArray(v, &values), "VecGetArray");
+      std::copy_n(
+          layout_.near_null.data() + static_cast<std::size_t>(m) * static_cast<std::size_t>(layout_.owned),
+          layout_.owned, values);
+      petsc_check(VecRestoreArray(v, &values), "VecRestoreArray");
+    }
+    // Modified Gram-Schmidt; a mode the others span (or zero: every such DOF prescribed) is dropped.
+    std::vector<::Vec> basis;
+    for (::Vec v : modes) {
+      for (::Vec u : basis) {
+        PetscScalar dot = 0;
+        petsc_check(VecDot(v, u, &dot), "VecDot");
+        petsc_check(VecAXPY(v, -dot, u), "VecAXPY");
+      }
+      PetscReal norm = 0;
+      petsc_check(VecNorm(v, NORM_2, &norm), "VecNorm");
+      if (norm > 1e-10 * std::sqrt(static_cast<double>(layout_.total))) {
+        petsc_check(VecScale(v, 1 / norm), "VecScale");
+        basis.push_back(v);
+      } else {
+        VecDestroy(&v);
+      }
+    }
+    MatNullSpace space = nullptr;
+    petsc_check(
+        MatNullSpaceCreate(comm_, PETSC_FALSE, static_cast<PetscInt>(basis.size()), basis.data(), &space),
+        "MatNullSpaceCreate");
+    petsc_check(MatSetNearNullSpace(a_, space), "MatSetNearNullSpace");
+    MatNullSpaceDestroy(&space);
+    for (::Vec& v : basis) VecDestroy(&v);
+  }
+  bool fail(const std::string& what) {
+    failure_ = what;
+    return false;
+  }
+
+  EquationLayout layout_;
+  bool distributed_ = false, factorized_ = false, mumps_ = false;
+  MPI_Comm comm_ = PETSC_COMM_SELF;
+  ::Mat a_       = nullptr;
+  ::Vec x_ = nullptr, b_ = nullptr, local_ = nullptr;
+  VecScatter scatter_ = nullptr;
+  KSP ksp_            = nullptr;
+  std::vector<PetscScalar> coo_, factorized_values_;
+  std::string failure_;
+  int factorizations_      = 0;
+  mutable long iterations_ = 0;
+};
+static_assert(DistributedSolver<PetscSolver<>>);
+static_assert(DistributedSolver<PetscSolver<MatrixStorage::full>>);
+
+}  // namespace gapfe
