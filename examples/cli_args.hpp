@@ -5,6 +5,7 @@
 // exit codes and messages the tests pin down, and suggests the nearest option for a misspelt one, which
 // CLI11 does not. Internal to the command.
 #include <algorithm>
+#include <cctype>
 #include <cstddef>
 #include <optional>
 #include <stdexcept>
@@ -49,7 +50,13 @@ inline constexpr OptionSpec kOptions[] = {
      "a deck option (README \"Deck options\": format, element, solver, contact, friction, units, ...)"},
     {"--format", "F", "run mesh info", "shorthand for --set format=F"},
     {"--element", "E", "run mesh info", "shorthand for --set element=E (legacy, quad4, quad4bbar)"},
-    {"--solver", "S", "run mesh info", "shorthand for --set solver=S (eigen, cholmod)"},
+    {"--solver", "S", "run mesh info",
+     "shorthand for --set solver=S (eigen, cholmod; petsc: PETSc, under mpirun -np N a run partitioned over "
+     "N "
+     "processes)"},
+    {"-OPTION", "[VALUE]", "run",
+     "with solver = petsc: a PETSc option (-ksp_type cg, -pc_type gamg, -pc_factor_mat_solver_type mumps, "
+     "-log_view, ...)"},
     {"--contact", "C", "run mesh info", "shorthand for --set contact=C"},
     {"--plasticity", "P", "run mesh info", "shorthand for --set plasticity=P (tangent, return-mapping)"},
     {"--output", "all|last|none", "run mesh info",
@@ -81,7 +88,15 @@ struct Args {
   std::optional<std::vector<std::string>> plots;  ///< --plot / --field; unset: the default
   int step = 0;                                   ///< plot --step (0: the last)
   std::string curve_x, curve_y, units;
+  /// PETSc's options (single-dash words and their values, as given), for solver = petsc: the program hands
+  /// them to PetscInitialize.
+  std::vector<std::string> petsc_options;
 };
+
+/// A PETSc option's name: one dash, then a letter (-ksp_type), but not -h. A negative number is a value.
+inline bool petsc_option(const std::string& s) {
+  return s.size() > 2 && s[0] == '-' && s[1] != '-' && std::isalpha(static_cast<unsigned char>(s[1]));
+}
 
 /// Levenshtein distance, for suggestions.
 inline std::size_t edit_distance(std::string_view a, std::string_view b) {
@@ -156,6 +171,14 @@ inline Args parse(const std::vector<std::string>& a) {
   for (const OptionSpec& o : kOptions) names.emplace_back(o.name);
   for (std::size_t k = 1; k < a.size(); ++k) {
     const std::string s = a[k] == "-h" ? "--help" : a[k];
+    if (petsc_option(s)) {  // PETSc's, with its value when the next word is not an option
+      if (r.command != "run")
+        throw UsageError(s + ": PETSc options belong to gapfe run (with --solver petsc)");
+      r.petsc_options.push_back(s);
+      if (k + 1 < a.size() && !petsc_option(a[k + 1]) && a[k + 1].rfind("--", 0) != 0)
+        r.petsc_options.push_back(a[++k]);
+      continue;
+    }
     if (s.empty() || s[0] != '-') {
       if (!r.deck.empty())
         throw UsageError("more than one " + std::string(r.command == "plot" ? "directory" : "deck") +

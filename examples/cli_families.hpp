@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iomanip>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "gapfe/run/deck_run.hpp"
@@ -21,14 +22,17 @@ namespace gapfe::cli {
 
 /// A rate-dependent law's increment for the log: lambda dt, min and max over the points that yielded
 /// in it (how stiff the step was: the relaxation ODE's lambda times the step's dt; THEORY.md 8.2).
+/// A partitioned run's `part` holds its own points only: the extremes and the count are over every part.
 template <class States>
-void note_relaxation(RunTimes& times, const Deck& d, int step, double inc, const States& states) {
+void note_relaxation(RunTimes& times, const Deck& d, int step, double inc, const States& states,
+                     const Subdomain* part) {
   if constexpr (requires { states.front().relaxation; }) {
     double lo = std::numeric_limits<double>::infinity(), hi = 0;
-    int n = 0;
+    double n = 0;
     for (const auto& s : states)
       if (s.plastic && s.relaxation > 0)
         lo = std::min(lo, s.relaxation), hi = std::max(hi, s.relaxation), ++n;
+    if (part) lo = -part->max(-lo), hi = part->max(hi), part->sum(&n, 1);
     std::ostringstream line;
     line << std::setprecision(3) << "  step " << step << ", inc " << inc << " (t = " << inc * d.step_time()
          << "): ";
@@ -42,61 +46,69 @@ void note_relaxation(RunTimes& times, const Deck& d, int step, double inc, const
 
 template <class M>
 void run_linear(const RunRequest& r, RunTimes& times) {
-  StepFiles files = step_files(r);
+  RunFiles files = step_files(r);
   FinishFiles finish{r, times, files};
-  run_deck<M>(r.deck, r.scene, [&](int step, double inc, const LinearStatic<M>& fe) {
-    const auto& t = fe.timings();
-    times.assemble += t.assemble, times.factorize += t.factorize, times.solve += t.solve + t.reactions;
-    write_increment(r, times, files, step, inc, fe);
-  });
+  run_deck<M>(
+      r.deck, r.scene,
+      [&](int step, double inc, const LinearStatic<M>& fe) {
+        const auto& t = fe.timings();
+        times.assemble += t.assemble, times.factorize += t.factorize, times.solve += t.solve + t.reactions;
+        write_increment(r, times, files, step, inc, fe);
+      },
+      r.part);
   finish.now();
 }
 
 template <class M>
 void run_plastic(const RunRequest& r, RunTimes& times) {
-  StepFiles files = step_files(r);
+  RunFiles files = step_files(r);
   FinishFiles finish{r, times, files};
   // plasticity.csv: the Newton record of every accepted increment (residuals: |R| / |F_int| after each
   // linear solve, separated by spaces; drift: max |sqrt f - 1| over the plastic points).
-  std::ofstream record = detail::open_output(r.dir + "/plasticity.csv");
+  std::ofstream record;  // left closed where this process writes no files: its rows go nowhere
+  if (r.writes) record = detail::open_output(r.dir + "/plasticity.csv");
   record << "step,inc,t,iterations,plastic_points,drift,residuals\n";
   int last_step = 0;
-  run_deck_plastic<M>(r.deck, r.scene, [&](int step, double inc, const NonlinearStatic<M>& fe) {
-    const auto& rep = fe.report();
-    const auto& t   = fe.total_timings();  // every Newton solve so far, cut attempts included
-    times.assemble = t.assemble, times.factorize = t.factorize, times.solve = t.solve + t.reactions;
-    times.newton_iterations += rep.iterations;
-    times.element_passes += rep.evaluations;
-    times.tangents += rep.tangents;
-    times.factorizations = fe.factorizations();
-    times.cut_steps += step == last_step || inc != std::floor(inc);
-    times.plastic_points = rep.plastic_points;
-    times.drift          = std::max(times.drift, rep.drift);
-    times.worst_residual = std::max(times.worst_residual, rep.residuals.back());
-    times.stalled += rep.stalled;
-    ++times.increments;
-    note_relaxation(times, r.deck, step, inc, fe.states());
-    std::string row;
-    detail::csv_increment(row, step, inc, r.deck.step_time());
-    detail::append_number(row, static_cast<long long>(rep.iterations)), row += ',';
-    detail::append_number(row, static_cast<long long>(rep.plastic_points)), row += ',';
-    detail::csv_number(row, rep.drift);
-    for (std::size_t k = 0; k < rep.residuals.size(); ++k) {
-      if (k > 0) row += ' ';
-      detail::append_number(row, rep.residuals[k]);
-    }
-    record << row << '\n' << std::flush;
-    last_step = step;
-    write_increment(r, times, files, step, inc, fe, {}, {rep.iterations, rep.plastic_points, 0, 0});
-  });
+  run_deck_plastic<M>(
+      r.deck, r.scene,
+      [&](int step, double inc, const NonlinearStatic<M>& fe) {
+        const auto& rep = fe.report();
+        const auto& t   = fe.total_timings();  // every Newton solve so far, cut attempts included
+        times.assemble = t.assemble, times.factorize = t.factorize, times.solve = t.solve + t.reactions;
+        times.newton_iterations += rep.iterations;
+        times.element_passes += rep.evaluations;
+        times.tangents += rep.tangents;
+        times.factorizations = fe.factorizations();
+        times.cut_steps += step == last_step || inc != std::floor(inc);
+        times.plastic_points = rep.plastic_points;
+        times.drift          = std::max(times.drift, rep.drift);
+        times.worst_residual = std::max(times.worst_residual, rep.residuals.back());
+        times.stalled += rep.stalled;
+        ++times.increments;
+        note_relaxation(times, r.deck, step, inc, fe.states(), fe.problem().subdomain.get());
+        std::string row;
+        detail::csv_increment(row, step, inc, r.deck.step_time());
+        detail::append_number(row, static_cast<long long>(rep.iterations)), row += ',';
+        detail::append_number(row, static_cast<long long>(rep.plastic_points)), row += ',';
+        detail::csv_number(row, rep.drift);
+        for (std::size_t k = 0; k < rep.residuals.size(); ++k) {
+          if (k > 0) row += ' ';
+          detail::append_number(row, rep.residuals[k]);
+        }
+        record << row << '\n' << std::flush;
+        last_step = step;
+        write_increment(r, times, files, step, inc, fe, {}, {rep.iterations, rep.plastic_points, 0, 0});
+      },
+      r.part);
   finish.now();
 }
 
 template <class M, ContactPolicy P, FrictionModel F = NoFriction>
 void run_contact(const RunRequest& r, RunTimes& times) {
-  StepFiles files = step_files(r);
+  RunFiles files = step_files(r);
   FinishFiles finish{r, times, files};
-  GapFile gaps(r.dir, r.scene, F::kFriction, r.deck.step_time());
+  std::optional<GapFile> gaps;
+  if (r.writes) gaps.emplace(r.dir, r.scene, F::kFriction, r.deck.step_time());
   int solves_before = 0;  // the contact counters' solves at the last increment
   run_deck_contact<M, P, F>(
       r.deck, r.scene, r.deck.options.gap_penalty,
@@ -112,12 +124,15 @@ void run_contact(const RunRequest& r, RunTimes& times) {
           times.closed += st.closed, summary.slipping += st.closed && st.slipping;
         summary.closed = times.closed;
         if constexpr (!M::Material::kLinear) {
-          note_relaxation(times, r.deck, step, inc, c.fe().states());
+          note_relaxation(times, r.deck, step, inc, c.fe().states(), c.fe().problem().subdomain.get());
           summary.plastic_points = c.fe().report().plastic_points;
         }
-        write_increment(r, times, files, step, inc, c.fe(), gaps.write(step, inc, c.pairs(), c.states()),
-                        summary);
-      });
+        // The pairs in the whole mesh's numbering (a part's are renumbered; their states are every part's).
+        write_increment(
+            r, times, files, step, inc, c.fe(),
+            gaps ? gaps->write(step, inc, r.scene.gaps.pairs, c.states()) : std::vector<VtuField>{}, summary);
+      },
+      r.part);
   finish.now();
 }
 

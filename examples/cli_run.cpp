@@ -79,9 +79,18 @@ void run_deck_request(const RunRequest& r, RunTimes& times) {
   const VariantKey key{r.variant, r.element,
                        plastic ? (rate ? "rate-dependent " : "") + o.plasticity : std::string("elastic"),
                        gaps ? o.contact : "none", friction};
-  CliSolver::select(r.solver == "cholmod" ? 1 : 0);
+  CliSolver::select<EigenLdlt>();
+  CliLuSolver::select<EigenLu>();
+#ifdef GAPFE_HAS_CHOLMOD
+  if (r.solver == "cholmod") CliSolver::select<CholmodLlt>();
+#endif
 #ifdef GAPFE_HAS_UMFPACK
-  CliLuSolver::select(r.solver == "eigen" ? 0 : 1);  // SuiteSparse in the build: UMFPACK unless told eigen
+  if (r.solver != "eigen")
+    CliLuSolver::select<UmfpackLu>();  // SuiteSparse in the build: UMFPACK unless told eigen
+#endif
+#ifdef GAPFE_HAS_PETSC
+  if (r.solver == "petsc")
+    CliSolver::select<PetscSolver<>>(), CliLuSolver::select<PetscSolver<MatrixStorage::full>>();
 #endif
   const bool done = [&]<std::size_t... Shard>(std::index_sequence<Shard...>) {
     return (run_shard<Shard>(key, r, times) || ...);

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,11 @@
 #ifdef GAPFE_HAS_UMFPACK
 #include "gapfe/solver/umfpack.hpp"
 #endif
+#ifdef GAPFE_HAS_PETSC
+#include "gapfe/solver/petsc.hpp"
+#endif
+#include "gapfe/post/gather.hpp"
+#include "gapfe/run/deck_run.hpp"
 
 namespace gapfe::cli {
 
@@ -64,6 +70,10 @@ struct RunRequest {
   bool progress;
   std::vector<std::string> pictures;  ///< fields drawn for the last increment (StepFiles::draw_fields)
   PlotUnits units;
+  /// A partitioned run (solver = petsc): this process's part of the scene; nullptr: the whole scene here.
+  const DeckPart* part = nullptr;
+  /// Whether this process writes the files (rank 0 of a partitioned run, which gathers the results).
+  bool writes = true;
 };
 
 /// Run the request on the compiled variant that matches it (cli_variants.hpp); InputError when the
@@ -86,17 +96,25 @@ struct CliName<Quad4BBar> {
   static constexpr const char* value = "quad4bbar";
 };
 
-/// The command's solver: EigenLdlt or CHOLMOD, chosen per run (one instantiation of every model).
-#ifdef GAPFE_HAS_CHOLMOD
-using CliSolver = RuntimeSolver<EigenLdlt, CholmodLlt>;
+/// The command's solver: EigenLdlt, CHOLMOD or PETSc, chosen per run (one instantiation of every model).
+/// The solver of the Coulomb rows: the slip tangent is unsymmetric, so an LU on full storage: UMFPACK
+/// when SuiteSparse has it (solver = auto | cholmod), else Eigen's SparseLU (and solver = eigen); MUMPS'
+/// LU through PETSc with solver = petsc.
+#if defined(GAPFE_HAS_CHOLMOD) && defined(GAPFE_HAS_PETSC)
+using CliSolver = RuntimeSolver<EigenLdlt, CholmodLlt, PetscSolver<>>;
+#elif defined(GAPFE_HAS_CHOLMOD)
+using CliSolver   = RuntimeSolver<EigenLdlt, CholmodLlt>;
+#elif defined(GAPFE_HAS_PETSC)
+using CliSolver   = RuntimeSolver<EigenLdlt, PetscSolver<>>;
 #else
 using CliSolver   = RuntimeSolver<EigenLdlt>;
 #endif
-
-/// The solver of the Coulomb rows: the slip tangent is unsymmetric, so an LU on full storage: UMFPACK
-/// when SuiteSparse has it (solver = auto | cholmod), else Eigen's SparseLU (and solver = eigen).
-#ifdef GAPFE_HAS_UMFPACK
+#if defined(GAPFE_HAS_UMFPACK) && defined(GAPFE_HAS_PETSC)
+using CliLuSolver = RuntimeSolver<EigenLu, UmfpackLu, PetscSolver<MatrixStorage::full>>;
+#elif defined(GAPFE_HAS_UMFPACK)
 using CliLuSolver = RuntimeSolver<EigenLu, UmfpackLu>;
+#elif defined(GAPFE_HAS_PETSC)
+using CliLuSolver = RuntimeSolver<EigenLu, PetscSolver<MatrixStorage::full>>;
 #else
 using CliLuSolver = RuntimeSolver<EigenLu>;
 #endif
@@ -105,9 +123,14 @@ using CliLuSolver = RuntimeSolver<EigenLu>;
 void progress_line(const RunRequest& r, int step);
 void progress_done(const RunRequest& r);
 
-/// One accepted increment: refuse a non-finite solution, write the files (timed), show progress.
+/// The result files of a run: on the process that writes them (every process of a whole run; rank 0 of a
+/// partitioned one), empty elsewhere.
+using RunFiles = std::optional<StepFiles>;
+
+/// One accepted increment: refuse a non-finite solution, write the files (timed; a partitioned run gathers
+/// the whole mesh's results to the writing rank first), show progress.
 template <class Fe>
-void write_increment(const RunRequest& r, RunTimes& times, StepFiles& files, int step, double inc,
+void write_increment(const RunRequest& r, RunTimes& times, RunFiles& files, int step, double inc,
                      const Fe& fe, std::vector<VtuField> extra_cells = {},
                      const IncrementSummary& summary = {}) {
   if (!std::isfinite(fe.solution().residual) || !fe.solution().displacement.allFinite())
@@ -122,18 +145,27 @@ void write_increment(const RunRequest& r, RunTimes& times, StepFiles& files, int
   double& worst    = times.step_residual[static_cast<std::size_t>(step - 1)];
   worst            = std::max(worst, residual);
   const auto start = std::chrono::steady_clock::now();
-  files.write(step, inc, fe.solution(), fe.centroid_values(Recovered::stress), std::move(extra_cells),
-              summary);
+  if (const Subdomain* part = fe.problem().subdomain.get()) {
+    const Solution whole = gather_solution(*part, fe.solution());
+    auto values          = gather_cells(*part, fe.centroid_values(Recovered::stress), Recovered::stress);
+    if (files) files->write(step, inc, whole, values, std::move(extra_cells), summary);
+  } else if (files) {
+    files->write(step, inc, fe.solution(), fe.centroid_values(Recovered::stress), std::move(extra_cells),
+                 summary);
+  }
   times.write += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   progress_line(r, step);
 }
 
-/// The result files of a run (the deck's output options and the pictures it asks for).
-inline StepFiles step_files(const RunRequest& r) {
-  StepFiles files(r.dir, r.scene, r.deck.step_time(), increments(r.deck.options.output_csv),
-                  increments(r.deck.options.output_vtu));
-  files.draw_fields(r.pictures, r.units);
-  files.keep_history(r.deck.steps());
+/// The result files of a run (the deck's output options and the pictures it asks for), on the process that
+/// writes them.
+inline RunFiles step_files(const RunRequest& r) {
+  RunFiles files;
+  if (!r.writes) return files;
+  files.emplace(r.dir, r.scene, r.deck.step_time(), increments(r.deck.options.output_csv),
+                increments(r.deck.options.output_vtu));
+  files->draw_fields(r.pictures, r.units);
+  files->keep_history(r.deck.steps());
   return files;
 }
 
@@ -143,15 +175,16 @@ inline StepFiles step_files(const RunRequest& r) {
 struct FinishFiles {
   const RunRequest& r;
   RunTimes& times;
-  StepFiles& files;
+  RunFiles& files;
   bool done = false;
 
   void now() {
     done = true;
     progress_done(r);
+    if (!files) return;
     const auto start = std::chrono::steady_clock::now();
-    files.finish(r.deck.title);
-    times.pictures = files.pictures_written(), times.pictures_skipped = files.pictures_skipped();
+    files->finish(r.deck.title);
+    times.pictures = files->pictures_written(), times.pictures_skipped = files->pictures_skipped();
     times.write += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   ~FinishFiles() {

@@ -3,10 +3,17 @@
 #include <cstdlib>
 #include <iostream>
 #include <malloc.h>
+#include <stdexcept>
 #include <string>
 #include <unistd.h>
 
 #include "gapfe_cli.hpp"
+#ifdef GAPFE_HAS_PETSC
+#include <chrono>
+#include <cstdio>
+#include <petscsys.h>
+#include <thread>
+#endif
 
 // OpenMP parallel regions run inline. The command keeps every OpenMP region on the calling thread
 // (gapfe/solver/threads.hpp: CHOLMOD's regions are memory-bound copies and clears, and OpenBLAS gets the
@@ -63,11 +70,78 @@ void use_huge_pages(char** argv) {
     setenv("GLIBC_TUNABLES", before.c_str(), 1);
 }
 
+#ifdef GAPFE_HAS_PETSC
+/// MPI and PETSc for a partitioned run (solver = petsc), owned by the program: started on the command's
+/// request with PETSc's options from the command line, ended once the run is over.
+class Mpi {
+ public:
+  explicit Mpi(const char* program) : words_{program} {}
+
+  std::pair<int, int> start(const std::vector<std::string>& options) {
+    if (!started_) {
+      words_.insert(words_.end(), options.begin(), options.end());
+      for (auto& w : words_) pointers_.push_back(w.data());
+      pointers_.push_back(nullptr);
+      int argc    = static_cast<int>(words_.size());
+      char** argv = pointers_.data();
+      if (PetscInitialize(&argc, &argv, nullptr, nullptr) != 0)
+        throw std::runtime_error("PetscInitialize failed");
+      started_ = true;
+      MPI_Comm_dup(PETSC_COMM_WORLD, &check_);  // the exit codes' own channel (finish())
+      MPI_Comm_rank(PETSC_COMM_WORLD, &rank_);
+      MPI_Comm_size(PETSC_COMM_WORLD, &size_);
+    }
+    return {rank_, size_};
+  }
+
+  /// The worst exit code of all ranks, then PETSc and MPI end. The ranks read, check and decide alike, so
+  /// a failure is everyone's and they all get here; a rank that failed alone would leave the others in a
+  /// collective call, so a failed rank waits for the others at most two minutes and then aborts the launch
+  /// (a rank that succeeded waits as long as rank 0 writes).
+  int finish(int code) {
+    if (!started_) return code;
+    int worst           = code;
+    MPI_Request request = MPI_REQUEST_NULL;
+    MPI_Iallreduce(&code, &worst, 1, MPI_INT, MPI_MAX, check_, &request);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(2);
+    for (int done = 0;;) {
+      MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+      if (done) break;
+      if (code != 0 && std::chrono::steady_clock::now() > deadline) {
+        std::fprintf(
+            stderr, "gapfe: rank %d failed and the other ranks did not finish: aborting the launch\n", rank_);
+        MPI_Abort(PETSC_COMM_WORLD, code);
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    MPI_Comm_free(&check_);
+    PetscFinalize();
+    return worst;
+  }
+
+ private:
+  std::vector<std::string> words_;
+  std::vector<char*> pointers_;
+  bool started_ = false;
+  int rank_ = 0, size_ = 1;
+  MPI_Comm check_ = MPI_COMM_NULL;
+};
+#endif
+
 }  // namespace
 
 int main(int argc, char** argv) {
   keep_freed_memory();
   std::vector<std::string> args(argv + 1, argv + argc);
+#ifdef GAPFE_HAS_PETSC
+  Mpi mpi(argv[0]);
+  const int code = gapfe::cli::main(
+      args, std::cout, std::cerr, isatty(STDERR_FILENO) != 0, [argv] { use_huge_pages(argv); },
+      [&](const std::vector<std::string>& options) { return mpi.start(options); });
+  std::cout.flush();
+  return mpi.finish(code);
+#else
   return gapfe::cli::main(args, std::cout, std::cerr, isatty(STDERR_FILENO) != 0,
                           [argv] { use_huge_pages(argv); });
+#endif
 }

@@ -23,6 +23,7 @@
 #ifdef GAPFE_HAS_SCENE
 #include "gapfe/io/scene_file.hpp"
 #endif
+#include "gapfe/mesh/partition.hpp"
 #include "gapfe/solver/threads.hpp"
 #include "gapfe/version.hpp"
 
@@ -236,8 +237,30 @@ std::string draw_curve(const std::string& dir, const std::string& x, const std::
   return path;
 }
 
+#ifdef GAPFE_HAS_PETSC
+/// The log's account of PETSc's solver: its options (PETSc's options database) or PetscSolver's defaults.
+std::string petsc_solver_text(bool unsymmetric) {
+  const auto option = [](const char* name, const std::string& otherwise) {
+    char value[256] = {};
+    PetscBool set   = PETSC_FALSE;
+    PetscOptionsGetString(nullptr, nullptr, name, value, sizeof value, &set);
+    return set ? std::string(value) : otherwise;
+  };
+  const std::string ksp = option("-ksp_type", "preonly"),
+                    pc  = option("-pc_type", unsymmetric ? "lu" : "cholesky");
+  std::string text      = "PETSc -ksp_type " + ksp + " -pc_type " + pc;
+  if (pc == "lu" || pc == "cholesky")
+    text += " -pc_factor_mat_solver_type " + option("-pc_factor_mat_solver_type", "mumps");
+  return text + (unsymmetric ? " (the Coulomb slip tangent is unsymmetric)" : "");
+}
+#else
+std::string petsc_solver_text(bool) {
+  return "PETSc";
+}
+#endif
+
 int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
-            const std::function<void()>& large_model) {
+            const std::function<void()>& large_model, const StartMpi& start_mpi) {
   std::ostringstream null_stream;
   std::ostream& log = a.quiet ? null_stream : out;
   log << std::setprecision(3);
@@ -305,8 +328,10 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
         << " (card 0's STRRATE, STRSTEP)\n";
 
   if (a.command == "info") return ok;
-  std::filesystem::create_directories(a.out);
+  const auto [launch_rank, launch_size] = launcher_ranks();
+  if (launch_rank == 0) std::filesystem::create_directories(a.out);  // rank 0 of a launch writes the files
   if (a.command == "mesh") {
+    if (launch_rank != 0) return ok;
     write_mesh_files(a.out, d, s);
     log << "wrote " << a.out << "/mesh.svg, mesh_nodes.csv, mesh_elements.csv, mesh.vtu\n";
     return ok;
@@ -319,6 +344,27 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
   if (solver == "auto") solver = "eigen";
   if (solver == "cholmod")
     throw InputError("solver = cholmod: this gapfe was built without CHOLMOD (SuiteSparse)");
+#endif
+  if (solver != "petsc") {
+    if (launch_size > 1)
+      throw InputError(
+          "gapfe run started as " + std::to_string(launch_size) + " processes (mpirun) with solver = " +
+          solver + ", which solves on one process (each would write the same files): give --solver petsc");
+    if (!a.petsc_options.empty())
+      throw InputError("the PETSc option " + a.petsc_options.front() +
+                       " needs solver = petsc (--solver petsc)");
+  }
+#ifndef GAPFE_HAS_PETSC
+  (void)start_mpi;
+  if (solver == "petsc")
+    throw InputError(
+        "solver = petsc: this gapfe was built without PETSc (cmake -DGAPFE_WITH_PETSC=ON; README "
+        "\"Past one machine\")");
+#else
+  if (solver == "petsc" && !start_mpi)
+    throw InputError(
+        "solver = petsc: MPI and PETSc are started by the program, and this one does not (the gapfe "
+        "command does)");
 #endif
   const std::string element = d.options.element != "auto" ? d.options.element
                               : plastic                   ? "quad4bbar"
@@ -337,8 +383,37 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
 #else
   constexpr bool kHasUmfpack = false;
 #endif
+  // A partitioned run: MPI and PETSc start here (the deck is read and checked on every process, so bad input
+  // fails alike everywhere before any collective call); this process keeps its part of the scene.
+  std::optional<DeckPart> part;
+  int rank = 0;
+#ifdef GAPFE_HAS_PETSC
+  if (solver == "petsc") {
+    const auto [my_rank, ranks] = start_mpi(a.petsc_options);
+    rank                        = my_rank;
+    auto piece = mesh_part(s.mesh, partition_cells(s.mesh, ranks), ranks, rank, pair_nodes(s.gaps.pairs));
+    std::vector<double> counts(3 * static_cast<std::size_t>(ranks), 0.0);  // cells, owned nodes, ghosts
+    counts[static_cast<std::size_t>(3 * rank)] =
+        static_cast<double>(piece.mesh.cells.size() + piece.mesh.triangles.size());
+    counts[static_cast<std::size_t>(3 * rank + 1)] = piece.layout.owned_nodes;
+    counts[static_cast<std::size_t>(3 * rank + 2)] = static_cast<double>(piece.layout.ghost_part.size());
+    auto pairs                                     = part_pairs(piece.layout, s.gaps.pairs);
+    auto domain = std::make_shared<const PetscSubdomain>(std::move(piece.layout));
+    domain->sum(counts.data(), static_cast<int>(counts.size()));
+    log << "partition: " << ranks
+        << " rank(s), recursive coordinate bisection of the cells; cells / nodes owned / "
+        << "ghost nodes per rank:";
+    for (int k = 0; k < ranks; ++k)
+      log << (k ? "," : "") << " " << counts[static_cast<std::size_t>(3 * k)] << " / "
+          << counts[static_cast<std::size_t>(3 * k + 1)] << " / "
+          << counts[static_cast<std::size_t>(3 * k + 2)];
+    log << "\n";
+    part.emplace(DeckPart{std::move(piece.mesh), std::move(pairs), std::move(domain)});
+  }
+#endif
   log << "solver: "
-      << (unsymmetric
+      << (solver == "petsc" ? petsc_solver_text(unsymmetric)
+          : unsymmetric
               ? std::string(solver == "eigen" || !kHasUmfpack ? "Eigen SparseLU (COLAMD)" : "UMFPACK LU") +
                     " (the Coulomb slip tangent is unsymmetric)"
           : solver == "eigen" ? std::string(EigenLdlt::kName)
@@ -356,7 +431,9 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
                            err,
                            progress,
                            a.plots.value_or(std::vector<std::string>{"mises"}),
-                           plot_units(d.options.units)};
+                           plot_units(d.options.units),
+                           part ? &*part : nullptr,
+                           rank == 0};
   t0 = Clock::now();
   run_deck_request(request, times);
   // setup: the Problem, DOF map, sparsity pattern, symbolic analysis and stress recovery.
@@ -474,8 +551,26 @@ int plot(const Args& a, std::ostream& out) {
 
 }  // namespace
 
-int main(const std::vector<std::string>& args, std::ostream& out, std::ostream& err, bool progress,
-         const std::function<void()>& large_model) {
+std::pair<int, int> launcher_ranks() {
+  // OpenMPI's mpirun, MPICH's and Intel MPI's mpiexec (PMI), and PMIx launchers such as Slurm's srun.
+  const auto number = [](const char* name) {
+    const char* value = std::getenv(name);
+    return value ? std::atoi(value) : -1;
+  };
+  for (const auto& [rank, size] : {std::pair{"OMPI_COMM_WORLD_RANK", "OMPI_COMM_WORLD_SIZE"},
+                                   std::pair{"PMI_RANK", "PMI_SIZE"}, std::pair{"PMIX_RANK", "SLURM_NTASKS"}})
+    if (number(size) > 0) return {std::max(0, number(rank)), number(size)};
+  return {0, 1};
+}
+
+int main(const std::vector<std::string>& args, std::ostream& out_stream, std::ostream& err_stream,
+         bool progress, const std::function<void()>& large_model, const StartMpi& start_mpi) {
+  // Several processes of one launch: rank 0 speaks for all (they read, check and decide alike).
+  std::ostringstream unheard;
+  const bool speaks = launcher_ranks().first == 0;
+  std::ostream& out = speaks ? out_stream : unheard;
+  std::ostream& err = speaks ? err_stream : unheard;
+  progress          = progress && speaks;
   Args a;
   try {
     a = parse(args);
@@ -494,7 +589,7 @@ int main(const std::vector<std::string>& args, std::ostream& out, std::ostream& 
     return ok;
   }
   try {
-    return a.command == "plot" ? plot(a, out) : execute(a, out, err, progress, large_model);
+    return a.command == "plot" ? plot(a, out) : execute(a, out, err, progress, large_model, start_mpi);
   } catch (const InputError& e) {
     err << "gapfe: error in " << a.deck << ": " << e.what() << "\n";
     return input;

@@ -10,6 +10,7 @@
 int main(int argc, char** argv) {
   // PETSc reads its options (-ksp_type ...) from the command line; doctest gets it too and ignores them.
   if (PetscInitialize(&argc, &argv, nullptr, nullptr) != 0) return 1;
+  PetscLogDefaultBegin();  // event counts: a test reads how often PETSc factorized
   int result = 0;
   {
     doctest::Context context(argc, argv);

@@ -37,7 +37,7 @@ struct DeckOptions {
   /// plastic flow, tests/test_plasticity.cpp; the legacy quad's condensed centre is not in the plastic
   /// driver yet).
   std::string element   = "auto";
-  std::string solver    = "auto";  ///< solver = auto (fastest built) | eigen | cholmod
+  std::string solver    = "auto";  ///< solver = auto (fastest built) | eigen | cholmod | petsc
   bool loads_per_radian = false;   ///< bc_loads = total (default) | per-radian (legacy decks)
   std::string contact   = "saac";  ///< contact = saac | active-set | augmented-lagrangian | none
   /// friction = mu >= 0 at closed gap pairs (0: frictionless, no friction model compiled in).
@@ -104,7 +104,7 @@ struct DeckOptions {
     } else if (key == "element") {
       element = one_of({"auto", "legacy", "quad4", "quad4bbar"});
     } else if (key == "solver") {
-      solver = one_of({"auto", "eigen", "cholmod"});
+      solver = one_of({"auto", "eigen", "cholmod", "petsc"});
     } else if (key == "bc_loads") {
       loads_per_radian = one_of({"total", "per-radian"}) == "per-radian";
     } else if (key == "contact") {

@@ -6,11 +6,16 @@
 // the right-hand side and two triangular solves), plastic (Newton with history, step cutting) and
 // contact (a policy's stepping). Time in the StepContext is the load factor: 0 at the start, k at the
 // end of load step k.
+//
+// A partitioned run (core/subdomain.hpp) gives each run a DeckPart: the process's part of the scene. Every
+// process builds the whole Problem from the deck and keeps its part (assembly/partition.hpp); each step's
+// totals, in the whole mesh's numbering, go to the part the same way. The drivers do the rest.
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
 
+#include "gapfe/assembly/partition.hpp"
 #include "gapfe/driver/contact_static.hpp"
 #include "gapfe/driver/linear_static.hpp"
 #include "gapfe/driver/nonlinear_static.hpp"
@@ -36,12 +41,25 @@ inline void fix_theta(std::vector<NodalCondition>& conditions, int nodes) {
 /// conditions).
 template <class M>
 void set_loads(Problem<M>& p, StepTotals t, const DeckScene& s) {
-  p.conditions = std::move(t.conditions);
   if constexpr (M::kDofsPerNode == 3)
-    if (!s.needs.needs_theta()) fix_theta(p.conditions, s.mesh.node_count());
-  p.inertia    = t.inertia;
+    if (!s.needs.needs_theta()) fix_theta(t.conditions, s.mesh.node_count());
+  p.inertia = t.inertia;
+  if (p.subdomain) {  // a part: the whole problem's totals, each part keeps its own (collective)
+    set_part_loads(p, s.mesh.nodes, t.conditions, t.edge_loads);
+    return;
+  }
+  p.conditions = std::move(t.conditions);
   p.edge_loads = std::move(t.edge_loads);
 }
+
+/// This process's part of a deck's scene in a partitioned run: its cells and nodes (mesh_part of the
+/// scene's mesh, keeping the gap pairs' ends), the gap pairs in its numbering, and the subdomain made from
+/// the part's layout (PetscSubdomain over MPI).
+struct DeckPart {
+  Mesh<4> mesh;
+  std::vector<GapPair> pairs;
+  std::shared_ptr<const Subdomain> subdomain;
+};
 
 /// Put the loads in force after `step` into `p`: the totals of the increments so far.
 template <class M>
@@ -71,9 +89,9 @@ Law deck_law(const Orthotropic& elastic, const std::optional<YieldCard>& card,
   }
 }
 
-/// The Problem of a scene under the loads in force after `step`.
+/// The Problem of a scene under the loads in force after `step`; with `part`, the part of it (collective).
 template <class M>
-Problem<M> deck_problem(const Deck& d, const DeckScene& s, int step) {
+Problem<M> deck_problem(const Deck& d, const DeckScene& s, int step, const DeckPart* part = nullptr) {
   static_assert(M::Element::kNodes == 4, "I-J decks make 4-corner cells (LegacyQuad or Quad4)");
   Problem<M> p;
   p.mesh = s.mesh;
@@ -82,14 +100,17 @@ Problem<M> deck_problem(const Deck& d, const DeckScene& s, int step) {
   set_step_loads(p, d, s, step);
   p.temperature           = s.temperature;
   p.reference_temperature = s.reference_temperature;
-  return p;
+  if (!part) return p;
+  Connectivity<2> links;
+  for (const GapPair& g : s.gaps.pairs) links.push_back({g.node_a, g.node_b});
+  return problem_part(p, part->mesh, part->subdomain, links);
 }
 
 /// Run every load step; `on_step(step, inc, const LinearStatic<M>&)` sees each solved step (inc = the
 /// load increments applied so far; whole numbers in a linear run, which never splits a step).
 template <class M, class OnStep>
-void run_deck(const Deck& d, const DeckScene& s, OnStep&& on_step) {
-  LinearStatic<M> fe(deck_problem<M>(d, s, 1));
+void run_deck(const Deck& d, const DeckScene& s, OnStep&& on_step, const DeckPart* part = nullptr) {
+  LinearStatic<M> fe(deck_problem<M>(d, s, 1, part));
   for (int step = 1; step <= d.steps(); ++step) {
     if (step > 1) set_step_loads(fe.problem(), d, s, step);
     fe.solve(/*same_stiffness=*/step > 1);
@@ -103,11 +124,12 @@ void run_deck(const Deck& d, const DeckScene& s, OnStep&& on_step) {
 /// accepted load factor goes to the caller (whose files then hold every accepted increment).
 /// `on_increment(step, inc, const NonlinearStatic<M>&)` sees every accepted increment.
 template <class M, class OnIncrement>
-void run_deck_plastic(const Deck& d, const DeckScene& s, OnIncrement&& on_increment) {
+void run_deck_plastic(const Deck& d, const DeckScene& s, OnIncrement&& on_increment,
+                      const DeckPart* part = nullptr) {
   NewtonOptions newton;
   newton.tolerance      = d.options.newton_tolerance;
   newton.max_iterations = d.options.newton_iterations;
-  NonlinearStatic<M> fe(deck_problem<M>(d, s, 1), {}, newton);
+  NonlinearStatic<M> fe(deck_problem<M>(d, s, 1, part), {}, newton);
   for (int step = 1; step <= d.steps(); ++step) {
     const StepTotals before = step_totals(d, s, step - 1), after = step_totals(d, s, step);
     double done = 0, size = 1;
@@ -148,7 +170,8 @@ void run_deck_plastic(const Deck& d, const DeckScene& s, OnIncrement&& on_increm
 /// `on_increment(step, inc, const ContactStatic<M, P, F>&)` sees every accepted increment, inc = t
 /// (fractional where a step was split).
 template <class M, ContactPolicy P, FrictionModel F = NoFriction, class OnIncrement>
-void run_deck_contact(const Deck& d, const DeckScene& s, double penalty_factor, OnIncrement&& on_increment) {
+void run_deck_contact(const Deck& d, const DeckScene& s, double penalty_factor, OnIncrement&& on_increment,
+                      const DeckPart* part = nullptr) {
   using Run = ContactStatic<M, P, F>;
   ContactOptions options;
   options.penalty_factor = penalty_factor;
@@ -156,7 +179,7 @@ void run_deck_contact(const Deck& d, const DeckScene& s, double penalty_factor, 
   options.step_time      = d.step_time();
   options.friction       = F::kFriction ? d.options.friction : 0.0;
   if (s.gap_material >= 0) options.gap_materials.push_back(s.gap_material);
-  Run fe(deck_problem<M>(d, s, 1), s.gaps.pairs, options);
+  Run fe(deck_problem<M>(d, s, 1, part), part ? part->pairs : s.gaps.pairs, options);
   StepTotals before, after;
   int cached                           = -1;  // the step whose end totals are in `after`
   const typename Run::LoadsAt loads_at = [&](Problem<M>& p, double t) {

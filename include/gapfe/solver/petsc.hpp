@@ -20,7 +20,8 @@
 //     links make the stiffness ill-conditioned) and plasticity (a tangent that may lose definiteness);
 //     MUMPS' null-pivot detection (ICNTL(24) = 1) reports a singular stiffness instead of a huge answer;
 //   -ksp_rtol 1e-10 for an iterative choice (-ksp_type cg -pc_type gamg, or -pc_type hypre): PETSc's 1e-5
-//     would leave answers far less accurate than the direct solve's.
+//     would leave answers far less accurate than the direct solve's; CG measures it on the unpreconditioned
+//     residual (-ksp_norm_type unpreconditioned), the relative residual the drivers report.
 // With -pc_type gamg the layout's near-null space (the axisymmetric rigid and near-rigid modes,
 // assembly/equation_layout.hpp) is attached to the matrix, and -pc_gamg_reuse_interpolation defaults to true.
 //
@@ -151,6 +152,13 @@ class PetscSolver {
     petsc_check(KSPSetTolerances(ksp_, 1e-10, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT),
                 "KSPSetTolerances");
     petsc_check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+    // CG stops on the preconditioned residual by default; with GAMG that left the true relative residual
+    // |K u - f| / |f| (what the drivers report) 500 x above -ksp_rtol on the thick tube. The unpreconditioned
+    // norm makes -ksp_rtol that residual.
+    KSPType krylov = nullptr;
+    petsc_check(KSPGetType(ksp_, &krylov), "KSPGetType");
+    if (std::string(krylov) == KSPCG && !has_option("-ksp_norm_type"))
+      petsc_check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
     PCType type = nullptr;
     petsc_check(PCGetType(pc, &type), "PCGetType");
     if (std::string(type) == PCGAMG && !has_option("-pc_gamg_reuse_interpolation"))

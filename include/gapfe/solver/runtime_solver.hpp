@@ -11,6 +11,7 @@
 #include <memory>
 #include <string>
 #include <tuple>
+#include <type_traits>
 #include <vector>
 
 #include "gapfe/core/concepts.hpp"
@@ -41,6 +42,13 @@ class RuntimeSolver {
     if (index >= sizeof...(Solvers))
       throw InputError("RuntimeSolver: no solver number " + std::to_string(index));
     chosen_ = index;
+  }
+  /// Pick solver type S, one of Solvers....
+  template <class S>
+  static void select() {
+    static_assert((std::is_same_v<S, Solvers> || ...),
+                  "RuntimeSolver::select<S>: S is not one of its solvers");
+    chosen_ = index_of<S, Solvers...>();
   }
   static const char* selected_name() { return kNames[chosen_]; }
 
@@ -103,6 +111,14 @@ class RuntimeSolver {
     if constexpr (K + 1 < sizeof...(Solvers))
       if (index != K) return make<K + 1>(index);
     return std::make_unique<Impl<S>>();
+  }
+
+  template <class S, class First, class... Rest>
+  static constexpr std::size_t index_of() {
+    if constexpr (std::is_same_v<S, First>)
+      return 0;
+    else
+      return 1 + index_of<S, Rest...>();
   }
 
   static constexpr std::array<const char*, sizeof...(Solvers)> kNames{Solvers::kName...};
