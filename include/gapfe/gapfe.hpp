@@ -1,7 +1,9 @@
 #pragma once
 // gapfe: header-only C++20 finite elements for axisymmetric structures. Umbrella header: everything
-// except solver/cholmod.hpp (CHOLMOD is GPL and opt-in) and solver/eigen_lu.hpp (the unsymmetric solver:
-// include it where a model uses it, so that other translation units do not parse SparseLU).
+// except solver/cholmod.hpp (CHOLMOD is GPL and opt-in), solver/eigen_lu.hpp (the unsymmetric solver:
+// include it where a model uses it, so that other translation units do not parse SparseLU) and the PETSc
+// policy with its MPI subdomain (solver/petsc.hpp, solver/petsc_subdomain.hpp: the gapfe::petsc target).
+// Partitioning itself (mesh/partition.hpp, assembly/partition.hpp, post/gather.hpp) needs no MPI.
 #include "gapfe/contact/gap_pairs.hpp"
 #include "gapfe/contact/policies.hpp"
 #include "gapfe/driver/contact_static.hpp"
@@ -22,6 +24,7 @@
 #include "gapfe/mesh/structured.hpp"
 #include "gapfe/mesh/temperature.hpp"
 #include "gapfe/model.hpp"
+#include "gapfe/post/gather.hpp"
 #include "gapfe/run/deck_run.hpp"
 #include "gapfe/solver/runtime_solver.hpp"
 #include "gapfe/version.hpp"
