@@ -51,16 +51,18 @@ def lame_bore():
     return A / E * (st - NU * (sr + sz))
 
 
-def run(cmd, log, env):
-    """Runs cmd (a list); returns (per-rank [(wall s, peak MB)], log text). GNU time writes one line per
-    rank, 'TIME wall maxrss_kb', to the log's stderr."""
+def run(cmd, log, times, env):
+    """Runs cmd (a list); returns (per-rank [(wall s, peak MB)], log text). GNU time appends one line per
+    rank, 'TIME wall maxrss_kb', to the file `times` (appends of a line are atomic)."""
+    if os.path.exists(times):
+        os.remove(times)
     with open(log, "w") as out:
         code = subprocess.run(cmd, stdout=out, stderr=subprocess.STDOUT, env=env).returncode
     text = open(log).read()
     if code != 0:
         print(f"petsc_scaling: run failed ({code}): {' '.join(cmd)}; see {log}", file=sys.stderr)
         sys.exit(2)
-    ranks = [(float(w), int(k) / 1024) for w, k in re.findall(r"^TIME (\S+) (\d+)$", text, re.M)]
+    ranks = [(float(w), int(k) / 1024) for w, k in re.findall(r"^TIME (\S+) (\d+)$", open(times).read(), re.M)]
     return ranks, text
 
 
@@ -111,18 +113,20 @@ def main():
         for size, solver, n, prefix, suffix, deck in configs:
             out = os.path.join(work, f"out_{size}_{solver}_{n}")
             log = os.path.join(work, f"log_{size}_{solver}_{n}_{rnd}.txt")
-            cmd = prefix + ["/usr/bin/time", "-f", "TIME %e %M", gapfe, "run", deck, "--out", out, "--plot",
-                            "none"] + suffix
-            ranks, text = run(cmd, log, env)
+            times = log + ".time"
+            cmd = prefix + ["/usr/bin/time", "-a", "-o", times, "-f", "TIME %e %M", gapfe, "run", deck, "--out",
+                            out, "--plot", "none"] + suffix
+            ranks, text = run(cmd, log, times, env)
             error = bore_displacement(out) / lame_bore() - 1
             results.setdefault((size, solver, n), []).append((ranks, phases(text), error))
             print(f"{size} {solver} np={n}: wall {[r[0] for r in ranks]} s, peak {[round(r[1]) for r in ranks]} MB, "
                   f"phases {phases(text)}, bore u_r error {error:.2e}", flush=True)
-    lines = ["| equations | solver | ranks | wall s (median) | peak MB per rank | rank 0: setup / assemble / "
+    lines = ["| equations | solver | ranks | wall s (median) | peak MB per rank (smallest first) | rank 0: setup / assemble / "
              "factorize / solve / write s | bore u_r vs Lame |", "|---|---|---|---|---|---|---|"]
     for (size, solver, n), runs in results.items():
         wall = statistics.median(max(r[0] for r in ranks) for ranks, _, _ in runs)
-        peak = [statistics.median(ranks[k][1] for ranks, _, _ in runs) for k in range(n)]
+        # Ranks in the order of their peaks (GNU time's lines come in the order the ranks end).
+        peak = [statistics.median(sorted(r[1] for r in ranks)[k] for ranks, _, _ in runs) for k in range(n)]
         ph = {k: statistics.median(p[k] for _, p, _ in runs) for k in runs[0][1]}
         lines.append(f"| {size} | {solver} | {n} | {wall:.1f} | {' / '.join(f'{m:.0f}' for m in peak)} | "
                      f"{ph['setup']:.1f} / {ph['assemble']:.2f} / {ph['factorize']:.1f} / {ph['solve']:.2f} / "

@@ -404,9 +404,9 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
         << " rank(s), recursive coordinate bisection of the cells; cells / nodes owned / "
         << "ghost nodes per rank:";
     for (int k = 0; k < ranks; ++k)
-      log << (k ? "," : "") << " " << counts[static_cast<std::size_t>(3 * k)] << " / "
-          << counts[static_cast<std::size_t>(3 * k + 1)] << " / "
-          << counts[static_cast<std::size_t>(3 * k + 2)];
+      log << (k ? "," : "") << " " << static_cast<long long>(counts[static_cast<std::size_t>(3 * k)]) << " / "
+          << static_cast<long long>(counts[static_cast<std::size_t>(3 * k + 1)]) << " / "
+          << static_cast<long long>(counts[static_cast<std::size_t>(3 * k + 2)]);
     log << "\n";
     part.emplace(DeckPart{std::move(piece.mesh), std::move(pairs), std::move(domain)});
   }

@@ -83,7 +83,9 @@ constexpr MatrixStorage storage_of() {
 }
 
 /// A sparse linear solver: symbolic analysis once per pattern, numeric factorization per matrix, then
-/// solves. It reads the entries its storage_of() names. factorize() returns false, never NaN.
+/// solves. It reads the entries its storage_of() names. factorize() returns false, never NaN; failure()
+/// says why, and begins with "the solver failed" when the cause is the solver's, not the matrix's (then the
+/// System's SolveError gives no hint about constraints).
 template <class S>
 concept LinearSolver = std::default_initializable<S> && requires(S s, const SpMat& K, const VecX& b) {
   { S::kName } -> std::convertible_to<const char*>;

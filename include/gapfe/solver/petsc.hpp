@@ -27,9 +27,9 @@
 //
 // Repeated solves on one pattern: the COO pattern is set once; PETSc keeps its matrix's nonzero structure,
 // so its factorizations after the first are numeric only (MUMPS' analysis, PETSc's symbolic factorization,
-// is done once), and GAMG rebuilds only its Galerkin products on the kept interpolation. A factorize() whose
-// values are those of the last one bit for bit on every part is skipped (System::skip_unchanged leaves this
-// test to a distributed solver, which must decide it on all parts together).
+// is done once), and GAMG rebuilds only its Galerkin products on the kept interpolation. With
+// skip_unchanged (System::skip_unchanged hands the test to a distributed solver, which must decide it on all
+// parts together) a factorize() whose values are those of the last one bit for bit on every part is skipped.
 //
 // Every call is collective over the communicator (PETSC_COMM_WORLD; PETSC_COMM_SELF without a layout: a
 // whole problem on each process). PETSc must be initialized by the program, and the solver destroyed
@@ -109,16 +109,8 @@ class PetscSolver {
     if (static_cast<Eigen::Index>(layout_.global.size()) != k.rows())
       throw InputError("PetscSolver: the layout has " + std::to_string(layout_.global.size()) +
                        " equations, the pattern " + std::to_string(k.rows()));
-    // COO pattern in global numbers; a lower-triangle off-diagonal entry twice.
     std::vector<PetscInt> rows, cols;
-    rows.reserve(static_cast<std::size_t>(2 * k.nonZeros())), cols.reserve(rows.capacity());
-    for (Eigen::Index j = 0; j < k.outerSize(); ++j)
-      for (SpMat::InnerIterator it(k, j); it; ++it) {
-        const auto i = static_cast<PetscInt>(layout_.global[static_cast<std::size_t>(it.row())]);
-        const auto c = static_cast<PetscInt>(layout_.global[static_cast<std::size_t>(j)]);
-        rows.push_back(i), cols.push_back(c);
-        if (kStorage == MatrixStorage::lower && i != c) rows.push_back(c), cols.push_back(i);
-      }
+    coo_pattern(k, rows, cols);
     coo_.resize(rows.size());
     const auto owned = static_cast<PetscInt>(layout_.owned), total = static_cast<PetscInt>(layout_.total);
     petsc_check(MatCreate(comm_, &a_), "MatCreate");
@@ -180,16 +172,15 @@ class PetscSolver {
   bool factorize(const SpMat& k) {
     using detail::petsc_check;
     failure_.clear();
-    std::size_t c = 0;
-    for (Eigen::Index j = 0; j < k.outerSize(); ++j)
-      for (SpMat::InnerIterator it(k, j); it; ++it) {
-        coo_[c++] = it.value();
-        if (kStorage == MatrixStorage::lower && it.row() != j) coo_[c++] = it.value();
-      }
-    // The same values on every part as at the last factorization: keep it (decided together).
-    int changed = !factorized_ || coo_ != factorized_values_;
-    detail::mpi_check(MPI_Allreduce(MPI_IN_PLACE, &changed, 1, MPI_INT, MPI_LOR, comm_), "MPI_Allreduce");
-    if (!changed) return true;
+    const double* values = k.valuePtr();
+    for (std::size_t c = 0; c < coo_.size(); ++c) coo_[c] = values[source_[c]];
+    // With skip_unchanged: the same values on every part as at the last factorization keep it (decided
+    // together).
+    if (skip_unchanged_) {
+      int changed = !factorized_ || coo_ != factorized_values_;
+      detail::mpi_check(MPI_Allreduce(MPI_IN_PLACE, &changed, 1, MPI_INT, MPI_LOR, comm_), "MPI_Allreduce");
+      if (!changed) return true;
+    }
     petsc_check(MatSetValuesCOO(a_, coo_.data(), INSERT_VALUES), "MatSetValuesCOO");
     petsc_check(KSPSetUp(ksp_), "KSPSetUp");
     ++factorizations_;
@@ -199,9 +190,21 @@ class PetscSolver {
     petsc_check(PCGetFailedReasonRank(pc, &reason), "PCGetFailedReasonRank");
     int worst = static_cast<int>(reason);
     detail::mpi_check(MPI_Allreduce(MPI_IN_PLACE, &worst, 1, MPI_INT, MPI_MAX, comm_), "MPI_Allreduce");
-    if (worst != PC_NOERROR)
-      return fail(std::string("stiffness is singular or not factorizable (PETSc: ") + PCFailedReasons[worst] +
-                  ")");
+    if (worst != PC_NOERROR) {
+      std::string why = std::string("PETSc: ") + PCFailedReasons[worst];
+      if (mumps_) {  // MUMPS' own error code (its users' guide, "Error diagnostics"): -10 is a singular
+                     // matrix
+        ::Mat factor  = nullptr;
+        PetscInt info = 0, detail = 0;
+        petsc_check(PCFactorGetMatrix(pc, &factor), "PCFactorGetMatrix");
+        petsc_check(MatMumpsGetInfog(factor, 1, &info), "MatMumpsGetInfog");
+        petsc_check(MatMumpsGetInfog(factor, 2, &detail), "MatMumpsGetInfog");
+        why += ", MUMPS INFOG(1) = " + std::to_string(info) + ", INFOG(2) = " + std::to_string(detail);
+      }
+      const bool singular = worst == PC_FACTOR_STRUCT_ZEROPIVOT || worst == PC_FACTOR_NUMERIC_ZEROPIVOT;
+      return fail(singular ? "stiffness is singular (" + why + ")"
+                           : "the solver failed (" + why + "; MUMPS' users' guide lists its codes)");
+    }
     if (mumps_) {
       ::Mat factor         = nullptr;
       PetscInt null_pivots = 0;
@@ -211,9 +214,16 @@ class PetscSolver {
         return fail("stiffness is singular (MUMPS found " + std::to_string(null_pivots) + " null pivot" +
                     (null_pivots > 1 ? "s" : "") + ")");
     }
-    factorized_values_ = coo_;
-    factorized_        = true;
+    if (skip_unchanged_) factorized_values_ = coo_;
+    factorized_ = true;
     return true;
+  }
+
+  /// Skip a factorization whose values are, on every part, those of the last one bit for bit (the System
+  /// asks for it: NonlinearStatic's elastic iterations). Costs a copy of the values; off by default.
+  void skip_unchanged(bool on) {
+    skip_unchanged_ = on;
+    if (!on) std::vector<PetscScalar>().swap(factorized_values_);
   }
 
   VecX solve(const VecX& b) const {
@@ -254,6 +264,48 @@ class PetscSolver {
   KSP ksp() const { return ksp_; }
 
  private:
+  /// The COO pattern in global numbers, sorted by row and then column: PETSc sorts what it is given, and
+  /// on the 1e6-equation tube took 1.9 s for the entries in the pattern's column order against 0.34 s for
+  /// sorted ones (BENCHMARKS.md "Past one machine"). A lower-triangle entry (i, j), i > j, is both (i, j) and
+  /// (j, i). source_[c] is COO entry c's position in the pattern's value array. Rows are gathered by a
+  /// counting sort (scanning the columns in order leaves each row's columns in local order), then put in
+  /// global order, rows and each row's few columns.
+  void coo_pattern(const SpMat& k, std::vector<PetscInt>& rows, std::vector<PetscInt>& cols) {
+    const auto n        = static_cast<std::size_t>(k.rows());
+    const int* outer    = k.outerIndexPtr();
+    const int* inner    = k.innerIndexPtr();
+    const auto add_both = [](int i, int j) { return kStorage == MatrixStorage::lower && i != j; };
+    std::vector<std::size_t> start(n + 1, 0);
+    for (std::size_t j = 0; j < n; ++j)
+      for (int p = outer[j]; p < outer[j + 1]; ++p) {
+        ++start[static_cast<std::size_t>(inner[p]) + 1];
+        if (add_both(inner[p], static_cast<int>(j))) ++start[j + 1];
+      }
+    for (std::size_t r = 0; r < n; ++r) start[r + 1] += start[r];
+    std::vector<int> column(start[n]), source(start[n]);
+    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t j = 0; j < n; ++j)
+      for (int p = outer[j]; p < outer[j + 1]; ++p) {
+        const auto i    = static_cast<std::size_t>(inner[p]);
+        column[fill[i]] = static_cast<int>(j), source[fill[i]++] = p;
+        if (add_both(inner[p], static_cast<int>(j))) column[fill[j]] = inner[p], source[fill[j]++] = p;
+      }
+    const auto global = [&](std::size_t local) { return static_cast<PetscInt>(layout_.global[local]); };
+    std::vector<std::size_t> order(n);  // local rows by global number (a part's ghosts after its own)
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return global(a) < global(b); });
+    rows.clear(), cols.clear(), source_.clear();
+    rows.reserve(start[n]), cols.reserve(start[n]), source_.reserve(start[n]);
+    std::vector<std::pair<PetscInt, int>> row;  // (global column, source) of one row
+    for (const std::size_t r : order) {
+      row.clear();
+      for (std::size_t c = start[r]; c < start[r + 1]; ++c)
+        row.emplace_back(global(static_cast<std::size_t>(column[c])), source[c]);
+      std::sort(row.begin(), row.end());
+      for (const auto& [g, src] : row) rows.push_back(global(r)), cols.push_back(g), source_.push_back(src);
+    }
+  }
   static bool has_option(const char* name) {
     PetscBool set = PETSC_FALSE;
     detail::petsc_check(PetscOptionsHasName(nullptr, nullptr, name, &set), "PetscOptionsHasName");
@@ -297,6 +349,7 @@ class PetscSolver {
         VecDestroy(&v);
       }
     }
+    if (basis.empty()) return;  // every mode's DOFs prescribed: GAMG falls back to its constant vector
     MatNullSpace space = nullptr;
     petsc_check(
         MatNullSpaceCreate(comm_, PETSC_FALSE, static_cast<PetscInt>(basis.size()), basis.data(), &space),
@@ -311,13 +364,14 @@ class PetscSolver {
   }
 
   EquationLayout layout_;
-  bool distributed_ = false, factorized_ = false, mumps_ = false;
+  bool distributed_ = false, factorized_ = false, mumps_ = false, skip_unchanged_ = false;
   MPI_Comm comm_ = PETSC_COMM_SELF;
   ::Mat a_       = nullptr;
   ::Vec x_ = nullptr, b_ = nullptr, local_ = nullptr;
   VecScatter scatter_ = nullptr;
   KSP ksp_            = nullptr;
-  std::vector<PetscScalar> coo_, factorized_values_;
+  std::vector<PetscScalar> coo_, factorized_values_;  ///< the values in COO order (coo_pattern)
+  std::vector<int> source_;                           ///< COO entry -> position in the pattern's values
   std::string failure_;
   int factorizations_      = 0;
   mutable long iterations_ = 0;

@@ -62,6 +62,8 @@ class RuntimeSolver {
   void distribute(const EquationLayout& layout) requires(DistributedSolver<Solvers> || ...) {
     impl_->distribute(layout);
   }
+  /// For the chosen solver when it decides itself whether a factorization can be skipped (PetscSolver).
+  void skip_unchanged(bool on) { impl_->skip_unchanged(on); }
   bool factorize(const SpMat& k) { return impl_->factorize(k); }
   VecX solve(const VecX& b) const { return impl_->solve(b); }
   std::string failure() const { return impl_->failure(); }
@@ -73,6 +75,7 @@ class RuntimeSolver {
     virtual void analyze(const SpMat& k)                                = 0;
     virtual void analyze(const SpMat& k, const std::vector<int>& order) = 0;
     virtual void distribute(const EquationLayout& layout)               = 0;
+    virtual void skip_unchanged(bool on)                                = 0;
     virtual bool factorize(const SpMat& k)                              = 0;
     virtual VecX solve(const VecX& b) const                             = 0;
     virtual std::string failure() const                                 = 0;
@@ -94,6 +97,9 @@ class RuntimeSolver {
       else
         throw InputError(std::string("the solver ") + S::kName +
                          " solves on one process; a partitioned problem needs a distributed one (PETSc)");
+    }
+    void skip_unchanged(bool on) override {
+      if constexpr (requires { s.skip_unchanged(on); }) s.skip_unchanged(on);
     }
     bool factorize(const SpMat& k) override { return s.factorize(k); }
     VecX solve(const VecX& b) const override { return s.solve(b); }

@@ -65,9 +65,13 @@ class System {
   /// same bit for bit: a Newton driver that reassembles its tangent every iteration (NonlinearStatic)
   /// then pays no factorization while every point is elastic (the tangent is the elastic stiffness).
   /// Costs one more value array; off by default (a linear driver knows when its stiffness is unchanged).
+  /// A distributed system hands the test to its solver (skip_unchanged(on), when it has one), which must
+  /// decide it over every part together.
   void skip_unchanged(bool on) {
     skip_unchanged_ = on;
     if (!on) std::vector<double>().swap(factorized_values_);
+    if constexpr (requires { solver_->skip_unchanged(on); })
+      if (distributed_) solver_->skip_unchanged(on);
   }
 
   /// Numeric factorization; on failure a SolveError with the solver's reason and, when it names one,
@@ -86,9 +90,15 @@ class System {
     if (!(factorized_ = solver_->factorize(k_))) {
       std::string where;
       if (const int eq = failed_equation(); eq >= 0) where = " near " + describe(eq);
-      throw SolveError(solver_->failure() + where +
-                       ": check that the constraints remove every rigid-body motion (axial translation; in "
-                       "3-DOF also rotation about the axis) and that no element is degenerate");
+      // The hint for a stiffness that cannot be factorized, unless the solver says the failure is its own
+      // (LinearSolver, core/concepts.hpp: PETSc refusing its options).
+      const std::string failure = solver_->failure();
+      throw SolveError(
+          failure + where +
+          (failure.rfind("the solver failed", 0) == 0
+               ? std::string()
+               : ": check that the constraints remove every rigid-body motion (axial translation; in "
+                 "3-DOF also rotation about the axis) and that no element is degenerate"));
     }
     if (skip_unchanged_ && !distributed_)
       factorized_values_.assign(k_.valuePtr(), k_.valuePtr() + k_.nonZeros());
