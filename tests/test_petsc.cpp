@@ -253,89 +253,93 @@ TEST_CASE_TEMPLATE(
   CHECK(worst < 1e-8);
 }
 
+namespace {
+
+/// The press fit of the serial friction tests pushed out by 50 um per unit of load factor after its pressure
+/// (t in [0, 1]), whole (Serial, this process) and cut into the ranks' parts (Parallel), side by side.
+template <class Serial, class Parallel, ContactPolicy Policy, FrictionModel Friction>
+struct PushOut {
+  PressFit fit;
+  std::vector<GapPair> pairs, whole_pairs;
+  Problem<Parallel> all;  ///< the whole problem of the parts, whose loads set_part_loads hands out
+  std::unique_ptr<ContactStatic<Serial, Policy, Friction>> whole;
+  std::unique_ptr<ContactStatic<Parallel, Policy, Friction>> part;
+
+  explicit PushOut(PressFit f) : fit(f), all(fit.problem<Parallel>(whole_pairs)) {
+    ContactOptions options;
+    options.gap_materials = {1};
+    options.friction      = fit.mu;
+    whole =
+        std::make_unique<ContactStatic<Serial, Policy, Friction>>(fit.problem<Serial>(pairs), pairs, options);
+    auto local       = part_of(all, whole_pairs);
+    auto local_pairs = part_pairs(local.subdomain->layout(), whole_pairs);
+    part =
+        std::make_unique<ContactStatic<Parallel, Policy, Friction>>(std::move(local), local_pairs, options);
+  }
+  void advance(double t) {
+    const auto push = [](double s) { return s <= 1 ? 0.0 : -5e-5 * (s - 1); };
+    whole->advance(t, [&](Problem<Serial>& p, double s) { fit.set(p, std::min(s, 1.0), push(s)); });
+    part->advance(t, [&](Problem<Parallel>& p, double s) {
+      fit.set(all, std::min(s, 1.0), push(s));
+      set_part_loads(p, all.mesh.nodes, all.conditions, all.edge_loads);
+    });
+  }
+  /// The parts' reactions, gathered, against the whole run's.
+  double reaction_difference(Eigen::MatrixX3d* gathered_reactions = nullptr) const {
+    const Eigen::MatrixX3d r = gathered(domain_of(part->fe()), part->fe().solution().reaction);
+    if (gathered_reactions) *gathered_reactions = r;
+    return difference(r, whole->fe().solution().reaction);
+  }
+  /// Pairs slipping in the whole run, and pairs whose stick/slip state the parts share.
+  std::pair<int, int> slipping_and_same() const {
+    int slipping = 0, same = 0;
+    for (std::size_t q = 0; q < pairs.size(); ++q) {
+      same += whole->states()[q].slipping == part->states()[q].slipping;
+      slipping += whole->states()[q].slipping;
+    }
+    return {slipping, same};
+  }
+};
+
+}  // namespace
+
 // The fit of the serial friction tests in its closed-form setting (every node driven, uniform sliding):
 // the partitioned run must slide at mu p 2 pi b L (1%, as the serial test) with every pair's stick/slip state
 // the serial run's. Its reactions are compared at 1e-3, not 1e-8: this fit's pair forces carry the condition
 // number of its 1-micron gap, and two serial LUs already disagree there (Eigen's SparseLU against UMFPACK
 // and SuperLU through PETSc: 1.3e-4 and 6.6e-5 relative; MUMPS 1.9e-4).
 TEST_CASE("[petsc] press fit pushed out with Coulomb friction: MUMPS LU on the unsymmetric tangent") {
-  using Serial   = Model<Axisym2, Quad4, Isotropic, EigenLu>;
-  using Parallel = Model<Axisym2, Quad4, Isotropic, PetscSolver<MatrixStorage::full>>;
-  PressFit fit;
-  ContactOptions options;
-  options.gap_materials = {1};
-  options.friction      = fit.mu;
-  std::vector<GapPair> pairs, parallel_pairs;
-  ContactStatic<Serial, AugmentedLagrangian, Coulomb> whole(fit.problem<Serial>(pairs), pairs, options);
-  Problem<Parallel> all = fit.problem<Parallel>(parallel_pairs);
-  auto local            = part_of(all, parallel_pairs);
-  auto local_pairs      = part_pairs(local.subdomain->layout(), parallel_pairs);
-  ContactStatic<Parallel, AugmentedLagrangian, Coulomb> part(std::move(local), local_pairs, options);
-  const double d          = 5e-5;
-  const auto push         = [&](double t) { return t <= 1 ? 0.0 : -d * (t - 1); };
-  const auto serial_loads = [&](Problem<Serial>& p, double t) { fit.set(p, std::min(t, 1.0), push(t)); };
-  const auto part_loads   = [&](Problem<Parallel>& p, double t) {
-    fit.set(all, std::min(t, 1.0), push(t));
-    set_part_loads(p, all.mesh.nodes, all.conditions, all.edge_loads);
-  };
+  PushOut<Model<Axisym2, Quad4, Isotropic, EigenLu>,
+          Model<Axisym2, Quad4, Isotropic, PetscSolver<MatrixStorage::full>>, AugmentedLagrangian, Coulomb>
+      run(PressFit{});
   double worst = 0, force = 0;
   for (int k = 0; k <= 4; ++k) {
-    whole.advance(1.0 + k / 4.0, serial_loads);
-    part.advance(1.0 + k / 4.0, part_loads);
-    const Eigen::MatrixX3d reactions = gathered(domain_of(part.fe()), part.fe().solution().reaction);
-    worst                            = std::max(worst, difference(reactions, whole.fe().solution().reaction));
+    run.advance(1.0 + k / 4.0);
     Solution gathered_solution;
-    gathered_solution.reaction = reactions;
-    force                      = fit.push_force(gathered_solution);
+    worst = std::max(worst, run.reaction_difference(&gathered_solution.reaction));
+    force = run.fit.push_force(gathered_solution);
   }
-  int slipping = 0, same = 0;
-  for (std::size_t q = 0; q < pairs.size(); ++q) {
-    same += whole.states()[q].slipping == part.states()[q].slipping;
-    slipping += whole.states()[q].slipping;
-  }
-  MESSAGE(ranks(), " rank(s): ", slipping, " of ", pairs.size(), " pairs slipping; push force ", force,
-          " N against mu p 2 pi b L = ", fit.slip_force(), " N; reactions differ from the serial LU's by ",
-          worst);
-  CHECK(same == static_cast<int>(pairs.size()));
-  CHECK(slipping == static_cast<int>(pairs.size()));
-  CHECK(rel(std::abs(force), fit.slip_force()) < 0.01);
+  const auto [slipping, same] = run.slipping_and_same();
+  MESSAGE(ranks(), " rank(s): ", slipping, " of ", run.pairs.size(), " pairs slipping; push force ", force,
+          " N against mu p 2 pi b L = ", run.fit.slip_force(),
+          " N; reactions differ from the serial LU's by ", worst);
+  CHECK(same == static_cast<int>(run.pairs.size()));
+  CHECK(slipping == static_cast<int>(run.pairs.size()));
+  CHECK(rel(std::abs(force), run.fit.slip_force()) < 0.01);
   CHECK(worst < 1e-3);
 }
 
 TEST_CASE("[petsc] the seed's extended slip model sums the stresses around each pair over the parts (1e-8)") {
-  using Serial   = Model<Axisym2, Quad4, Isotropic>;
-  using Parallel = Model<Axisym2, Quad4, Isotropic, PetscSolver<>>;
   PressFit fit;
   fit.drive = PressFit::Drive::ends;
-  ContactOptions options;
-  options.gap_materials = {1};
-  options.friction      = fit.mu;
-  std::vector<GapPair> pairs, parallel_pairs;
-  ContactStatic<Serial, Saac, Extended> whole(fit.problem<Serial>(pairs), pairs, options);
-  Problem<Parallel> all = fit.problem<Parallel>(parallel_pairs);
-  auto local            = part_of(all, parallel_pairs);
-  auto local_pairs      = part_pairs(local.subdomain->layout(), parallel_pairs);
-  ContactStatic<Parallel, Saac, Extended> part(std::move(local), local_pairs, options);
-  const double d          = 5e-5;
-  const auto push         = [&](double t) { return t <= 1 ? 0.0 : -d * (t - 1); };
-  const auto serial_loads = [&](Problem<Serial>& p, double t) { fit.set(p, std::min(t, 1.0), push(t)); };
-  const auto part_loads   = [&](Problem<Parallel>& p, double t) {
-    fit.set(all, std::min(t, 1.0), push(t));
-    set_part_loads(p, all.mesh.nodes, all.conditions, all.edge_loads);
-  };
-  for (int k = 0; k <= 10; ++k) {
-    whole.advance(1.0 + k / 10.0, serial_loads);
-    part.advance(1.0 + k / 10.0, part_loads);
-  }
-  int slipping = 0, same = 0;
-  for (std::size_t q = 0; q < pairs.size(); ++q) {
-    same += whole.states()[q].slipping == part.states()[q].slipping;
-    slipping += whole.states()[q].slipping;
-  }
-  const double dr = difference(gathered(domain_of(part.fe()), part.fe().solution().reaction),
-                               whole.fe().solution().reaction);
-  MESSAGE(ranks(), " rank(s): ", slipping, " of ", pairs.size(), " pairs slipping; reactions differ by ", dr);
-  CHECK(same == static_cast<int>(pairs.size()));
+  PushOut<Model<Axisym2, Quad4, Isotropic>, Model<Axisym2, Quad4, Isotropic, PetscSolver<>>, Saac, Extended>
+      run(fit);
+  for (int k = 0; k <= 10; ++k) run.advance(1.0 + k / 10.0);
+  const auto [slipping, same] = run.slipping_and_same();
+  const double dr             = run.reaction_difference();
+  MESSAGE(ranks(), " rank(s): ", slipping, " of ", run.pairs.size(), " pairs slipping; reactions differ by ",
+          dr);
+  CHECK(same == static_cast<int>(run.pairs.size()));
   CHECK(slipping > 0);
   CHECK(dr < 1e-8);
 }
