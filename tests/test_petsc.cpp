@@ -71,6 +71,18 @@ const Subdomain& domain_of(const Fe& fe) {
   return *fe.problem().subdomain;
 }
 
+/// The parts' displacements and reactions, gathered, against the whole run's: 1e-8 of each field.
+template <class Part, class Whole>
+void check_same_solution(const Part& part, const Whole& whole) {
+  const double du =
+      difference(gathered(domain_of(part), part.solution().displacement), whole.solution().displacement);
+  const double dr =
+      difference(gathered(domain_of(part), part.solution().reaction), whole.solution().reaction);
+  MESSAGE(ranks(), " rank(s): displacements differ by ", du, ", reactions by ", dr);
+  CHECK(du < 1e-8);
+  CHECK(dr < 1e-8);
+}
+
 /// The thick tube of the serial tests: a..b, bore pressure p, u_z = 0 at both ends (plane strain).
 template <class M>
 Problem<M> thick_tube(int nr, int nz, double p) {
@@ -125,13 +137,7 @@ TEST_CASE_TEMPLATE("[petsc] thick tube (Lame): the parts' answer is the whole on
   whole.solve();
   LinearStatic<Parallel> part(part_of(thick_tube<Parallel>(nr, nz, p)));
   part.solve();
-  const double du =
-      difference(gathered(domain_of(part), part.solution().displacement), whole.solution().displacement);
-  const double dr =
-      difference(gathered(domain_of(part), part.solution().reaction), whole.solution().reaction);
-  MESSAGE(ranks(), " rank(s): displacements differ by ", du, ", reactions by ", dr);
-  CHECK(du < 1e-8);
-  CHECK(dr < 1e-8);
+  check_same_solution(part, whole);
   CHECK(part.solution().residual < 1e-10);
   CHECK(rel(whole.solution().displacement(0, 0), Lame{0.1, 0.2, p, kE, 0.3}.displacement(0.1)) < 5e-3);
 }
@@ -153,13 +159,7 @@ TEST_CASE("[petsc] SAGA shaft twisted by a theta load: the parts' answer is the 
   whole.solve();
   LinearStatic<Parallel> part(part_of(make(std::type_identity<Parallel>{})));
   part.solve();
-  const double du =
-      difference(gathered(domain_of(part), part.solution().displacement), whole.solution().displacement);
-  const double dr =
-      difference(gathered(domain_of(part), part.solution().reaction), whole.solution().reaction);
-  MESSAGE(ranks(), " rank(s): displacements differ by ", du, ", reactions by ", dr);
-  CHECK(du < 1e-8);
-  CHECK(dr < 1e-8);
+  check_same_solution(part, whole);
   CHECK(whole.solution().displacement.col(2).cwiseAbs().maxCoeff() > 0);
 }
 
