@@ -1579,3 +1579,39 @@ TEST_CASE("[plot] gapfe plot: any field of any step, a history curve, and clear 
                          e3) == gapfe::cli::input);
   CHECK(e3.str().find("units 'mm;N;MPa': expected LENGTH,FORCE,STRESS") != std::string::npos);
 }
+
+TEST_CASE("solver = petsc and PETSc's options: clear refusals where the run cannot be partitioned") {
+  const std::string deck = (kExamples / "thick_tube.deck").string(), out = scratch("petsc_refused").string();
+  const auto run = [&](std::vector<std::string> args) {
+    std::ostringstream o, e;
+    const int code = gapfe::cli::main(args, o, e);
+    return std::make_pair(code, e.str());
+  };
+  // In-process, no program started MPI (gapfe.cpp's main does, given StartMpi): said, not crashed.
+  auto [code, err] = run({"run", deck, "--out", out, "--solver", "petsc"});
+  CHECK(code == gapfe::cli::input);
+#ifdef GAPFE_HAS_PETSC
+  CHECK(err.find("MPI and PETSc are started by the program") != std::string::npos);
+#else
+  CHECK(err.find("built without PETSc") != std::string::npos);
+#endif
+  // A PETSc option without solver = petsc, and one given to another command.
+  std::tie(code, err) = run({"run", deck, "--out", out, "-ksp_type", "cg"});
+  CHECK(code == gapfe::cli::input);
+  CHECK(err.find("the PETSc option -ksp_type needs solver = petsc") != std::string::npos);
+  std::tie(code, err) = run({"mesh", deck, "--out", out, "-ksp_type", "cg"});
+  CHECK(code == gapfe::cli::usage);
+  CHECK(err.find("PETSc options belong to gapfe run") != std::string::npos);
+  // Launched as 2 processes (mpirun's variables) with a one-process solver: refused, by rank 0 only.
+  ::setenv("OMPI_COMM_WORLD_SIZE", "2", 1);
+  ::setenv("OMPI_COMM_WORLD_RANK", "0", 1);
+  std::tie(code, err) = run({"run", deck, "--out", out, "--solver", "eigen"});
+  CHECK(code == gapfe::cli::input);
+  CHECK(err.find("started as 2 processes") != std::string::npos);
+  ::setenv("OMPI_COMM_WORLD_RANK", "1", 1);  // the other rank says nothing (rank 0 speaks for both)
+  std::tie(code, err) = run({"run", deck, "--out", out, "--solver", "eigen"});
+  CHECK(code == gapfe::cli::input);
+  CHECK(err.empty());
+  ::unsetenv("OMPI_COMM_WORLD_SIZE");
+  ::unsetenv("OMPI_COMM_WORLD_RANK");
+}
