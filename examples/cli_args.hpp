@@ -171,6 +171,8 @@ inline Args parse(const std::vector<std::string>& a) {
   for (const OptionSpec& o : kOptions) names.emplace_back(o.name);
   for (std::size_t k = 1; k < a.size(); ++k) {
     const std::string s = a[k] == "-h" ? "--help" : a[k];
+    if (petsc_option(s) && std::find(names.begin(), names.end(), "-" + s) != names.end())
+      throw UsageError("unknown option '" + s + "'; did you mean '-" + s + "'?");
     if (petsc_option(s)) {  // PETSc's, with its value when the next word is not an option
       if (r.command != "run")
         throw UsageError(s + ": PETSc options belong to gapfe run (with --solver petsc)");

@@ -37,7 +37,8 @@ void note_relaxation(RunTimes& times, const Deck& d, int step, double inc, const
     line << std::setprecision(3) << "  step " << step << ", inc " << inc << " (t = " << inc * d.step_time()
          << "): ";
     if (n > 0)
-      line << "lambda dt " << lo << " .. " << hi << " over " << n << " yielding point(s)";
+      line << "lambda dt " << lo << " .. " << hi << " over " << static_cast<long long>(n)
+           << " yielding point(s)";
     else
       line << "no point yielding";
     times.relaxation.push_back(line.str());

@@ -552,13 +552,16 @@ int plot(const Args& a, std::ostream& out) {
 }  // namespace
 
 std::pair<int, int> launcher_ranks() {
-  // OpenMPI's mpirun, MPICH's and Intel MPI's mpiexec (PMI), and PMIx launchers such as Slurm's srun.
+  // OpenMPI's mpirun, MPICH's and Intel MPI's mpiexec (PMI), and Slurm's srun.
   const auto number = [](const char* name) {
     const char* value = std::getenv(name);
     return value ? std::atoi(value) : -1;
   };
-  for (const auto& [rank, size] : {std::pair{"OMPI_COMM_WORLD_RANK", "OMPI_COMM_WORLD_SIZE"},
-                                   std::pair{"PMI_RANK", "PMI_SIZE"}, std::pair{"PMIX_RANK", "SLURM_NTASKS"}})
+  // Slurm: a step's variables (srun), not the allocation's (sbatch's SLURM_NTASKS, which a serial run inside
+  // a batch script also sees).
+  for (const auto& [rank, size] :
+       {std::pair{"OMPI_COMM_WORLD_RANK", "OMPI_COMM_WORLD_SIZE"}, std::pair{"PMI_RANK", "PMI_SIZE"},
+        std::pair{"SLURM_PROCID", "SLURM_STEP_NUM_TASKS"}})
     if (number(size) > 0) return {std::max(0, number(rank)), number(size)};
   return {0, 1};
 }

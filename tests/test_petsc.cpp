@@ -139,6 +139,10 @@ TEST_CASE_TEMPLATE("[petsc] thick tube (Lame): the parts' answer is the whole on
   part.solve();
   check_same_solution(part, whole);
   CHECK(part.solution().residual < 1e-10);
+  // PetscSolver on a whole problem solves it on this process alone (PETSC_COMM_SELF), whatever the launch.
+  LinearStatic<Parallel> alone(thick_tube<Parallel>(nr, nz, p));
+  alone.solve();
+  CHECK(difference(alone.solution().displacement, whole.solution().displacement) < 1e-8);
   CHECK(rel(whole.solution().displacement(0, 0), Lame{0.1, 0.2, p, kE, 0.3}.displacement(0.1)) < 5e-3);
 }
 
@@ -424,4 +428,24 @@ TEST_CASE("[petsc] a contact run analyzes the pattern once: MUMPS' symbolic fact
   CHECK(symbolic_runs == 1);
   CHECK(numeric_runs >= 2);
   CHECK(numeric_runs < part.counters().solves);
+}
+
+TEST_CASE("[petsc] an error on one part is every part's error, with its message (on_every_part)") {
+  const auto mesh = rectangle_mesh<4>(0.1, 0.2, 0, 1.0, 4, 12);
+  auto piece      = mesh_part(mesh, partition_cells(mesh, ranks()), ranks(), rank());
+  const PetscSubdomain domain(std::move(piece.layout));
+  std::string what;
+  int kind = 0;  // 1 InputError, 2 SolveError
+  try {
+    on_every_part(&domain, [] {
+      if (rank() == ranks() - 1) throw SolveError("return map failed on part " + std::to_string(rank()));
+    });
+  } catch (const InputError& e) {
+    kind = 1, what = e.what();
+  } catch (const SolveError& e) {
+    kind = 2, what = e.what();
+  }
+  CHECK(kind == 2);
+  CHECK(what == "return map failed on part " + std::to_string(ranks() - 1));
+  CHECK_NOTHROW(on_every_part(&domain, [] {}));
 }

@@ -58,14 +58,17 @@ class Assembler {
         link_values_(links_.size()),
         cells_(p.mesh.cells.size()),
         subdomain_(p.subdomain) {
-    check_model(p, links_);
+    // A part's checks fail on every part together (core/subdomain.hpp, on_every_part).
+    on_every_part(subdomain_.get(), [&] {
+      check_model(p, links_);
+      dofs_ = DofMap<kNd>::build(p.mesh, p.conditions);
+    });
     // A partitioned problem: every part holds every link (the ends of gap pairs are on every part), and the
     // part that owns a link's first node assembles it, so that the parts' sum counts it once.
     link_owned_.assign(links_.size(), 1);
     if (subdomain_)
       for (std::size_t l = 0; l < links_.size(); ++l)
         link_owned_[l] = subdomain_->layout().owns(links_[l][0]);
-    dofs_ = DofMap<kNd>::build(p.mesh, p.conditions);
     SparsityBuilder<kNd> sb(p.mesh.node_count(), dofs_.equation, dofs_.free_count);
     sb.add(p.mesh.cells);
     if constexpr (kHasTriangles<Elem>) sb.add(p.mesh.triangles);
@@ -146,11 +149,13 @@ class Assembler {
   /// Before a solve: the loads are checked and the prescribed values and card forces re-read (which DOFs
   /// are prescribed may not change after construction: the pattern depends on it).
   void refresh(const Problem<M>& p) {
-    check_loads(p);
-    DofMap<kNd> now = DofMap<kNd>::build(p.mesh, p.conditions);
-    if (now.equation != dofs_.equation)
-      throw InputError("boundary conditions: the set of prescribed DOFs changed after construction");
-    dofs_ = std::move(now);
+    on_every_part(subdomain_.get(), [&] {
+      check_loads(p);
+      DofMap<kNd> now = DofMap<kNd>::build(p.mesh, p.conditions);
+      if (now.equation != dofs_.equation)
+        throw InputError("boundary conditions: the set of prescribed DOFs changed after construction");
+      dofs_ = std::move(now);
+    });
   }
 
   /// F_ext over all DOFs: card forces and edge tractions (a linear law's body and thermal loads are

@@ -17,7 +17,6 @@
 // built from the exact ones alone would miss (BENCHMARKS.md "Past one machine" measures CG + GAMG with and
 // without them). The vectors are not orthonormal; the solver orthonormalizes them.
 #include <cstdint>
-#include <stdexcept>
 #include <vector>
 
 #include "gapfe/assembly/dof_map.hpp"
@@ -36,6 +35,7 @@ EquationLayout equation_layout(const DofMap<DofsPerNode>& dofs, const MeshT& mes
   const int nodes   = mesh.node_count();
   const int owned_n = subdomain ? subdomain->owned_nodes() : nodes;
   EquationLayout l;
+  l.partitioned = subdomain != nullptr;
   for (int d = 0; d < owned_n * nd; ++d) l.owned += dofs.equation[static_cast<std::size_t>(d)] >= 0;
   l.first = 0, l.total = l.owned;
   if (subdomain) {  // the parts' row counts, summed: rows before this part's, and in all
@@ -55,12 +55,14 @@ EquationLayout equation_layout(const DofMap<DofsPerNode>& dofs, const MeshT& mes
       global[static_cast<std::size_t>(d)] = static_cast<double>(l.first + eq);
   if (subdomain) subdomain->copy_to_ghosts(global.data(), nd);
   l.global.assign(static_cast<std::size_t>(dofs.free_count), -1);
-  for (std::size_t d = 0; d < global.size(); ++d)
-    if (const int eq = dofs.equation[d]; eq >= 0) {
-      if (global[d] < 0)  // the owner prescribes it: the parts' conditions disagree (a partitioning bug)
-        throw std::logic_error("equation_layout: a ghost DOF is free here and prescribed by its owner");
-      l.global[static_cast<std::size_t>(eq)] = static_cast<std::int64_t>(global[d]);
-    }
+  on_every_part(subdomain, [&] {
+    for (std::size_t d = 0; d < global.size(); ++d)
+      if (const int eq = dofs.equation[d]; eq >= 0) {
+        if (global[d] < 0)  // the owner prescribes it: the parts' conditions disagree (a partitioning bug)
+          throw SolveError("equation_layout: a ghost DOF is free here and prescribed by its owner");
+        l.global[static_cast<std::size_t>(eq)] = static_cast<std::int64_t>(global[d]);
+      }
+  });
 
   // Near-null modes over the owned rows, column-major: u_z = 1, u_r = 1, (u_r, u_z) = (z, -r), u_theta = r.
   l.modes = nd == 3 ? 4 : 3;

@@ -108,6 +108,7 @@ concept OrderedSolver = LinearSolver<S> && requires(S s, const SpMat& K, const s
 /// of the pattern it assembles; [0, owned) are the rows it holds of the global system (its owned nodes'
 /// free DOFs, numbered contiguously in part order), the rest couple to rows another part holds.
 struct EquationLayout {
+  bool partitioned = false;          ///< a part of a partitioned problem; false: a whole problem here
   std::vector<std::int64_t> global;  ///< local equation -> global equation
   int owned          = 0;            ///< local equations [0, owned) are this part's rows
   std::int64_t first = 0;            ///< the global number of local equation 0

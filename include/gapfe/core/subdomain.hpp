@@ -15,8 +15,11 @@
 // contribution (a partial sum); sum_shared() adds the parts' contributions so that every part holds the
 // total there. Every collective must be called by every part, in the same order: the drivers keep their
 // decisions (convergence, contact status) on totals, which are the same on every part.
+#include <string>
 #include <utility>
 #include <vector>
+
+#include "gapfe/core/error.hpp"
 
 namespace gapfe {
 
@@ -64,9 +67,44 @@ class Subdomain {
   /// gave stay zero) and an empty vector elsewhere: output is written from part 0.
   virtual std::vector<double> gather_rows(const double* values, int count, int width, const int* row,
                                           int rows) const = 0;
+  /// Part `from`'s `text` on every part.
+  virtual std::string broadcast(const std::string& text, int from) const = 0;
 
  private:
   PartLayout layout_;
 };
+
+/// Runs `work` here; when it throws an InputError or a SolveError on any part of a partitioned problem, every
+/// part throws that error (the lowest failing part's, with its message): for a check or an element pass that
+/// can fail on one part alone (a point's return map, a card at a node only one part holds), which would
+/// otherwise leave the other parts waiting in their next collective call. Collective; without a subdomain,
+/// `work` simply runs.
+template <class Work>
+void on_every_part(const Subdomain* part, Work&& work) {
+  if (!part) {
+    work();
+    return;
+  }
+  int kind = 0;  // 0 none, 1 InputError, 2 SolveError
+  std::string what;
+  try {
+    work();
+  } catch (const InputError& e) {
+    kind = 1, what = e.what();
+  } catch (const SolveError& e) {
+    kind = 2, what = e.what();
+  }
+  // The lowest failing part: the smallest part number among those that failed (max of -part).
+  const double first =
+      -part->max(kind ? -static_cast<double>(part->part()) : -static_cast<double>(part->parts()));
+  if (first >= part->parts()) return;
+  const int from = static_cast<int>(first);
+  std::vector<double> kinds(static_cast<std::size_t>(part->parts()), 0.0);
+  kinds[static_cast<std::size_t>(part->part())] = kind;
+  part->sum(kinds.data(), static_cast<int>(kinds.size()));
+  what = part->broadcast(what, from);
+  if (kinds[static_cast<std::size_t>(from)] == 1) throw InputError(what);
+  throw SolveError(what);
+}
 
 }  // namespace gapfe

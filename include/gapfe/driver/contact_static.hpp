@@ -256,8 +256,9 @@ class ContactStatic {
   /// step is within the same tolerance (exact stick without a huge k_t).
   void settle_multipliers() {
     for (int it = 0;; ++it) {
-      const double scale = std::max(fe_.displacement().cwiseAbs().maxCoeff(), gap_tolerance());
-      double worst       = 0;
+      double scale = std::max(fe_.displacement().cwiseAbs().maxCoeff(), gap_tolerance());
+      if (const Subdomain* part = fe_.problem().subdomain.get()) scale = part->max(scale);  // the whole's
+      double worst = 0;
       for (std::size_t p = 0; p < pairs_.size(); ++p) {
         const PairState& s = history_.trial(p);
         if (!s.closed) continue;

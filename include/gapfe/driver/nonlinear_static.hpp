@@ -303,8 +303,11 @@ class NonlinearStatic {
     ++report_.evaluations;
     report_.tangents += tangent;
     if (link_update_) link_update_(u_);
-    assembler_.evaluate(p_, u_, points_, stress_, context_, tangent ? system_.values() : nullptr, internal_,
-                        prescribed_step, predictor_);
+    // A point's return map that fails (a SolveError: the caller cuts the step) fails every part's step.
+    on_every_part(p_.subdomain.get(), [&] {
+      assembler_.evaluate(p_, u_, points_, stress_, context_, tangent ? system_.values() : nullptr, internal_,
+                          prescribed_step, predictor_);
+    });
   }
   /// max |sqrt(f) - 1| over the points on the yield surface (laws that expose yield_ratio).
   double drift() const {

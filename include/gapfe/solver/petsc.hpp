@@ -31,9 +31,10 @@
 // skip_unchanged (System::skip_unchanged hands the test to a distributed solver, which must decide it on all
 // parts together) a factorize() whose values are those of the last one bit for bit on every part is skipped.
 //
-// Every call is collective over the communicator (PETSC_COMM_WORLD; PETSC_COMM_SELF without a layout: a
-// whole problem on each process). PETSc must be initialized by the program, and the solver destroyed
-// before PetscFinalize; gapfe never initializes or finalizes PETSc. Needs the gapfe::petsc CMake target.
+// Every call is collective over the communicator: PETSC_COMM_WORLD for a part of a partitioned problem
+// (EquationLayout::partitioned), PETSC_COMM_SELF for a whole problem (each process solves its own). PETSc
+// must be initialized by the program, and the solver destroyed before PetscFinalize; gapfe never initializes
+// or finalizes PETSc. Needs the gapfe::petsc CMake target.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -93,12 +94,14 @@ class PetscSolver {
           std::to_string(8 * sizeof(PetscInt)) +
           "-bit indices; use a PETSc configured --with-64-bit-indices (Debian: libpetsc64-real-dev)");
     layout_      = layout;
-    distributed_ = true;
+    distributed_ = layout.partitioned;
   }
 
   void analyze(const SpMat& k) {
     using detail::petsc_check;
-    if (!distributed_) {  // a whole problem on this process alone
+    // A whole problem on this process alone: the identity layout (equation_layout's for a whole problem,
+    // with its near-null space, or made here when none was given).
+    if (!distributed_ && static_cast<Eigen::Index>(layout_.global.size()) != k.rows()) {
       layout_       = {};
       layout_.owned = static_cast<int>(k.rows());
       layout_.total = k.rows();
@@ -188,8 +191,11 @@ class PetscSolver {
     petsc_check(KSPGetPC(ksp_, &pc), "KSPGetPC");
     PCFailedReason reason = PC_NOERROR;
     petsc_check(PCGetFailedReasonRank(pc, &reason), "PCGetFailedReasonRank");
-    int worst = static_cast<int>(reason);
-    detail::mpi_check(MPI_Allreduce(MPI_IN_PLACE, &worst, 1, MPI_INT, MPI_MAX, comm_), "MPI_Allreduce");
+    // Reduced as reason - PC_SETUP_ERROR + 1 (0: no error), so that PC_SETUP_ERROR (-1) is not lost to a
+    // maximum against PC_NOERROR (0).
+    int code = reason == PC_NOERROR ? 0 : static_cast<int>(reason) - static_cast<int>(PC_SETUP_ERROR) + 1;
+    detail::mpi_check(MPI_Allreduce(MPI_IN_PLACE, &code, 1, MPI_INT, MPI_MAX, comm_), "MPI_Allreduce");
+    const int worst = code == 0 ? static_cast<int>(PC_NOERROR) : code - 1 + static_cast<int>(PC_SETUP_ERROR);
     if (worst != PC_NOERROR) {
       std::string why = std::string("PETSc: ") + PCFailedReasons[worst];
       if (mumps_) {  // MUMPS' own error code (its users' guide, "Error diagnostics"): -10 is a singular

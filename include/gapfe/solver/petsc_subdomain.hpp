@@ -1,12 +1,13 @@
 #pragma once
 // PetscSubdomain: the collective operations of a Subdomain (core/subdomain.hpp) over MPI, one part per rank
-// of a communicator (PETSC_COMM_WORLD unless told otherwise). The ghost exchanges are PETSc star forests
+// of PETSC_COMM_WORLD (the communicator PetscSolver solves on). The ghost exchanges are PETSc star forests
 // (PetscSF): a ghost node's values are a leaf of its owner's values, the root; adding the leaves into the
 // roots and broadcasting the roots back turns partial sums into totals. One forest per width (values per
 // node), made on first use. The reductions and the gather for output are plain MPI collectives.
 //
 // Needs the gapfe::petsc CMake target; PETSc must be initialized by the program (PetscInitialize), never by
 // gapfe. The subdomain must be destroyed before PetscFinalize.
+#include <limits>
 #include <map>
 #include <numeric>
 #include <petscsf.h>
@@ -32,9 +33,10 @@ inline void mpi_check(int code, const char* what) {
 
 class PetscSubdomain final : public Subdomain {
  public:
-  /// `layout` from mesh_part with part = this rank of `comm` and parts = its size.
-  explicit PetscSubdomain(PartLayout layout, MPI_Comm comm = PETSC_COMM_WORLD)
-      : Subdomain(std::move(layout)), comm_(comm) {
+  /// `layout` from mesh_part with part = this rank of PETSC_COMM_WORLD and parts = its size: the
+  /// communicator PetscSolver solves on (a program that runs gapfe on a subset of its processes sets
+  /// PETSC_COMM_WORLD to it before PetscInitialize, PETSc's way).
+  explicit PetscSubdomain(PartLayout layout) : Subdomain(std::move(layout)), comm_(PETSC_COMM_WORLD) {
     PetscBool up = PETSC_FALSE;
     detail::petsc_check(PetscInitialized(&up), "PetscInitialized");
     if (!up) throw InputError("PetscSubdomain: PETSc is not initialized (the program calls PetscInitialize)");
@@ -80,6 +82,16 @@ class PetscSubdomain final : public Subdomain {
   }
   std::vector<double> gather_rows(const double* values, int count, int width, const int* row,
                                   int rows) const override {
+    // Checked on every part together, before any data moves: rows in range, and the table within MPI's int
+    // counts (a table past 2^31 values cannot be gathered in one call).
+    double checks[2] = {static_cast<double>(count) * width, 0.0};  // values, rows out of range
+    for (int k = 0; k < count; ++k) checks[1] += row[k] < 0 || row[k] >= rows;
+    sum(checks, 2);
+    if (checks[1] > 0)
+      throw SolveError("gather_rows: a part gave rows outside the table's " + std::to_string(rows));
+    if (checks[0] > static_cast<double>(std::numeric_limits<int>::max()))
+      throw SolveError("gathering " + std::to_string(static_cast<long long>(checks[0])) +
+                       " values to rank 0 exceeds MPI's int counts: run with output = none");
     std::vector<int> counts(static_cast<std::size_t>(parts())), starts(counts.size());
     detail::mpi_check(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_), "MPI_Gather");
     const bool root = part() == 0;
@@ -98,12 +110,18 @@ class PetscSubdomain final : public Subdomain {
     std::vector<double> table(static_cast<std::size_t>(rows) * static_cast<std::size_t>(width), 0.0);
     for (int k = 0; k < total; ++k) {
       const int r = all_rows[static_cast<std::size_t>(k)];
-      if (r < 0 || r >= rows)
-        throw SolveError("gather_rows: a part gave row " + std::to_string(r) + " of " + std::to_string(rows));
       std::copy_n(all.data() + static_cast<std::size_t>(k) * static_cast<std::size_t>(width), width,
                   table.data() + static_cast<std::size_t>(r) * static_cast<std::size_t>(width));
     }
     return table;
+  }
+
+  std::string broadcast(const std::string& text, int from) const override {
+    int size = static_cast<int>(text.size());
+    detail::mpi_check(MPI_Bcast(&size, 1, MPI_INT, from, comm_), "MPI_Bcast");
+    std::string out = part() == from ? text : std::string(static_cast<std::size_t>(size), '\0');
+    detail::mpi_check(MPI_Bcast(out.data(), size, MPI_CHAR, from, comm_), "MPI_Bcast");
+    return out;
   }
 
  private:

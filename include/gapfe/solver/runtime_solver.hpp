@@ -64,6 +64,8 @@ class RuntimeSolver {
   }
   /// For the chosen solver when it decides itself whether a factorization can be skipped (PetscSolver).
   void skip_unchanged(bool on) { impl_->skip_unchanged(on); }
+  /// The chosen solver's own count of numeric factorizations, or -1 when it keeps none.
+  int factorizations() const { return impl_->factorizations(); }
   bool factorize(const SpMat& k) { return impl_->factorize(k); }
   VecX solve(const VecX& b) const { return impl_->solve(b); }
   std::string failure() const { return impl_->failure(); }
@@ -76,6 +78,7 @@ class RuntimeSolver {
     virtual void analyze(const SpMat& k, const std::vector<int>& order) = 0;
     virtual void distribute(const EquationLayout& layout)               = 0;
     virtual void skip_unchanged(bool on)                                = 0;
+    virtual int factorizations() const                                  = 0;
     virtual bool factorize(const SpMat& k)                              = 0;
     virtual VecX solve(const VecX& b) const                             = 0;
     virtual std::string failure() const                                 = 0;
@@ -100,6 +103,12 @@ class RuntimeSolver {
     }
     void skip_unchanged(bool on) override {
       if constexpr (requires { s.skip_unchanged(on); }) s.skip_unchanged(on);
+    }
+    int factorizations() const override {
+      if constexpr (requires { s.factorizations(); })
+        return s.factorizations();
+      else
+        return -1;
     }
     bool factorize(const SpMat& k) override { return s.factorize(k); }
     VecX solve(const VecX& b) const override { return s.solve(b); }

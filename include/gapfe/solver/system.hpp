@@ -31,7 +31,8 @@ class System {
     if (layout) {
       if constexpr (DistributedSolver<Solver>) {
         solver_->distribute(*layout);
-        distributed_ = true;
+        // Every part factorizes and solves, with or without rows of its own, unless no part has any.
+        distributed_ = layout->partitioned && layout->total > 0;
       } else {
         throw InputError(std::string("the solver ") + Solver::kName +
                          " solves on one process; a partitioned problem needs a distributed solver "
@@ -55,8 +56,14 @@ class System {
   double* values() { return k_.valuePtr(); }
   VecX& rhs() { return rhs_; }
   const VecX& rhs() const { return rhs_; }
-  /// Numeric factorizations so far (the symbolic analysis is done once, in the constructor).
-  int factorizations() const { return factorizations_; }
+  /// Numeric factorizations so far (the symbolic analysis is done once, in the constructor); a distributed
+  /// system's solver counts its own (it skips unchanged values itself).
+  int factorizations() const {
+    if constexpr (requires { solver_->factorizations(); })
+      if (distributed_)
+        if (const int n = solver_->factorizations(); n >= 0) return n;
+    return factorizations_;
+  }
   /// Whether the solver holds a factorization of the current values.
   bool factorized() const { return factorized_; }
   /// Numeric factorizations skipped because the values were those of the last one (skip_unchanged).
