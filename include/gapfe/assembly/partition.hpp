@@ -78,9 +78,6 @@ void set_part_loads(Problem<M>& part, const std::vector<Vec2>& whole_nodes,
 
   // Edge loads: those whose edge M -> N is an edge of one of the part's cells. found[2k]: the part holds
   // edge k as given, found[2k + 1]: reversed; summed over the parts, a zero is the whole problem's error.
-  const auto key = [](int m, int n) {
-    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(m)) << 32) | static_cast<std::uint32_t>(n);
-  };
   const auto local_of = [&](int n) {
     return n >= 0 && n < whole ? layout.local_node[static_cast<std::size_t>(n)] : -1;
   };
@@ -96,14 +93,15 @@ void set_part_loads(Problem<M>& part, const std::vector<Vec2>& whole_nodes,
         part.mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t,
                                                  const std::array<int, NPC>& cell, const CellTag&) {
           for (const auto& edge : E::kEdges)
-            if (starts.count(cell[edge.front()])) edges.insert(key(cell[edge.front()], cell[edge.back()]));
+            if (starts.count(cell[edge.front()]))
+              edges.insert(edge_key(cell[edge.front()], cell[edge.back()]));
         });
   std::vector<double> found(2 * edge_loads.size(), 0.0);
   for (std::size_t k = 0; k < edge_loads.size(); ++k) {
     const int m = local_of(edge_loads[k].node_m), n = local_of(edge_loads[k].node_n);
     if (m < 0 || n < 0) continue;
-    found[2 * k]     = edges.count(key(m, n)) ? 1.0 : 0.0;
-    found[2 * k + 1] = edges.count(key(n, m)) ? 1.0 : 0.0;
+    found[2 * k]     = edges.count(edge_key(m, n)) ? 1.0 : 0.0;
+    found[2 * k + 1] = edges.count(edge_key(n, m)) ? 1.0 : 0.0;
   }
   std::vector<double> total = found;
   if (!total.empty()) domain.sum(total.data(), static_cast<int>(total.size()));

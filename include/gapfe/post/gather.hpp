@@ -17,10 +17,10 @@ inline Solution gather_solution(const Subdomain& domain, const Solution& local) 
   const int owned     = l.owned_nodes;
   std::vector<double> rows(static_cast<std::size_t>(owned) * 6);
   for (int n = 0; n < owned; ++n)
-    for (int c = 0; c < 3; ++c)
-      rows[static_cast<std::size_t>(6 * n + c)] = local.displacement(n, c),
-                                            rows[static_cast<std::size_t>(6 * n + 3 + c)] =
-                                                local.reaction(n, c);
+    for (int c = 0; c < 3; ++c) {
+      rows[static_cast<std::size_t>(6 * n + c)]     = local.displacement(n, c);
+      rows[static_cast<std::size_t>(6 * n + 3 + c)] = local.reaction(n, c);
+    }
   const int whole                 = static_cast<int>(l.local_node.size());
   const std::vector<double> table = domain.gather_rows(rows.data(), owned, 6, l.global_node.data(), whole);
   Solution out;
@@ -28,9 +28,10 @@ inline Solution gather_solution(const Subdomain& domain, const Solution& local) 
   if (table.empty()) return out;
   out.displacement.resize(whole, 3), out.reaction.resize(whole, 3);
   for (int n = 0; n < whole; ++n)
-    for (int c = 0; c < 3; ++c)
-      out.displacement(n, c)                 = table[static_cast<std::size_t>(6 * n + c)],
-                          out.reaction(n, c) = table[static_cast<std::size_t>(6 * n + 3 + c)];
+    for (int c = 0; c < 3; ++c) {
+      out.displacement(n, c) = table[static_cast<std::size_t>(6 * n + c)];
+      out.reaction(n, c)     = table[static_cast<std::size_t>(6 * n + 3 + c)];
+    }
   return out;
 }
 
