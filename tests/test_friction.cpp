@@ -271,11 +271,11 @@ TEST_CASE("friction: Newton with the unsymmetric Coulomb tangent converges quadr
 TEST_CASE_TEMPLATE("friction: pressed and pushed in the same step, then pushed off (the example deck's path)",
                    Policy, ActiveSet, AugmentedLagrangian) {
   // examples/decks/press_fit.deck: the pressure and the first push increment ramp together, so pairs
-  // close one by one while the fit already slides. Newton must get through the closures (damped when
-  // stick/slip switching makes it cycle, the interval halved when it does not converge) and reach the
-  // plateau mu sum P. Under the augmented Lagrangian this passes only here: the same path stalls with
-  // Quad4BBar or LegacyQuad, or a gap material 1000x stiffer (so does the deck itself; issue 12's note).
-  // With events = step-end the step is not split at the closures: the statuses settle at its end.
+  // close one by one while the fit already slides. Newton must get through the closures (each pair
+  // linearized on the branch of the return mapping it is predicted to end on) and reach the plateau
+  // mu sum P. tests/check_friction_family.py runs this path and its variants (pressure and push in every
+  // order, other elements, 1 to 200 steps) through the command. With events = step-end the step is not
+  // split at the closures: the statuses settle at its end.
   PressFit fit;
   fit.drive = PressFit::Drive::ends;
   std::vector<GapPair> pairs;

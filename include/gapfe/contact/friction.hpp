@@ -44,6 +44,8 @@ struct TangentialResponse {
   Vec2 normal_force_slope = Vec2::Zero();       ///< dt/dP [-] (mu nu while slipping, else 0)
   bool slipping           = false;
   double excess           = 0;  ///< |t_trial| - mu P while slipping [force], 0 in stick
+  /// The force on the stick branch, t_trial [force]: what the pair would carry stuck (= force in stick).
+  Vec2 stick_force = Vec2::Zero();
 };
 
 /// What a model needs of a closed pair: the trial slide measured from s_n, the normal force
@@ -84,8 +86,9 @@ struct Proportional {
   static constexpr bool kFriction = true, kIterative = false, kStressCheck = false;
   static TangentialResponse respond(const TangentialInput& in) {
     TangentialResponse out;
-    out.force     = in.base_force - in.spring * in.slide_increment;
-    out.stiffness = in.spring * Mat<2, 2>::Identity();
+    out.force       = in.base_force - in.spring * in.slide_increment;
+    out.stiffness   = in.spring * Mat<2, 2>::Identity();
+    out.stick_force = out.force;
     return out;
   }
   template <class P>
@@ -121,6 +124,7 @@ struct Coulomb {
   static TangentialResponse respond(const TangentialInput& in) {
     TangentialResponse out;
     const Vec2 trial   = in.base_force - in.spring * in.slide_increment;
+    out.stick_force    = trial;
     const double limit = in.mu * std::max(in.normal_force, 0.0);
     const double size  = trial.norm();
     // Stick inside the cone (a pair without normal force carries nothing: limit 0, trial 0). On its

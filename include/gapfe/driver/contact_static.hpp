@@ -157,6 +157,7 @@ class ContactStatic {
       if constexpr (Friction::kStressCheck) around_ = structural_cells_around();
     }
     response_.resize(pairs_.size());
+    linearized_branch_.assign(pairs_.size(), Vec2::Zero());
     accepted_relative_.assign(pairs_.size(), Vec3::Zero());
     evaluate_pairs();
     history_.commit();
@@ -167,6 +168,7 @@ class ContactStatic {
           v.template head<kNd>() = u.template segment<kNd>(kNd * n);
           return v;
         });
+        predicting_ = false;
         set_links();
       });
   }
@@ -229,11 +231,17 @@ class ContactStatic {
     // (from the accepted state they are open, and Newton cycles between stuck and slipping
     // linearizations on the press-fit path). Without Coulomb, a status flipped or restored since the
     // last evaluation re-evaluates the links at the last displacement.
+    if constexpr (Friction::kFriction)
+      for (std::size_t p = 0; p < pairs_.size(); ++p)
+        if (PairState& s = history_.trial(p); s.closed == history_.committed(p).closed)
+          s.tangential_base = history_.committed(p).tangential_base;
     if constexpr (Friction::kIterative) {
+      predicting_ = true;
       if (warm_start_)
         evaluate_pairs();
       else
         evaluate_pairs_at([&](std::size_t p) { return accepted_relative_[p]; });
+      if constexpr (M::Material::kLinear) predicting_ = false;
     } else if (status_changed_) {
       evaluate_pairs();
     }
@@ -332,10 +340,12 @@ class ContactStatic {
     history_.commit();
     if constexpr (Friction::kIterative)
       for (std::size_t p = 0; p < pairs_.size(); ++p) accepted_relative_[p] = response_[p].relative;
-    if constexpr (Friction::kStressCheck) decide_stick_slip();
-    if constexpr (Friction::kFriction) evaluate_pairs();  // the next step's first linearization
     count_.factorizations = fe_.factorizations() - factorizations_at_reset_;
+    // The increment as it was solved (the extended model's status the step ran with), then the next
+    // step's status from its stresses and the next step's first linearization.
     if (on_increment_ && *on_increment_) (*on_increment_)(t, *this);
+    if constexpr (Friction::kStressCheck) decide_stick_slip();
+    if constexpr (Friction::kFriction) evaluate_pairs();
   }
   void count_split() { ++count_.splits; }
   void count_cut() { ++count_.cuts; }
@@ -359,7 +369,8 @@ class ContactStatic {
     if constexpr (Policy::kContact) {
       auto& links = fe_.link_values();
       for (std::size_t p = 0; p < pairs_.size(); ++p) {
-        const PairState& s = history_.trial(p);
+        const PairState& s    = history_.trial(p);
+        linearized_branch_[p] = response_[p].branch;
         if (!s.closed) {
           links[p] = {};
           continue;
@@ -371,7 +382,7 @@ class ContactStatic {
             kSymmetrize || opt_.symmetric_tangent ? r.stiffness : Mat33(r.stiffness + r.coupling);
         links[p].force = (s.multiplier - stiffness_[p] * (pairs_[p].initial_gap - s.reference_gap)) * n;
         if constexpr (Friction::kFriction)
-          links[p].force += r.tangential + (links[p].stiffness - normal) * r.relative;
+          links[p].force += r.branch_force + (links[p].stiffness - normal) * r.relative;
       }
     }
   }
@@ -391,52 +402,7 @@ class ContactStatic {
     ++count_.solves;
     evaluate_pairs();
     if constexpr (Friction::kIterative && M::Material::kLinear) {
-      friction_residuals_.clear();
-      // The point each solve's links were linearized at (u_b - u_a per pair), and the damping: when an
-      // iterate does not halve the imbalance (stick/slip switching among pairs can make plain Newton
-      // cycle), the next linearization point is only a fraction alpha of the way to it.
-      std::vector<Vec3> point(pairs_.size());
-      const auto keep_point = [&] {
-        for (std::size_t p = 0; p < pairs_.size(); ++p) point[p] = response_[p].relative;
-      };
-      keep_point();
-      double alpha = 1;
-      for (int it = 0;; ++it) {
-        const double r = pair_imbalance();
-        friction_residuals_.push_back(r);
-        if (r <= opt_.friction_tolerance) break;
-        // Stalled below 1e-4 for four solves: pairs that have just closed carry forces so small that
-        // their stick/slip status and slip direction are decided at round-off, and Newton can cycle
-        // among them. Their force is then right to that fraction of the pair forces; counted in
-        // friction_stalls and logged by the command.
-        if (it >= 4 && r <= 1e-4 &&
-            r >= 0.5 * *std::min_element(friction_residuals_.end() - 5, friction_residuals_.end() - 1)) {
-          ++count_.friction_stalls;
-          break;
-        }
-        if (it + 1 >= opt_.max_friction_iterations) {
-          std::ostringstream text;
-          text << "the friction iterations did not converge in " << opt_.max_friction_iterations
-               << " solves at load factor " << t_ << " (relative pair force imbalances";
-          for (const double x : friction_residuals_) text << ' ' << x;
-          text << "; tolerance " << opt_.friction_tolerance << "): cut the load step";
-          fail(text.str());
-        }
-        alpha = it >= 1 && r > 0.5 * friction_residuals_[friction_residuals_.size() - 2]
-                    ? std::max(alpha / 2, 1.0 / 64)
-                    : 1.0;
-        if (alpha < 1) {
-          std::vector<Vec3> damped(pairs_.size());
-          for (std::size_t p = 0; p < pairs_.size(); ++p)
-            damped[p] = point[p] + alpha * (response_[p].relative - point[p]);
-          evaluate_pairs_at([&](std::size_t p) { return damped[p]; });
-        }
-        keep_point();
-        set_links();
-        fe_.resolve_links(!links_changed());
-        ++count_.solves, ++count_.friction_iterations;
-        evaluate_pairs();
-      }
+      pair_newton();
     } else if constexpr (Friction::kIterative) {
       friction_residuals_ = fe_.report().residuals;
       count_.friction_iterations += fe_.report().iterations;
@@ -455,24 +421,70 @@ class ContactStatic {
     }
     return changed;
   }
-  /// |f_b(d) - (force - K d)| over the closed pairs: how far the linearized links the last solve
-  /// balanced are from the pair forces at its displacement (at every DOF: at a prescribed one the
-  /// difference would go into the reaction). Relative to |f_b|, or, when larger, to the round-off of the
-  /// pair forces (ten ulps of k (|g0| + |n.d|): P = -k g is a difference of large terms, which matters
-  /// when a pair has just closed and P is tiny), so that Newton stops at round-off instead of failing.
-  double pair_imbalance() const {
-    double diff = 0, size = 0, noise = 0;
+  /// Coulomb over an elastic structure: Newton on the pair forces after a solve. The element system is
+  /// linear, so a solve with the links linearized at the last iterate is a full Newton step, and the
+  /// residual of the whole system lives at the pairs: the structure balances the linearized pair forces
+  /// L(d) = F - K d of the links it was solved with, so R = L(d) - f(d) pair by pair (pair_residuals).
+  /// Each pair is linearized on the branch of the return mapping it is predicted to end on
+  /// (evaluate_pairs_at), which keeps Newton from cycling between slip directions.
+  void pair_newton() {
+    friction_residuals_.clear();
+    std::vector<Vec3> residual(pairs_.size());
+    for (int it = 0;; ++it) {
+      pair_residuals(residual);
+      const double r = residual_norm(residual);
+      friction_residuals_.push_back(r);
+      if (r <= opt_.friction_tolerance) break;
+      // Stalled below 1e-4 for four solves: pairs that have just closed carry forces so small that
+      // their stick/slip status and slip direction are decided at round-off. Their force is then right
+      // to that fraction of the pair forces; counted in friction_stalls and logged by the command.
+      if (it >= 4 && r <= 1e-4 &&
+          r >= 0.5 * *std::min_element(friction_residuals_.end() - 5, friction_residuals_.end() - 1)) {
+        ++count_.friction_stalls;
+        break;
+      }
+      if (it + 1 >= opt_.max_friction_iterations) {
+        std::ostringstream text;
+        text << "the friction iterations did not converge in " << opt_.max_friction_iterations
+             << " solves at load factor " << t_ << " (relative pair force imbalances";
+        for (const double x : friction_residuals_) text << ' ' << x;
+        text << "; tolerance " << opt_.friction_tolerance << "): cut the load step";
+        fail(text.str());
+      }
+      set_links();
+      fe_.resolve_links(!links_changed());
+      ++count_.solves, ++count_.friction_iterations;
+      evaluate_pairs();
+    }
+  }
+  /// Per pair, L(d) - f(d) at the pairs' last evaluation d: L the links the last solve balanced, f =
+  /// P n + E t the pair force (at every DOF: at a prescribed one the difference would go into the
+  /// reaction); zero for open pairs. Only the in-plane components count where the model has no u_theta.
+  void pair_residuals(std::vector<Vec3>& out) const {
     const auto& links = fe_.link_values();
+    for (std::size_t p = 0; p < pairs_.size(); ++p) {
+      const PairState& s = history_.trial(p);
+      out[p]             = Vec3::Zero();
+      if (!s.closed) continue;
+      const PairResponse& r = response_[p];
+      const Vec3 n(pairs_[p].normal(0), pairs_[p].normal(1), 0.0);
+      out[p] = links[p].force - links[p].stiffness * r.relative - (s.normal_force * n + r.tangential);
+      if constexpr (kNd == 2) out[p](2) = 0;
+    }
+  }
+  /// |R| relative to the pair forces |f|, or, when larger, to their round-off (ten ulps of
+  /// k (|g0| + |n.d|): P = -k g is a difference of large terms, which matters when a pair has just
+  /// closed and P is tiny), so that Newton stops at round-off instead of failing.
+  double residual_norm(const std::vector<Vec3>& residual) const {
+    double diff = 0, size = 0, noise = 0;
     for (std::size_t p = 0; p < pairs_.size(); ++p) {
       const PairState& s = history_.trial(p);
       if (!s.closed) continue;
       const PairResponse& r = response_[p];
       const Vec3 n(pairs_[p].normal(0), pairs_[p].normal(1), 0.0);
-      const Vec3 force  = s.normal_force * n + r.tangential;
-      const Vec3 linear = links[p].force - links[p].stiffness * r.relative;
       noise += stiffness_[p] * (std::abs(pairs_[p].initial_gap) + std::abs(n.dot(r.relative)));
-      diff += (force - linear).template head<kNd>().squaredNorm();
-      size += force.template head<kNd>().squaredNorm();
+      diff += residual[p].squaredNorm();
+      size += (s.normal_force * n + r.tangential).template head<kNd>().squaredNorm();
     }
     const double floor = 10 * std::numeric_limits<double>::epsilon() * noise / opt_.friction_tolerance;
     return std::sqrt(diff) / std::max({std::sqrt(size), floor, std::numeric_limits<double>::min()});
@@ -494,9 +506,10 @@ class ContactStatic {
       r.relative     = relative(p);
       s.gap          = g.gap(r.relative.template head<2>());
       s.normal_force = s.closed ? s.multiplier - stiffness_[p] * (s.gap - s.reference_gap) : 0.0;
-      r.tangential   = Vec3::Zero();
-      r.coupling     = Mat33::Zero();
-      r.stiffness    = s.closed ? Mat33(stiffness_[p] * n * n.transpose()) : Mat33::Zero();
+      r.tangential = r.branch_force = Vec3::Zero();
+      r.branch                      = Vec2::Zero();
+      r.coupling                    = Mat33::Zero();
+      r.stiffness                   = s.closed ? Mat33(stiffness_[p] * n * n.transpose()) : Mat33::Zero();
       if constexpr (Friction::kFriction) {
         Mat<3, 2> e;  // E = [T, S]: along the gap and theta
         e << g.tangent()(0), 0, g.tangent()(1), 0, 0, 1;
@@ -505,19 +518,35 @@ class ContactStatic {
         TangentialResponse t =
             Friction::respond({s.slide - s.slide_start, s.tangential_base, s.normal_force, tangential_[p],
                                opt_.friction, s.slipping && (!Friction::kIterative || slip_on_)});
-        // A slipping pair whose slip reverses from one iterate to the next is stuck: neither direction
-        // is consistent, and the slip tangent (no stiffness along the slip) cannot land within the
-        // cone's width mu P / k_t. Linearize it as stuck for the next iterate (the force stays exact).
-        // So is a closed pair without compression (its cone is empty): linearized with the stick spring,
-        // the next iterate sees the stiffness it will have once pressed, instead of none at all.
-        if (Friction::kIterative && t.slipping &&
-            ((s.slipping && t.force.dot(s.tangential_force) < 0) || !(s.normal_force > 0))) {
-          t.stiffness          = tangential_[p] * Mat<2, 2>::Identity();
-          t.normal_force_slope = Vec2::Zero();
-        }
+        // The branch of the return mapping the pair is linearized on (PairResponse::branch). Newton
+        // linearizes each pair on the branch its evaluation lands on, except where that branch is known
+        // to be wrong; the pair is then predicted to stick and linearized on the stick branch itself,
+        // t = t_trial - k_t (s - s_now) (not the stick slope through the returned force, whose offset
+        // mu P nu - t_trial would keep the next iterate off the stick solution):
+        //  - a pair whose slip direction reversed against the branch of the last linearization: its
+        //    slide crossed the cone's width mu P / k_t within one iterate, so neither slip direction is
+        //    consistent and the stick solution lies between (with k_t ~ 1e9 x mu P that width is below
+        //    the iterates' error, and linearizing on the opposite slip branch makes Newton cycle);
+        //  - at a solve's first linearization (a prediction from the accepted state), a closed pair
+        //    without compression (its cone is empty): it is predicted to carry the stiffness it will
+        //    have once pressed, instead of none. Past the prediction such a pair is linearized as it is
+        //    (no tangential force, no stiffness): at a converged state a closed pair may be in tension
+        //    within the opening tolerance, and a stick linearization of a pair that carries nothing
+        //    would leave Newton converging to the stick spring's force, a non-zero imbalance.
+        bool stick_branch = !t.slipping;
+        if constexpr (Friction::kIterative)
+          stick_branch = stick_branch || (predicting_ && !(s.normal_force > 0)) ||
+                         t.force.dot(linearized_branch_[p]) < 0;
         s.tangential_force = t.force;
         s.slipping         = t.slipping;
         r.tangential       = e * t.force;
+        r.branch           = stick_branch ? Vec2::Zero() : Vec2(t.force.normalized());
+        if (stick_branch && t.slipping) {
+          t.force              = t.stick_force;
+          t.stiffness          = tangential_[p] * Mat<2, 2>::Identity();
+          t.normal_force_slope = Vec2::Zero();
+        }
+        r.branch_force = e * t.force;
         r.stiffness += e * t.stiffness * e.transpose();
         r.coupling = stiffness_[p] * e * t.normal_force_slope * n.transpose();
       }
@@ -601,6 +630,10 @@ class ContactStatic {
   /// E K_tt E^T and the slip's unsymmetric coupling k E (dt/dP) n^T.
   struct PairResponse {
     Vec3 relative = Vec3::Zero(), tangential = Vec3::Zero();
+    /// The tangential force on the branch the pair is linearized on (E t_trial where it is predicted to
+    /// stick while its evaluation slips, else E t) and that branch's slip direction (zero: stick).
+    Vec3 branch_force = Vec3::Zero();
+    Vec2 branch       = Vec2::Zero();
     Mat33 stiffness = Mat33::Zero(), coupling = Mat33::Zero();
   };
 
@@ -610,6 +643,7 @@ class ContactStatic {
   std::vector<double> stiffness_, adjacent_, tangential_;  ///< k, adjacent stiffness, k_t per pair
   std::vector<PairResponse> response_;
   std::vector<Vec3> accepted_relative_;   ///< Coulomb: u_b - u_a per pair at the accepted state
+  std::vector<Vec2> linearized_branch_;   ///< Coulomb: PairResponse::branch of the links last set
   std::vector<std::vector<int>> around_;  ///< Extended: real cells around each pair
   std::vector<double> friction_residuals_;
   std::vector<Mat<kNd, kNd>> factorized_links_;  ///< Coulomb: link stiffnesses of the last solve
@@ -618,6 +652,7 @@ class ContactStatic {
   double gap_tolerance_ = 1e-12;                       ///< see gap_tolerance() [length]
   bool status_changed_  = true;
   bool warm_start_      = false;  ///< Coulomb: the next solve's Newton starts from the last solve
+  bool predicting_      = false;  ///< Coulomb: the evaluation is a solve's first linearization
   /// Coulomb: the accepted state ends a whole step (not a split point inside one), so a pair that
   /// slipped there is predicted to slip on: on the cone's boundary it keeps the slip linearization.
   bool slip_on_    = false;
