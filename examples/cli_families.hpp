@@ -104,12 +104,44 @@ void run_plastic(const RunRequest& r, RunTimes& times) {
   finish.now();
 }
 
+/// A run with friction: the increment's ConeExcess into its history row and the run's record (RunTimes).
+/// `outline`: per node of the scene, whether it lies on the mesh's outline.
+inline void note_cone(RunTimes& times, IncrementSummary& summary, int step, double inc,
+                      const std::vector<GapPair>& pairs, const std::vector<PairState>& states, double mu,
+                      const std::vector<char>& outline) {
+  const ConeExcess x = cone_excess(states, mu);
+  summary.cone_ratio = x.ratio;
+  if (times.step_cone.size() < static_cast<std::size_t>(step))
+    times.step_cone.resize(static_cast<std::size_t>(step), 0.0);
+  double& worst = times.step_cone[static_cast<std::size_t>(step - 1)];
+  worst         = std::max(worst, x.ratio);
+  if (!(x.ratio > times.cone.ratio)) return;
+  const GapPair& g   = pairs[static_cast<std::size_t>(x.pair)];
+  const PairState& s = states[static_cast<std::size_t>(x.pair)];
+  times.cone         = {x.ratio,
+                        inc,
+                        s.normal_force,
+                        step,
+                        g.element,
+                        g.pair,
+                        g.node_a,
+                        g.node_b,
+                        s.slipping,
+                        outline[static_cast<std::size_t>(g.node_a)] || outline[static_cast<std::size_t>(g.node_b)]};
+}
+
 template <class M, ContactPolicy P, FrictionModel F = NoFriction>
 void run_contact(const RunRequest& r, RunTimes& times) {
   RunFiles files = step_files(r);
   FinishFiles finish{r, times, files};
   std::optional<GapFile> gaps;
   if (r.writes) gaps.emplace(r.dir, r.scene, F::kFriction, r.deck.step_time());
+  std::vector<char> outline;  // friction: the nodes on the mesh's outline, for the cone warning's cause
+  if constexpr (F::kFriction) {
+    outline.assign(static_cast<std::size_t>(r.scene.grid.node_count()), 0);
+    for (const auto& side : detail::outline_edges(r.scene.grid, {}))
+      for (const int n : side) outline[static_cast<std::size_t>(n)] = 1;
+  }
   int solves_before = 0;  // the contact counters' solves at the last increment
   run_deck_contact<M, P, F>(
       r.deck, r.scene, r.deck.options.gap_penalty,
@@ -124,6 +156,9 @@ void run_contact(const RunRequest& r, RunTimes& times) {
         for (const auto& st : c.states())
           times.closed += st.closed, summary.slipping += st.closed && st.slipping;
         summary.closed = times.closed;
+        if constexpr (F::kFriction)
+          note_cone(times, summary, step, inc, r.scene.gaps.pairs, c.states(), r.deck.options.friction,
+                    outline);
         if constexpr (!M::Material::kLinear) {
           note_relaxation(times, r.deck, step, inc, c.fe().states(), c.fe().problem().subdomain.get());
           summary.plastic_points = c.fe().report().plastic_points;

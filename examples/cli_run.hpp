@@ -51,6 +51,15 @@ struct RunTimes {
   /// Per load step (index step - 1), the largest relative residual of its accepted increments: a linear
   /// law's |K u - f| / |f|, Newton's |R| / |F_int| for a law with history (the log prints them).
   std::vector<double> step_residual;
+  /// Runs with friction: per load step (index step - 1), the largest |f_t| / (mu f_n) of a closed pair
+  /// (ConeExcess), and where over the run it was largest (the log and the warning past Coulomb's cone).
+  std::vector<double> step_cone;
+  struct ConeWorst {
+    double ratio = 0, inc = 0, normal_force = 0;
+    int step = 0, element = -1, pair = -1, node_a = -1, node_b = -1;  ///< 0-based element and nodes
+    bool slipping = false;                                            ///< the pair's status at that increment
+    bool outline  = false;  ///< a node of the pair lies on the mesh's outline (an end of the fit)
+  } cone;
   /// Rate-dependent laws: per accepted increment, lambda dt over the yielding points (the log prints it).
   std::vector<std::string> relaxation;
   /// The pictures StepFiles drew at the end (paths), and why any asked for were not.
@@ -165,7 +174,7 @@ inline RunFiles step_files(const RunRequest& r) {
   files.emplace(r.dir, r.scene, r.deck.step_time(), increments(r.deck.options.output_csv),
                 increments(r.deck.options.output_vtu));
   files->draw_fields(r.pictures, r.units);
-  files->keep_history(r.deck.steps());
+  files->keep_history(r.deck.steps(), r.deck.options.friction_model() != "none");
   return files;
 }
 

@@ -56,12 +56,46 @@ std::pair<int, double> largest_poisson(const Deck& d) {
 /// the largest with its step.
 constexpr std::size_t kListedSteps = 50;
 
+/// A friction force past this multiple of mu f_n is reported: the seed's models leave Coulomb's cone.
+constexpr double kConeWarning = 1.1;
+
+/// The warning of a run whose friction forces left Coulomb's cone |f_t| <= mu f_n (slip model `model`):
+/// where it was worst, and the likely cause.
+std::string cone_warning(const RunTimes::ConeWorst& w, const std::string& model) {
+  std::ostringstream m;
+  m << "gapfe: warning: gap element " << w.element + 1 << ", pair " << w.pair + 1 << " (nodes "
+    << w.node_a + 1 << " and " << w.node_b + 1 << ") carries a friction force " << std::setprecision(3)
+    << w.ratio << std::setprecision(6) << " times mu f_n at load step " << w.step << " (inc " << w.inc
+    << "), outside Coulomb's cone |f_t| <= mu f_n: ";
+  if (model == "proportional")
+    m << "slip = proportional (SAACFR) has no slip limit, mu only scales its tangential springs, so a pair's "
+         "force grows with its slide";
+  else if (!(w.normal_force > 0))
+    m << "the pair carries its friction force in tension (the seed's model keeps a pair's force until it "
+         "opens)";
+  else if (w.slipping)
+    m << "the pair slips but keeps the force it gained while stuck (the seed's slip does not return a pair "
+         "to "
+         "the cone)";
+  else if (w.outline)
+    m << "the pair was stuck for the step next to a free surface or an end of the fit, where the averaged "
+         "stresses of the elements around it (the seed's stick check) carry little shear, so its force grew "
+         "by the stick stiffness times its slide";
+  else
+    m << "the pair was stuck for the step: the seed's check takes stick or slip from the stresses before the "
+         "step, so a step whose slide times the stick stiffness passes mu f_n overshoots (smaller load "
+         "steps)";
+  m << "; slip = coulomb (with contact = active-set or augmented-lagrangian) keeps every pair on the cone\n";
+  return m.str();
+}
+
 /// Issue 15: the relative residual of every load step (its worst increment), so that a step the solver
 /// could not hold to round-off shows where it happened.
-void log_step_residuals(std::ostream& log, const std::vector<double>& per_step, bool plastic) {
+/// One number per load step, after `what`: each, up to kListedSteps steps, else their median and the
+/// largest with its step.
+void log_per_step(std::ostream& log, const std::string& what, const std::vector<double>& per_step) {
   if (per_step.empty()) return;
-  log << "residual per load step (" << (plastic ? "Newton's |R| / |F_int|" : "|K u - f| / |f|")
-      << ", the largest of its increments):";
+  log << what << ":";
   if (per_step.size() <= kListedSteps) {
     for (std::size_t k = 0; k < per_step.size(); ++k)
       log << (k % 10 == 0 ? "\n   " : "") << " " << per_step[k];
@@ -441,7 +475,11 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
   log << "time [s]: read " << t_read << ", mesh " << t_mesh << ", setup " << setup << ", assemble "
       << times.assemble << ", factorize " << times.factorize << ", solve " << times.solve << ", write "
       << times.write << "\n";
-  log_step_residuals(log, times.step_residual, plastic);
+  log_per_step(log,
+               std::string("residual per load step (") +
+                   (plastic ? "Newton's |R| / |F_int|" : "|K u - f| / |f|") +
+                   ", the largest of its increments)",
+               times.step_residual);
   if (!plastic) {
     log << "equilibrium: largest relative residual |K u - f| / |f| " << times.equilibrium << " (load step "
         << times.equilibrium_step << ")\n";
@@ -479,6 +517,14 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
                       std::to_string(times.contact.friction_stalls) + " stalled below 1e-4"
                 : std::string())
         << "\n";
+  if (d.options.friction_model() != "none") {
+    log_per_step(
+        log,
+        "friction cone per load step (the largest |f_t| / (mu f_n) of a closed pair; at most 1 under "
+        "Coulomb)",
+        times.step_cone);
+    if (times.cone.ratio > kConeWarning) err << cone_warning(times.cone, d.options.friction_model());
+  }
   if (!times.relaxation.empty()) {
     log << "rate-dependent increments (t = inc x delta t of card 0):\n";
     for (const auto& line : times.relaxation) log << line << "\n";

@@ -256,15 +256,15 @@ TEST_CASE(
     std::ifstream in(out / "gaps.csv");
     std::string header, line;
     std::getline(in, header);
-    CHECK(header == "step,inc,t,element,pair,status,gap,f_n,f_t");
+    CHECK(header == "step,inc,t,element,pair,node_a,node_b,status,gap,f_n,f_t");
     // The closure load: the last increment with every pair open, just before the first closed row.
     double last_open = 0, closed_at = -1;
     while (std::getline(in, line) && closed_at < 0) {
       std::stringstream s(line);
       std::vector<std::string> f;
       for (std::string v; std::getline(s, v, ',');) f.push_back(v);
-      REQUIRE(f.size() == 9);
-      if (f[5] == "closed")
+      REQUIRE(f.size() == 11);
+      if (f[7] == "closed")
         closed_at = last_open;
       else
         last_open = std::stod(f[1]);

@@ -3,6 +3,9 @@
 // (gaps.csv, io/deck_output.hpp), and the work counters of a run. Forces are total ring forces,
 // compressive positive; gaps are positive open (core/types.hpp). Tangential quantities are in the pair's
 // tangent plane (T, S = theta) of contact/friction.hpp.
+#include <limits>
+#include <vector>
+
 #include "gapfe/core/types.hpp"
 
 namespace gapfe {
@@ -26,6 +29,28 @@ struct PairState {
   bool slipping         = false;         ///< the step's status (Coulomb: the return mapping's answer)
   double slip           = 0;             ///< relative tangential travel summed over slipping steps [length]
 };
+
+/// How far a state's friction forces stand from Coulomb's cone |t| <= mu P: the largest |t| / (mu P) over
+/// the closed pairs, and the pair it belongs to. Coulomb keeps it at or below 1; the seed's models
+/// (SAACFR's springs without a limit, the extended model's one-step-late status) can pass it. A closed
+/// pair that carries a friction force without compression (P <= 0) is outside every cone: infinity.
+struct ConeExcess {
+  double ratio = 0;   ///< [-]; 0 where no closed pair carries a friction force
+  int pair     = -1;  ///< index into the pairs; -1 with ratio 0
+};
+
+inline ConeExcess cone_excess(const std::vector<PairState>& states, double mu) {
+  ConeExcess worst;
+  for (std::size_t p = 0; p < states.size(); ++p) {
+    const PairState& s = states[p];
+    const double t     = s.tangential_force.norm();
+    if (!s.closed || !(t > 0)) continue;
+    const double ratio =
+        s.normal_force > 0 && mu > 0 ? t / (mu * s.normal_force) : std::numeric_limits<double>::infinity();
+    if (ratio > worst.ratio) worst = {ratio, static_cast<int>(p)};
+  }
+  return worst;
+}
 
 /// Work of the steps since the last reset, for the speed/accuracy tables.
 struct ContactCounters {

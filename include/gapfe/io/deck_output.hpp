@@ -2,7 +2,8 @@
 // What `gapfe run` and `gapfe mesh` leave in their output directory (the deck issue's contract):
 //  * nodes.csv     step,inc,t,node,i,j,r,z,u_r,u_z,u_t
 //  * elements.csv  step,inc,t,element,i,j,material,r,z,s_rr,s_zz,s_tt,s_rz,s_rt,s_zt,eqps (centroids)
-//  * gaps.csv      step,inc,t,element,pair,status,gap,f_n,f_t per gap node pair (decks with gap elements)
+//  * gaps.csv      step,inc,t,element,pair,node_a,node_b,status,gap,f_n,f_t per gap node pair (decks with
+//                  gap elements)
 //  * reactions.csv step,inc,t,node,i,j,r,z,R_r,R_z,R_t at every node with a prescribed component (BC card
 //                  code != 0, or a face SAAC3X drives): the total ring reaction force, 0 in the free
 //                  components; R_t is a force along theta (its torque about the axis is R_t r)
@@ -134,9 +135,10 @@ class StepFiles {
     if (picture) last_arrays_ = std::move(arrays);
   }
 
-  /// history.csv (io/history_file.hpp) for a run of `steps` load steps, when there is more than one.
-  void keep_history(int steps) {
-    if (steps > 1) history_.emplace(dir_, scene_, steps, step_time_);
+  /// history.csv (io/history_file.hpp) for a run of `steps` load steps, when there is more than one;
+  /// `friction`: with its cone_ratio column.
+  void keep_history(int steps, bool friction = false) {
+    if (steps > 1) history_.emplace(dir_, scene_, steps, step_time_, friction);
   }
 
   /// The fields (io/field_plot.hpp) finish() draws for the last increment, as plot_FIELD.svg, in `units`;
@@ -413,13 +415,15 @@ class StepFiles {
 /// gaps.csv: one row per gap node pair per increment; status open | closed, or with friction open |
 /// stick | slip; gap [length] (negative: overlap), f_n the normal force and f_t the resultant tangential
 /// (friction) force |t| (total ring forces, f_n compressive positive; f_t 0 without friction). Element
-/// numbers are the deck's, pair 1 | 2 the seed's contact states 2 | 3.
+/// numbers are the deck's, pair 1 | 2 the seed's contact states 2 | 3, node_a and node_b the pair's nodes
+/// (the gap closes from a towards b). A status is the one the increment was solved with (for the seed's
+/// extended model: the stick or slip its stress check chose at the increment before).
 class GapFile {
  public:
   GapFile(const std::string& dir, const DeckScene& scene, bool friction = false, double step_time = 1.0)
       : scene_(scene), friction_(friction), step_time_(step_time) {
     out_ = detail::open_output(dir + "/gaps.csv");
-    out_ << "step,inc,t,element,pair,status,gap,f_n,f_t\n";
+    out_ << "step,inc,t,element,pair,node_a,node_b,status,gap,f_n,f_t\n";
   }
   /// Writes the rows and returns the VTU cell arrays: gap_state (0 structural, -1 a gap element that
   /// stays soft, else the seed's contact state 1-4), gap_size (smallest pair gap, 0 elsewhere) and
@@ -438,7 +442,9 @@ class GapFile {
       const std::size_t e = static_cast<std::size_t>(p.element);
       detail::csv_increment(s, step, inc, step_time_);
       detail::append_number(s, static_cast<long long>(p.element + 1)), s += ',';
-      detail::append_number(s, static_cast<long long>(p.pair + 1));
+      detail::append_number(s, static_cast<long long>(p.pair + 1)), s += ',';
+      detail::append_number(s, static_cast<long long>(p.node_a + 1)), s += ',';
+      detail::append_number(s, static_cast<long long>(p.node_b + 1));
       s += !st.closed ? ",open," : !friction_ ? ",closed," : st.slipping ? ",slip," : ",stick,";
       detail::csv_number(s, st.gap), detail::csv_number(s, st.normal_force);
       detail::append_number(s, st.tangential_force.norm()), s += '\n';

@@ -10,6 +10,9 @@
 //                          forces, R_t a force along theta (its torque about the axis is sum R_t r)
 //   u_max                  the largest displacement |u| of any node
 //   closed, slipping       gap node pairs closed, and of those slipping (friction)
+//   cone_ratio             runs with friction: the largest |f_t| / (mu f_n) of a closed pair (ConeExcess,
+//                          contact/pair_state.hpp): at most 1 under Coulomb, how far the seed's models
+//                          stand outside the cone; inf for a pair carrying friction in tension
 //   plastic_points         integration points on the yield surface
 //   iterations             linear solves of the increment (1 for a linear step; Newton's, or the contact
 //                          policy's, otherwise)
@@ -32,12 +35,15 @@ namespace gapfe {
 /// What an increment's driver knows beyond its solution.
 struct IncrementSummary {
   int iterations = 1, plastic_points = 0, closed = 0, slipping = 0;
+  double cone_ratio = 0;  ///< ConeExcess::ratio of a run with friction
 };
 
 class HistoryFile {
  public:
-  HistoryFile(const std::string& dir, const DeckScene& scene, int steps, double step_time)
-      : steps_(steps), step_time_(step_time) {
+  /// `friction`: the run has friction at its gap pairs (the cone_ratio column).
+  HistoryFile(const std::string& dir, const DeckScene& scene, int steps, double step_time,
+              bool friction = false)
+      : steps_(steps), step_time_(step_time), friction_(friction) {
     // Each card's nodes (each once) and the components it prescribes.
     std::map<int, Card> by_index;
     for (std::size_t k = 0; k < scene.conditions.size(); ++k) {
@@ -66,7 +72,8 @@ class HistoryFile {
       for (int comp = 0; comp < 3; ++comp)
         if ((c.code >> comp) & 1) head += std::string(",R_") + "rzt"[comp] + "_" + name;
     }
-    head += ",u_max,closed,slipping,plastic_points,iterations,residual\n";
+    head += std::string(",u_max,closed,slipping") + (friction ? ",cone_ratio" : "") +
+            ",plastic_points,iterations,residual\n";
     out_.open(dir + "/history.csv", std::ios::binary);
     if (!out_) throw InputError("cannot write " + dir + "/history.csv");
     out_ << head << std::flush;
@@ -88,7 +95,12 @@ class HistoryFile {
         }
     const double u_max = s.displacement.rows() > 0 ? s.displacement.rowwise().norm().maxCoeff() : 0.0;
     detail::append_number(row, u_max);
-    for (const int v : {summary.closed, summary.slipping, summary.plastic_points, summary.iterations}) {
+    for (const int v : {summary.closed, summary.slipping}) {
+      row += ',';
+      detail::append_number(row, static_cast<long long>(v));
+    }
+    if (friction_) row += ',', detail::append_number(row, summary.cone_ratio);
+    for (const int v : {summary.plastic_points, summary.iterations}) {
       row += ',';
       detail::append_number(row, static_cast<long long>(v));
     }
@@ -107,6 +119,7 @@ class HistoryFile {
   std::vector<Card> cards_;
   int steps_        = 1;
   double step_time_ = 1;
+  bool friction_    = false;
   std::ofstream out_;
 };
 
