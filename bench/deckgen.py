@@ -261,7 +261,8 @@ def projectile_deck(steps=10, g_load=20000.0):
 
 
 def press_fit_deck(ns=6, nh=8, nz=10, a=12.5, b=25.0, w=0.001, c=50.0, length=50.0, q=75.0, push=0.001,
-                   steps=40, mu=0.15, contact="active-set", slip="coulomb", nu=0.0, events=None):
+                   steps=40, mu=0.15, contact="active-set", slip="coulomb", nu=0.0, events=None, ramp=False,
+                   twist=None):
     """A hub clamped on a hollow shaft and pushed along it (issue 12's example; units mm, N, MPa).
 
     Shaft a..b (ns cells), a column of gap elements b..b + w (material 2, IJDIR = 1), hub b + w..c (nh
@@ -270,29 +271,46 @@ def press_fit_deck(ns=6, nh=8, nz=10, a=12.5, b=25.0, w=0.001, c=50.0, length=50
     face down by `push` (BC increments) while the shaft's bottom face is held. E = 200000 and nu = 0: with
     Poisson's ratio the hub's axial growth under the pressure, held at its pushed face, would already slide
     the whole fit in step 1 (nu = 0.3: 11 um), and the closed form is exact. `events` (locate or step-end)
-    adds that option line.
+    adds that option line. ramp=True: the pressure rises by q / steps in every step instead (INCF = 0), in
+    the steps that push (the fit closes while it slides). twist (u_theta per step, a 3-DOF deck): every
+    hub node is driven down by `push` and along theta by `twist` per step and every shaft node held (so
+    the slide is uniform along the fit).
     Closed form (plane stress Lame, one material): contact pressure p = (q - q_c) c^2 (b^2 - a^2) /
     (b^2 (c^2 - a^2)), q_c = w E (c^2 - b^2) / (2 b c^2) closing the gap; slip force mu p 2 pi b L."""
     ni, nj = ns + nh + 2, nz + 1
     node = lambda I, J: (J - 1) * ni + I
     lines = [f"$ contact = {contact}", f"$ friction = {mu:g}", f"$ slip = {slip}"]
     lines += [f"$ events = {events}"] if events else []
+    if twist is None:
+        conditions = [bc(1, ns + 1, 1, 1, 2), bc(ns + 2, ni, nj, nj, 2, xz=-push)]
+    else:
+        conditions = [bc(1, ns + 1, 1, nj, 6), bc(ns + 2, ni, 1, nj, 6, xz=-push, xt=twist)]
     lines += [
-             f"HUB {b + w:g}-{c:g} PRESSED ON SHAFT {a:g}-{b:g} BY {q:g} ON ITS OD, PUSHED DOWN {push:g} PER STEP",
-             control(nummat=2, numpc=nz, nlinc=steps, incf=1), mesh_control(ni, nj, 8, 2, 3),
+             f"HUB {b + w:g}-{c:g} PRESSED ON SHAFT {a:g}-{b:g} BY {q:g} ON ITS OD, PUSHED DOWN {push:g} PER STEP"
+             + (f", TURNED {twist:g}" if twist is not None else "") + (", PRESSURE RAMPED" if ramp else ""),
+             control(nummat=2, numpc=nz, nlinc=steps, incf=0 if ramp else 1), mesh_control(ni, nj, 8, 2, 3),
              segment([(1, 1, a, 0.0), (ns + 1, 1, b, 0.0)], 1), segment([(ns + 2, 1, b + w, 0.0), (ni, 1, c, 0.0)], 1),
              segment([(1, nj, a, length), (ns + 1, nj, b, length)], 1),
              segment([(ns + 2, nj, b + w, length), (ni, nj, c, length)], 1),
              segment([(1, 1, a, 0.0), (1, nj, a, length)], 1), segment([(ns + 1, 1, b, 0.0), (ns + 1, nj, b, length)], 1),
              segment([(ns + 2, 1, b + w, 0.0), (ns + 2, nj, b + w, length)], 1),
              segment([(ni, 1, c, 0.0), (ni, nj, c, length)], 1),
-             bc(1, ns + 1, 1, 1, 2), bc(ns + 2, ni, nj, nj, 2, xz=-push),
+             *conditions,
              block(1, 1, ns + 1, 1, nj), block(2, ns + 1, ns + 2, 1, nj, ijdir=1), block(1, ns + 2, ni, 1, nj)]
     lines += material(1, [isotropic(200000.0, nu)])
     lines += material(2, [isotropic(200000.0e-9, 0.0)])
-    for step in range(1, steps + 1):
-        lines += [edge(node(ni, J), node(ni, J + 1), q if step == 1 else 0.0) for J in range(1, nj)]
+    for step in range(1, 2 if ramp else steps + 1):
+        lines += [edge(node(ni, J), node(ni, J + 1), q / steps if ramp else q if step == 1 else 0.0)
+                  for J in range(1, nj)]
     return "\n".join(lines) + "\n"
+
+
+def press_fit_normal_force(a=12.5, b=25.0, w=0.001, c=50.0, length=50.0, q=75.0, E=200000.0):
+    """press_fit_deck's closed form (nu = 0): the normal force N = p 2 pi b L the fit carries under the outer
+    pressure q, p = (q - q_c) c^2 (b^2 - a^2) / (b^2 (c^2 - a^2)) with q_c = w E (c^2 - b^2) / (2 b c^2) the
+    pressure that closes the gap (0 below it); mu N is the push-out force at full slip."""
+    qc = w * E * (c * c - b * b) / (2 * b * c * c)
+    return max(q - qc, 0.0) * c * c * (b * b - a * a) / (b * b * (c * c - a * a)) * 2 * math.pi * b * length
 
 
 def main():
@@ -330,6 +348,7 @@ def main():
                                                            steps=20, contact="active-set"))
         (out / "projectile.deck").write_text(projectile_deck())
         (out / "press_fit.deck").write_text(press_fit_deck())
+        (out / "push_while_pressing.deck").write_text(press_fit_deck(mu=0.2, ramp=True))
         (out / "plastic_tube.deck").write_text(plastic_tube_deck())
         (out / "rate_tube.deck").write_text(plastic_tube_deck(rate=(1e-3, 0.05, 1e-3)))
         (out / "saac3x_tube.deck").write_text(saac3x_deck())

@@ -2,6 +2,7 @@
 """Friction's speed/accuracy trade on the press fit, and the example's force-displacement picture.
 
     python3 bench/friction_tradeoff.py --gapfe build/bench/examples/gapfe [--repeat 3] [--picture-only]
+    python3 bench/friction_tradeoff.py --gapfe build/bench/examples/gapfe --combined [--repeat 5]
 
 The problem is bench/deckgen.py's press_fit_deck (examples/decks/press_fit.deck with 40 steps): a hub
 (25.001-50 mm) pressed on a hollow shaft (12.5-25 mm) by 75 MPa on its outer surface in step 1, then its
@@ -17,6 +18,13 @@ R_z over the hub's top face, reactions.csv, last increment) against F, the self-
 (gaps.csv), the command's linear solves (its log) and the median wall time of `gapfe run` (--repeat).
 Writes bench/friction_tradeoff.csv and .png (error against time), and with the 40-step example deck
 examples/decks/press_fit_pushout.png (push-out force against the push, every model).
+
+--combined: the same fit pushed while it is pressed (press_fit_deck(ramp=True): the pressure rises with
+the push in each of the 40 steps, so pairs close while the fit slides; mu = 0.2 as in the friction family
+test, tests/check_friction_family.py). For every model, with events = locate and step-end for Coulomb: the
+push-out force against the push (examples/decks/push_while_pressing.png) and a table of the final force
+against F and mu sum f_n, the largest |f_t| / (mu f_n) of a closed pair (history.csv's cone_ratio), the
+linear solves and the median wall time (BENCHMARKS.md, "Friction under combined loading").
 """
 import argparse
 import csv
@@ -43,9 +51,7 @@ def label(slip, contact, events):
 
 
 def closed_form():
-    qc = W * E * (C * C - B * B) / (2 * B * C * C)
-    p = (Q - qc) * C * C * (B * B - A * A) / (B * B * (C * C - A * A))
-    return MU * p * 2 * math.pi * B * L
+    return MU * deckgen.press_fit_normal_force(A, B, W, C, L, Q, E)
 
 
 def run(gapfe, deck_text, out, repeat):
@@ -99,6 +105,41 @@ def solves(log):
     return int(m.group(1)) if m else -1
 
 
+def combined(gapfe, repeat, tmp, plt, here):
+    """--combined: the push-while-pressing fit, every model (see the top)."""
+    mu = 0.2
+    closed = closed_form() / MU * mu
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    print(f"{'model':48s} {'force/F':>8s} {'/mu sum':>8s} {'cone':>7s} {'solves':>6s} {'wall [s]':>8s}")
+    for slip, contact, events in MODELS + [("coulomb", "augmented-lagrangian", "step-end")]:
+        text = deckgen.press_fit_deck(slip=slip, contact=contact, events=events, mu=mu, ramp=True)
+        out = tmp / f"combined_{slip}_{contact}_{events}"
+        seconds, log = run(gapfe, text, out, repeat)
+        name = label(slip, contact, events)
+        if seconds is None:
+            print(f"{name:48s} failed: {log.strip().splitlines()[-1][:200]}")
+            continue
+        xs, ys = zip(*curve(out))
+        ax.plot([1000 * x for x in xs], [y / 1000 for y in ys], marker=".", label=name)
+        with open(out / "history.csv") as f:
+            cone = max(float(row["cone_ratio"]) for row in csv.DictReader(f))
+        force = ys[-1]
+        print(f"{name:48s} {force / closed:8.4f} {force / (friction_sum(out) / MU * mu):8.4f} {cone:7.3g} "
+              f"{solves(log):6d} {seconds:8.3f}")
+    pushes = [PUSH * k / 400 for k in range(401)]
+    limit = [mu * deckgen.press_fit_normal_force(A, B, W, C, L, Q * x / PUSH, E) for x in pushes]
+    ax.plot([1000 * x for x in pushes], [y / 1000 for y in limit], color="k", ls="--", lw=1,
+            label="mu N(q): full slip at the pressure reached (closed form)")
+    ax.set_xlabel("push of the hub's top face [um] (the pressure rises with it, to 75 MPa at 40 um)")
+    ax.set_ylabel("push-out force [kN]")
+    ax.set_ylim(0, 3.0 * closed / 1000)
+    ax.set_title("pushed while pressed: Coulomb on mu N(q), the seed's models above it")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(here.parent / "examples" / "decks" / "push_while_pressing.png", dpi=110)
+    print("wrote examples/decks/push_while_pressing.png")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--gapfe", required=True)
@@ -106,6 +147,7 @@ def main():
     ap.add_argument("--nu", type=float, default=0.0)
     ap.add_argument("--steps", default="5,10,20,50,100,200")
     ap.add_argument("--picture-only", action="store_true")
+    ap.add_argument("--combined", action="store_true", help="the fit pushed while it is pressed")
     args = ap.parse_args()
     here = pathlib.Path(__file__).resolve().parent
     import matplotlib
@@ -114,6 +156,8 @@ def main():
 
     F = closed_form()
     tmp = pathlib.Path(tempfile.mkdtemp(prefix="friction_"))
+    if args.combined:
+        return combined(args.gapfe, args.repeat, tmp, plt, here) or 0
     # The example's picture: the 40-step deck as shipped (nu = 0.3), every model.
     fig, ax = plt.subplots(figsize=(7, 4.5))
     for slip, contact, events in MODELS:

@@ -111,10 +111,7 @@ inline void note_cone(RunTimes& times, IncrementSummary& summary, int step, doub
                       const std::vector<char>& outline) {
   const ConeExcess x = cone_excess(states, mu);
   summary.cone_ratio = x.ratio;
-  if (times.step_cone.size() < static_cast<std::size_t>(step))
-    times.step_cone.resize(static_cast<std::size_t>(step), 0.0);
-  double& worst = times.step_cone[static_cast<std::size_t>(step - 1)];
-  worst         = std::max(worst, x.ratio);
+  keep_largest(times.step_cone, step, x.ratio);
   if (!(x.ratio > times.cone.ratio)) return;
   const GapPair& g   = pairs[static_cast<std::size_t>(x.pair)];
   const PairState& s = states[static_cast<std::size_t>(x.pair)];

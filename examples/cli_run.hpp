@@ -136,6 +136,13 @@ void progress_done(const RunRequest& r);
 /// partitioned one), empty elsewhere.
 using RunFiles = std::optional<StepFiles>;
 
+/// `per_step[step - 1]` becomes the largest of it and `value` (a figure per load step: its worst increment).
+inline void keep_largest(std::vector<double>& per_step, int step, double value) {
+  if (per_step.size() < static_cast<std::size_t>(step)) per_step.resize(static_cast<std::size_t>(step), 0.0);
+  double& worst = per_step[static_cast<std::size_t>(step - 1)];
+  worst         = std::max(worst, value);
+}
+
 /// One accepted increment: refuse a non-finite solution, write the files (timed; a partitioned run gathers
 /// the whole mesh's results to the writing rank first), show progress.
 template <class Fe>
@@ -149,10 +156,7 @@ void write_increment(const RunRequest& r, RunTimes& times, RunFiles& files, int 
   const double residual = fe.solution().residual;
   if constexpr (Fe::Law::kLinear)
     if (residual > times.equilibrium) times.equilibrium = residual, times.equilibrium_step = step;
-  if (times.step_residual.size() < static_cast<std::size_t>(step))
-    times.step_residual.resize(static_cast<std::size_t>(step), 0.0);
-  double& worst    = times.step_residual[static_cast<std::size_t>(step - 1)];
-  worst            = std::max(worst, residual);
+  keep_largest(times.step_residual, step, residual);
   const auto start = std::chrono::steady_clock::now();
   if (const Subdomain* part = fe.problem().subdomain.get()) {
     const Solution whole = gather_solution(*part, fe.solution());

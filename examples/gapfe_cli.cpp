@@ -52,8 +52,8 @@ std::pair<int, double> largest_poisson(const Deck& d) {
   return worst;
 }
 
-/// Up to this many load steps the log lists each step's relative residual; beyond, their median and
-/// the largest with its step.
+/// Up to this many load steps the log lists a per-step figure (the relative residual, the friction cone)
+/// for each step; beyond, their median and the largest with its step.
 constexpr std::size_t kListedSteps = 50;
 
 /// A friction force past this multiple of mu f_n is reported: the seed's models leave Coulomb's cone.
@@ -89,8 +89,6 @@ std::string cone_warning(const RunTimes::ConeWorst& w, const std::string& model)
   return m.str();
 }
 
-/// Issue 15: the relative residual of every load step (its worst increment), so that a step the solver
-/// could not hold to round-off shows where it happened.
 /// One number per load step, after `what`: each, up to kListedSteps steps, else their median and the
 /// largest with its step.
 void log_per_step(std::ostream& log, const std::string& what, const std::vector<double>& per_step) {
@@ -475,6 +473,7 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
   log << "time [s]: read " << t_read << ", mesh " << t_mesh << ", setup " << setup << ", assemble "
       << times.assemble << ", factorize " << times.factorize << ", solve " << times.solve << ", write "
       << times.write << "\n";
+  // Each load step's worst relative residual: a step the solver could not hold to round-off shows where.
   log_per_step(log,
                std::string("residual per load step (") +
                    (plastic ? "Newton's |R| / |F_int|" : "|K u - f| / |f|") +
@@ -512,7 +511,7 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
         << " factorizations, " << times.contact.multiplier_updates << " multiplier updates; penalty "
         << times.penalty << " x adjacent; " << times.closed << " of " << times.pairs
         << " pairs closed at the end"
-        << (times.contact.friction_iterations > 0
+        << (d.options.friction_model() == "coulomb"
                 ? "; friction: " + std::to_string(times.contact.friction_iterations) + " Newton re-solves, " +
                       std::to_string(times.contact.friction_stalls) + " stalled below 1e-4"
                 : std::string())

@@ -44,7 +44,8 @@ struct TangentialResponse {
   Vec2 normal_force_slope = Vec2::Zero();       ///< dt/dP [-] (mu nu while slipping, else 0)
   bool slipping           = false;
   double excess           = 0;  ///< |t_trial| - mu P while slipping [force], 0 in stick
-  /// The force on the stick branch, t_trial [force]: what the pair would carry stuck (= force in stick).
+  /// The force on the stick branch [force]: Coulomb's t_trial, what the pair would carry stuck (= force
+  /// in stick); the spring models' own force.
   Vec2 stick_force = Vec2::Zero();
 };
 

@@ -162,7 +162,8 @@ class ContactStatic {
     evaluate_pairs();
     history_.commit();
     if constexpr (Friction::kIterative && !M::Material::kLinear)
-      fe_.set_link_update([this](const VecX& u) {
+      fe_.set_link_update([this](const VecX& u, bool start) {
+        predicting_ = start;  // the start of a Newton pass is a prediction (evaluate_pairs_at)
         evaluate_pairs([&](int n) {
           Vec3 v                 = Vec3::Zero();
           v.template head<kNd>() = u.template segment<kNd>(kNd * n);
@@ -230,18 +231,26 @@ class ContactStatic {
     // just closed overlap and have slid: their normal force and slip direction are about right there
     // (from the accepted state they are open, and Newton cycles between stuck and slipping
     // linearizations on the press-fit path). Without Coulomb, a status flipped or restored since the
-    // last evaluation re-evaluates the links at the last displacement.
+    // last evaluation re-evaluates the links at the last displacement. The tangential base t_base of a
+    // pair whose status the trial did not change is the accepted one: the return mapping measures from
+    // the accepted force, and an augmented-Lagrangian update of another solve (at the step's end, before
+    // an event point inside it was located) belongs to another load.
     if constexpr (Friction::kFriction)
       for (std::size_t p = 0; p < pairs_.size(); ++p)
         if (PairState& s = history_.trial(p); s.closed == history_.committed(p).closed)
           s.tangential_base = history_.committed(p).tangential_base;
     if constexpr (Friction::kIterative) {
-      predicting_ = true;
-      if (warm_start_)
+      // Over an elastic structure this evaluation is the solve's first linearization, a prediction
+      // (evaluate_pairs_at); over a plastic one the material Newton's first link update is. A cold start
+      // has no last linearization to reverse against.
+      predicting_ = M::Material::kLinear;
+      if (warm_start_) {
         evaluate_pairs();
-      else
+      } else {
+        std::fill(linearized_branch_.begin(), linearized_branch_.end(), Vec2::Zero());
         evaluate_pairs_at([&](std::size_t p) { return accepted_relative_[p]; });
-      if constexpr (M::Material::kLinear) predicting_ = false;
+      }
+      predicting_ = false;
     } else if (status_changed_) {
       evaluate_pairs();
     }
@@ -381,8 +390,13 @@ class ContactStatic {
         links[p].stiffness =
             kSymmetrize || opt_.symmetric_tangent ? r.stiffness : Mat33(r.stiffness + r.coupling);
         links[p].force = (s.multiplier - stiffness_[p] * (pairs_[p].initial_gap - s.reference_gap)) * n;
+        // Over an elastic structure the link carries the branch's force, so that a solve lands on the
+        // branch's solution (pair_newton measures the imbalance against the pair's true force). Over a
+        // plastic one the link's force is the material Newton's residual, which must be the pair's true
+        // force: there the branch sets the tangent only.
         if constexpr (Friction::kFriction)
-          links[p].force += r.branch_force + (links[p].stiffness - normal) * r.relative;
+          links[p].force += (M::Material::kLinear ? r.branch_force : r.tangential) +
+                            (links[p].stiffness - normal) * r.relative;
       }
     }
   }
@@ -446,7 +460,7 @@ class ContactStatic {
       if (it + 1 >= opt_.max_friction_iterations) {
         std::ostringstream text;
         text << "the friction iterations did not converge in " << opt_.max_friction_iterations
-             << " solves at load factor " << t_ << " (relative pair force imbalances";
+             << " solves at load factor " << t_trial_ << " (relative pair force imbalances";
         for (const double x : friction_residuals_) text << ' ' << x;
         text << "; tolerance " << opt_.friction_tolerance << "): cut the load step";
         fail(text.str());
@@ -626,7 +640,8 @@ class ContactStatic {
   }
 
   /// At the displacement a pair was evaluated at: u_b - u_a, the tangential force E t on b, and the
-  /// tangent K = -df_b/dd of the whole pair force f_b = P n + E t, as its symmetric part k n n^T +
+  /// tangent K = -df_b/dd of the pair force f_b = P n + E t on the branch it is linearized on (the stick
+  /// branch for a pair predicted to stick, evaluate_pairs_at), as its symmetric part k n n^T +
   /// E K_tt E^T and the slip's unsymmetric coupling k E (dt/dP) n^T.
   struct PairResponse {
     Vec3 relative = Vec3::Zero(), tangential = Vec3::Zero();

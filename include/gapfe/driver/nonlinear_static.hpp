@@ -114,7 +114,9 @@ class NonlinearStatic {
   /// A callback that sets link_values() for the displacement u (all DOFs) before every evaluation of the
   /// internal forces: node links whose force is nonlinear in u (Coulomb friction, driver/contact_static.hpp)
   /// then converge in the same Newton loop as the material history. Empty: the links stay as set.
-  void set_link_update(std::function<void(const VecX&)> update) { link_update_ = std::move(update); }
+  /// `update(u, start)` before every evaluation; `start`: the first of a Newton pass (from the committed
+  /// or the extrapolated state), not an iterate.
+  void set_link_update(std::function<void(const VecX&, bool)> update) { link_update_ = std::move(update); }
 
   /// Time and step size handed to the law (rate-dependent laws read them).
   StepContext& context() { return context_; }
@@ -302,7 +304,7 @@ class NonlinearStatic {
   void evaluate(bool tangent, const VecX* prescribed_step) {
     ++report_.evaluations;
     report_.tangents += tangent;
-    if (link_update_) link_update_(u_);
+    if (link_update_) link_update_(u_, prescribed_step != nullptr);
     // A point's return map that fails (a SolveError: the caller cuts the step) fails every part's step.
     on_every_part(p_.subdomain.get(), [&] {
       assembler_.evaluate(p_, u_, points_, stress_, context_, tangent ? system_.values() : nullptr, internal_,
@@ -342,7 +344,7 @@ class NonlinearStatic {
   VecX external_, internal_, predictor_;
   Solution sol_;
   SolveTimings time_, total_;
-  std::function<void(const VecX&)> link_update_;
+  std::function<void(const VecX&, bool)> link_update_;
 };
 
 }  // namespace gapfe

@@ -326,10 +326,20 @@ inline void write_field_svg(const std::string& path, const VtuData& d, const Plo
 }
 
 /// A curve of column `y` against column `x` (history.csv's), one marker per row, with axes and labels.
-inline void write_curve_svg(const std::string& path, const std::vector<double>& x,
-                            const std::vector<double>& y, const std::string& x_label,
+/// Rows with a value that is not finite (cone_ratio is inf for a pair carrying friction in tension) are
+/// left out, and the title says how many.
+inline void write_curve_svg(const std::string& path, const std::vector<double>& x_all,
+                            const std::vector<double>& y_all, const std::string& x_label,
                             const std::string& y_label, const std::string& title) {
-  if (x.size() != y.size() || x.empty()) throw InputError("nothing to draw: no rows");
+  if (x_all.size() != y_all.size() || x_all.empty()) throw InputError("nothing to draw: no rows");
+  std::vector<double> x, y;
+  for (std::size_t k = 0; k < x_all.size(); ++k)
+    if (std::isfinite(x_all[k]) && std::isfinite(y_all[k])) x.push_back(x_all[k]), y.push_back(y_all[k]);
+  if (x.empty())
+    throw InputError("nothing to draw: no row has finite values of " + x_label + " and " + y_label);
+  const std::string left_out =
+      x.size() < x_all.size() ? " (" + std::to_string(x_all.size() - x.size()) + " rows not finite, left out)"
+                              : "";
   const double left = 100, right = 40, top = 40, bottom = 70;
   const auto range = [](const std::vector<double>& v) {  // with 0 when every value has one sign
     double lo = std::min(0.0, *std::min_element(v.begin(), v.end())),
@@ -341,7 +351,7 @@ inline void write_curve_svg(const std::string& path, const std::vector<double>& 
   const double xl = xr.first, xh = xr.second, yl = yr.first, yh = yr.second;
   // The canvas of a rectangle: a picture of (x, y) in place of (r, z), fitted by its own scales.
   std::vector<Vec2> frame{Vec2(0, 0), Vec2(1, 0.6)};
-  detail::SvgCanvas svg(frame, title + ": " + y_label + " against " + x_label,
+  detail::SvgCanvas svg(frame, title + ": " + y_label + " against " + x_label + left_out,
                         detail::SvgCanvas::Margins{left, right, top, bottom});
   const auto px = [&](double vx, double vy) {
     return svg.px(Vec2((vx - xl) / (xh - xl), 0.6 * (vy - yl) / (yh - yl)));
