@@ -206,7 +206,8 @@ class Assembler {
   }
 
   /// linear_system's right-hand side alone, for a stiffness assembled from the same mesh, materials and
-  /// temperatures (so the same element loads but for body forces): F_ext (free rows) + element loads -
+  /// temperatures (the element loads may differ: body forces, and the part of the thermal strain in
+  /// force, Problem::thermal_fraction): F_ext (free rows) + element loads -
   /// K_fp u_p. Only cells with a body or thermal load or a non-zero prescribed value compute their element
   /// system; for pressures and card forces alone this is a scan of the cells (issue 14: a contact run's
   /// increments and a linear deck's later steps re-assembled the whole stiffness for their loads).
@@ -364,7 +365,7 @@ class Assembler {
   const typename Law::Local& local(const Problem<M>& p, const CellTag& tag,
                                    const std::array<int, NPC>& cell) const {
     return cache_.get(p.materials, tag, cell_temperature(p.temperature, p.reference_temperature, cell),
-                      p.reference_temperature);
+                      p.reference_temperature, p.thermal_fraction);
   }
   void reset_cache() const { cache_.reset(); }
 

@@ -52,16 +52,19 @@ inline BodyForce body_force(const InertiaLoad& inertia, double density) {
           -density * inertia.axial_acceleration, -density * inertia.angular_acceleration};
 }
 
-/// A law resolved for a cell (Law::localize: frame rotations and temperature tables), kept while the
-/// next cell has the same material, frame and temperature.
+/// A law resolved for a cell (Law::localize: frame rotations and temperature tables), with the part
+/// `thermal_fraction` of its thermal strain in force (Problem::thermal_fraction), kept while the next
+/// cell has the same material, frame and temperature.
 template <class Law>
 class LocalLawCache {
  public:
   const typename Law::Local& get(const std::vector<Law>& materials, const CellTag& tag, double T,
-                                 double reference) const {
-    if (!valid_ || tag.material != tag_.material || !(tag.frame == tag_.frame) || T != T_) {
+                                 double reference, double thermal_fraction = 1.0) const {
+    if (!valid_ || tag.material != tag_.material || !(tag.frame == tag_.frame) || T != T_ ||
+        thermal_fraction != fraction_) {
       local_ = materials[tag.material].localize(tag.frame, T, reference);
-      tag_ = tag, T_ = T, valid_ = true;
+      local_.thermal_strain *= thermal_fraction;
+      tag_ = tag, T_ = T, fraction_ = thermal_fraction, valid_ = true;
     }
     return local_;
   }
@@ -70,8 +73,9 @@ class LocalLawCache {
  private:
   mutable typename Law::Local local_{};
   mutable CellTag tag_{};
-  mutable double T_   = 0;
-  mutable bool valid_ = false;
+  mutable double T_        = 0;
+  mutable double fraction_ = 1;
+  mutable bool valid_      = false;
 };
 
 }  // namespace gapfe

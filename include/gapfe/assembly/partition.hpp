@@ -134,6 +134,7 @@ Problem<M> problem_part(const Problem<M>& whole, Mesh<M::Element::kNodes> piece,
   p.materials             = whole.materials;
   p.inertia               = whole.inertia;
   p.reference_temperature = whole.reference_temperature;
+  p.thermal_fraction      = whole.thermal_fraction;
   if (whole.temperature.size() > 0) {
     p.temperature.resize(layout.local_nodes());
     for (int n = 0; n < layout.local_nodes(); ++n)

@@ -109,11 +109,14 @@ struct Deck {
   double plot_rmax = 0, plot_zmax = 0;
   std::vector<TemperaturePoint> temperature_points;
   std::optional<double> constant_temperature;
+  /// A scene's [temperature] history (an index into amplitudes); -1: the deck's, the whole field from the
+  /// end of the first load step on (StepTotals::thermal_fraction).
+  int temperature_amplitude = -1;
   std::vector<DeckMaterial> materials;
   std::vector<LoadBlock> blocks_read;  ///< the blocks as read (one per step, or the first only)
   /// Load histories of a scene file (EdgeCard::amplitude, LoadBlock::inertia_amplitude,
-  /// DeckScene::condition_amplitude); a deck has none. They act only in a block given once (INCI = 0 for
-  /// inertia, INCF = 0 for surface loads), which is how a scene gives its loads.
+  /// DeckScene::condition_amplitude, temperature_amplitude); a deck has none. They act only in a block given
+  /// once (INCI = 0 for inertia, INCF = 0 for surface loads), which is how a scene gives its loads.
   std::vector<Amplitude> amplitudes;
 
   int steps() const { return control.nlinc; }

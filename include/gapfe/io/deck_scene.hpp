@@ -8,7 +8,8 @@
 // material block to the cells whose corners all lie in [I1, I2] x [J1, J2] (later blocks win); a BC
 // load is a total ring force; each step adds the BC values, its inertia increments and its surface
 // load increments to the totals of the steps before (angular velocities add, so the centrifugal
-// load goes with the square of their sum); the temperature field acts from the first step on.
+// load goes with the square of their sum); the temperature field is a load of the first step (ramped
+// with it, then held).
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -35,6 +36,7 @@ struct StepTotals {
   std::vector<NodalCondition> conditions;
   InertiaLoad inertia;
   std::vector<EdgeLoad> edge_loads;
+  double thermal_fraction = 0;  ///< Problem::thermal_fraction: the part of the temperature change in force
 };
 
 /// SAAC3X's constant-strain-rate test (card 0's STRRATE and STRSTEP; seed section 4.2, THEORY.md 8.7),
@@ -124,7 +126,7 @@ inline void finish_scene(const Deck& d, DeckScene& s) {
   const IJGrid& g      = s.grid;
   const int nn         = g.node_count();
   const std::size_t ne = g.cells.size();
-  // ---- temperature: applied from the first step on
+  // ---- temperature: the field; the load program applies it (StepTotals::thermal_fraction)
   s.reference_temperature = d.control.tref;
   if (!d.temperature_points.empty())
     s.temperature = nodal_temperatures(s.mesh, d.temperature_points);
@@ -346,7 +348,8 @@ inline StepTotals interpolate(const StepTotals& a, const StepTotals& b, double f
     for (int c = 0; c < 3; ++c)
       t.conditions[k].value[c] =
           a.conditions[k].value[c] + f * (b.conditions[k].value[c] - a.conditions[k].value[c]);
-  const auto lerp = [f](double x, double y) { return x + f * (y - x); };
+  const auto lerp    = [f](double x, double y) { return x + f * (y - x); };
+  t.thermal_fraction = lerp(a.thermal_fraction, b.thermal_fraction);
   const double wa = a.inertia.angular_velocity, wb = b.inertia.angular_velocity;
   t.inertia.axial_acceleration   = lerp(a.inertia.axial_acceleration, b.inertia.axial_acceleration);
   t.inertia.angular_acceleration = lerp(a.inertia.angular_acceleration, b.inertia.angular_acceleration);
@@ -376,7 +379,10 @@ inline StepTotals step_totals(const Deck& d, const DeckScene& s, int step) {
     return amplitude < 0 ? scale : d.amplitudes[static_cast<std::size_t>(amplitude)].at(step);
   };
   StepTotals t;
-  t.conditions = s.conditions;
+  // The temperature field: a deck applies it in the first load step (ramped over it like that step's
+  // loads, so that a split of the step splits it too) and holds it; a scene may give it a history.
+  t.thermal_fraction = factor(d.temperature_amplitude, step < 1 ? 0.0 : 1.0);
+  t.conditions       = s.conditions;
   for (std::size_t k = 0; k < t.conditions.size(); ++k) {
     const double f = factor(s.condition_amplitude.empty() ? -1 : s.condition_amplitude[k], step);
     for (double& v : t.conditions[k].value) v *= f;

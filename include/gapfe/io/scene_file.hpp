@@ -509,12 +509,14 @@ class SceneBuilder {
     d.blocks_read.push_back(std::move(block));
   }
 
-  /// [temperature]: the reference, and one value (card 9's constant form) or (r, z, T) points.
+  /// [temperature]: the reference, and one value (card 9's constant form) or (r, z, T) points; the field
+  /// acts from the end of the first step on (a deck's reading) unless an amplitude gives its history.
   void temperature() {
     Deck& d      = model_.deck;
-    const auto t = top_.table("temperature", {"reference", "value", "points"});
+    const auto t = top_.table("temperature", {"reference", "value", "points", "amplitude"});
     if (!t) return;
-    d.control.tref = t->number("reference", 0.0);
+    d.control.tref          = t->number("reference", 0.0);
+    d.temperature_amplitude = amplitude(*t);
     if (t->has("value") && t->has("points"))
       throw InputError("scene: " + t->where() + ": give value (one temperature) or points, not both");
     if (t->has("value")) {

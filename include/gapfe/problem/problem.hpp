@@ -22,6 +22,11 @@ struct Problem {
   InertiaLoad inertia;                          ///< seed Data 12
   VecX temperature;                             ///< nodal temperatures [deg]; empty: T_ref everywhere
   double reference_temperature = 0.0;           ///< TREF [deg]
+  /// The part of the thermal strain eps_th(T, T_ref) in force [-]: the temperature change is a load, and
+  /// a load program ramps it like the others (0 before the first load step, 1 from its end on in a deck),
+  /// so that a step split at a gap's closure splits the thermal load too. The material properties stay
+  /// those of the full temperature field (the seed's thermal load vector, scaled with the step).
+  double thermal_fraction = 1.0;
   /// Set when this is one part of a problem partitioned over several processes (assembly/partition.hpp
   /// makes it): the mesh, conditions, loads and temperatures above are then the part's, in its local
   /// numbering, and the drivers sum what the parts share through it. Empty: the problem is whole.

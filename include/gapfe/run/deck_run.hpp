@@ -43,7 +43,8 @@ template <class M>
 void set_loads(Problem<M>& p, StepTotals t, const DeckScene& s) {
   if constexpr (M::kDofsPerNode == 3)
     if (!s.needs.needs_theta()) fix_theta(t.conditions, s.mesh.node_count());
-  p.inertia = t.inertia;
+  p.inertia          = t.inertia;
+  p.thermal_fraction = t.thermal_fraction;
   if (p.subdomain) {  // a part: the whole problem's totals, each part keeps its own (collective)
     set_part_loads(p, s.mesh.nodes, t.conditions, t.edge_loads);
     return;
