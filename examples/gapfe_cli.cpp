@@ -503,9 +503,13 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
            "hardening?); accepted\n";
   if (!s.needs.gaps.empty())
     log << "contact: " << times.increments << " increments ("
-        << (d.options.events == "step-end" ? "statuses settled at step ends: " +
-                                                 std::to_string(times.contact.status_rounds) + " re-solves"
-                                           : std::to_string(times.contact.splits) + " split points")
+        << (d.options.events == "step-end"
+                ? "statuses settled at step ends: " + std::to_string(times.contact.status_rounds) +
+                      " re-solves"
+                : std::to_string(times.contact.splits) + " split points" +
+                      (times.contact.status_rounds > 0 ? ", " + std::to_string(times.contact.status_rounds) +
+                                                             " re-solves after pulling pairs opened"
+                                                       : std::string()))
         << (times.contact.cuts > 0 ? ", " + std::to_string(times.contact.cuts) + " intervals halved" : "")
         << "), " << times.contact.solves << " linear solves, " << times.contact.factorizations
         << " factorizations, " << times.contact.multiplier_updates << " multiplier updates; penalty "

@@ -58,7 +58,8 @@ struct ContactCounters {
   int friction_iterations = 0;  ///< Newton iterations of the pair forces (Coulomb), over all solves
   int friction_stalls     = 0;  ///< solves whose pair Newton stopped stalled (below 1e-4, not 1e-10)
   int cuts                = 0;  ///< solves that did not converge and were retried over half the interval
-  int status_rounds       = 0;  ///< events = step-end: re-solves at a step's end after statuses flipped
+  int status_rounds       = 0;  ///< re-solves after statuses changed at the same load factor (events =
+                                ///< step-end's settling; saac's pulling pairs opened)
 };
 
 }  // namespace gapfe

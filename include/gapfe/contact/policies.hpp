@@ -5,8 +5,10 @@
 //
 //   NoContact            gap elements keep their soft stiffness; no links, so a scene pays nothing.
 //   Saac                 the seed (section 2.2): solve the step, split it once at the smallest closure
-//                        factor, declare every overlapping pair closed, apply the rest; reopen pairs in
-//                        tension at the end of the step. Penalty 100 x the adjacent stiffness.
+//                        factor (a step that only unloads: where the first closed pair goes into tension),
+//                        declare every overlapping pair closed, apply the rest; a closed pair that pulls
+//                        where an increment is accepted opens and that point is solved again. Penalty
+//                        100 x the adjacent stiffness.
 //   ActiveSet            re-solve until no open pair overlaps and no closed pair pulls, splitting the
 //                        step at every status change, so closure loads are exact to round-off; the
 //                        closed pairs are penalty springs (constraint error ~ 1 / penalty factor).
@@ -28,6 +30,7 @@
 #include <concepts>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <vector>
 
 #include "gapfe/core/error.hpp"
@@ -57,7 +60,7 @@ struct StepperArchetype {
   void flip(int pair);  ///< change a pair's status in the trial only (settling at the end; restart undoes it)
   void restart();       ///< back to the accepted statuses and state
   void count_split();
-  void count_round();  ///< a re-solve after flips (settling at the end)
+  void count_round();  ///< a re-solve after status changes at the same load factor (step-end, saac's pulls)
   void count_cut();    ///< a solve that did not converge, retried over half the interval
   [[noreturn]] void fail(const std::string& why) const;
 };
@@ -86,6 +89,21 @@ double closure_fraction(const S& s, int p) {
   return g0 / (g0 - g1);
 }
 
+/// The same for the change the last solve asks of pair p: closure_fraction of an open pair, and for a
+/// closed one the fraction at which its force reaches zero, f = P_start / (P_start - P_end).
+template <class S>
+double change_fraction(const S& s, int p) {
+  if (!s.closed(p)) return closure_fraction(s, p);
+  const double p0 = std::max(s.force(p), 0.0), p1 = s.trial_force(p);
+  return p0 / (p0 - p1);
+}
+
+/// Whether the last solve contradicts pair p's status: an open pair that overlaps, a closed one that pulls.
+template <class S>
+bool contradicted(const S& s, int p) {
+  return s.closed(p) ? s.trial_force(p) < -s.force_tolerance(p) : s.trial_gap(p) < -s.gap_tolerance();
+}
+
 }  // namespace detail
 
 struct NoContact {
@@ -109,39 +127,59 @@ struct Saac {
   static void step(S& s, double t_end) {
     const double t0 = s.load_factor();
     s.solve_at(t_end);
-    // Closure factor of every overlapping open pair: f = g_start / (g_start - g_end) (THEORY.md 5.4).
-    std::vector<int> overlapping;
-    double f = 1;
+    // The seed (THEORY.md 5.4) splits the step once, at the first closure: an open pair that overlaps
+    // closes at f = g_start / (g_start - g_end). A step that only unloads is split likewise where its
+    // first closed pair goes into tension, f = P_start / (P_start - P_end) ("unloading could separate the
+    // gap"). Whatever load moves them (pressure, temperature, inertia, a prescribed displacement), the
+    // step's loads all move linearly with the load factor, so f is that of the whole load.
+    std::vector<int> closing, opening;
+    double f_close = 1, f_open = 1;
     for (int p = 0; p < s.pair_count(); ++p)
-      if (!s.closed(p) && s.trial_gap(p) < -s.gap_tolerance()) {
-        overlapping.push_back(p);
-        f = std::min(f, detail::closure_fraction(s, p));
+      if (detail::contradicted(s, p)) {
+        (s.closed(p) ? opening : closing).push_back(p);
+        (s.closed(p) ? f_open : f_close) =
+            std::min(s.closed(p) ? f_open : f_close, detail::change_fraction(s, p));
       }
-    if (!overlapping.empty()) {
+    if (!closing.empty() || !opening.empty()) {
       s.count_split();
+      const double f       = closing.empty() ? f_open : f_close;
       const double t_split = t0 + f * (t_end - t0);
       if (f > 0) {  // the step again at the reduced load (same stiffness), accepted as an increment
         s.solve_at(t_split);
+        open_pulling(s, t_split, opening);
         s.accept(t_split);
       }
-      // The one-split assumption: every pair that overlapped at the full step closes now, at its gap
-      // of the reduced step (which the penalty then freezes).
-      for (const int p : overlapping) s.close(p, f > 0 ? s.trial_gap(p) : s.gap(p));
-      s.solve_at(t_end);  // the rest of the step, no further test
+      // The one-split assumption: every pair that overlapped at the full step closes now, at its gap of
+      // the reduced step (which the penalty then freezes).
+      for (const int p : closing) s.close(p, f > 0 ? s.trial_gap(p) : s.gap(p));
+      s.solve_at(t_end);  // the rest of the step, no further test of closure
     }
+    open_pulling(s, t_end, {});
     s.accept(t_end);
-    for (int p = 0; p < s.pair_count(); ++p)  // unloading: tension reopens for the next step
-      if (s.closed(p) && s.force(p) < -s.force_tolerance(p)) s.open(p);
+  }
+
+ private:
+  /// Before an increment at load factor t is accepted: the pairs of `at_zero` whose force has fallen to
+  /// zero there (the change the step was split at) open, and then any closed pair still pulling opens and
+  /// t is solved again, until none pulls: no accepted increment has a closed pair in tension.
+  template <class S>
+  static void open_pulling(S& s, double t, const std::vector<int>& at_zero) {
+    for (const int p : at_zero)
+      if (s.closed(p) && s.trial_force(p) <= s.force_tolerance(p)) s.open(p);
+    for (int round = 0;; ++round) {
+      std::vector<int> pulling;
+      for (int p = 0; p < s.pair_count(); ++p)
+        if (s.closed(p) && s.trial_force(p) < -s.force_tolerance(p)) pulling.push_back(p);
+      if (pulling.empty()) return;
+      if (round > s.pair_count()) s.fail("closed pairs kept pulling after every one was opened");
+      for (const int p : pulling) s.open(p);
+      s.count_round();
+      s.solve_at(t);
+    }
   }
 };
 
 namespace detail {
-
-/// The pairs whose status the last solve contradicts: open ones that overlap, closed ones that pull.
-template <class S>
-bool contradicted(const S& s, int p) {
-  return s.closed(p) ? s.trial_force(p) < -s.force_tolerance(p) : s.trial_gap(p) < -s.gap_tolerance();
-}
 
 /// events = step-end: solve to the target, flip every contradicted pair (in the trial only) and re-solve
 /// at the same target until none is left, then accept. Rounds that do not settle within `max_rounds`,
@@ -215,17 +253,12 @@ void event_step(S& s, double t_end, int max_events) {
       }
     }
     double first = 2;
-    std::vector<std::pair<double, int>> change;  // (fraction of the interval, pair)
-    for (int p = 0; p < s.pair_count(); ++p) {
-      double f = 2;
-      if (!s.closed(p) && s.trial_gap(p) < -s.gap_tolerance()) {
-        f = closure_fraction(s, p);
-      } else if (s.closed(p) && s.trial_force(p) < -s.force_tolerance(p)) {
-        const double p0 = std::max(s.force(p), 0.0), p1 = s.trial_force(p);
-        f = p0 / (p0 - p1);
+    std::vector<std::tuple<double, int, bool>> change;  // (fraction of the interval, pair, opening)
+    for (int p = 0; p < s.pair_count(); ++p)
+      if (contradicted(s, p)) {
+        const double f = change_fraction(s, p);
+        change.emplace_back(f, p, s.closed(p)), first = std::min(first, f);
       }
-      if (f <= 1) change.emplace_back(f, p), first = std::min(first, f);
-    }
     if (change.empty()) {
       s.accept(target);
       if (target >= t_end) return;
@@ -237,7 +270,7 @@ void event_step(S& s, double t_end, int max_events) {
     double t_event = t0 + first * (target - t0);
     if (first > 0) {
       // The first pair to change, its gap (closing) or force (opening) at the start and at the target.
-      const int q        = std::min_element(change.begin(), change.end())->second;
+      const int q        = std::get<1>(*std::min_element(change.begin(), change.end()));
       const auto value   = [&] { return s.closed(q) ? s.trial_force(q) : s.trial_gap(q); };
       const double start = s.closed(q) ? std::max(s.force(q), 0.0) : std::max(s.gap(q), 0.0);
       double h_hi        = value();
@@ -262,16 +295,25 @@ void event_step(S& s, double t_end, int max_events) {
           h = value();
         }
       }
-      s.accept(t_event);
     }
-    // Pairs whose change falls within 1e-9 of the first go together (a uniform gap closes at once).
-    for (const auto& [f, p] : change)
-      if (f <= first + 1e-9) {
-        if (s.closed(p))
-          s.open(p);
-        else
-          s.close(p, 0.0);
-      }
+    // Pairs whose change falls within 1e-9 of the first go together (a uniform gap closes at once). At the
+    // located point a pair that opens carries no force: it is open there, and the accepted increment (its
+    // row in gaps.csv) says so; a nonlinear search that stopped short leaves one with force, which opens
+    // after the accept. One that closes has no gap there: it closes from that point on.
+    const auto changes = [&](auto&& act) {
+      for (const auto& [f, p, opens] : change)
+        if (f <= first + 1e-9) act(p, opens);
+    };
+    changes([&](int p, bool opens) {
+      if (opens && s.closed(p) && s.trial_force(p) <= s.force_tolerance(p)) s.open(p);
+    });
+    if (first > 0) s.accept(t_event);
+    changes([&](int p, bool opens) {
+      if (opens && s.closed(p))
+        s.open(p);
+      else if (!opens && !s.closed(p))
+        s.close(p, 0.0);
+    });
     target = t_end;
   }
   s.fail("the contact status did not settle after " + std::to_string(max_events) +

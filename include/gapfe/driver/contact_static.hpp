@@ -346,6 +346,16 @@ class ContactStatic {
         rebase(s);
         s.slide_start = s.slide;
       }
+    // A closed pair that pulls by less than the opening tolerance (the policies split or re-solve at a
+    // larger pull) is open: P < 0 means its gap is open by as much. It is recorded open, so that no
+    // accepted state, and no row of gaps.csv, has a closed pair in tension.
+    for (std::size_t p = 0; p < pairs_.size(); ++p)
+      if (PairState& s = history_.trial(p);
+          s.closed && s.normal_force < 0 && s.normal_force >= -force_tolerance(static_cast<int>(p))) {
+        s.closed = false, s.multiplier = 0, s.reference_gap = 0, s.normal_force = 0;
+        clear_friction(s);
+        status_changed_ = true;
+      }
     history_.commit();
     if constexpr (Friction::kIterative)
       for (std::size_t p = 0; p < pairs_.size(); ++p) accepted_relative_[p] = response_[p].relative;
