@@ -12,6 +12,7 @@
 // couplings, add two-node springs whose values may change between solves: what contact policies use.
 //
 // Conventions: full ring (core/types.hpp). Reactions are total ring forces at prescribed DOFs.
+#include <algorithm>
 #include <chrono>
 #include <concepts>
 #include <stdexcept>
@@ -180,9 +181,10 @@ class LinearStatic {
   /// 10% of the two-tube contact run).
   void reactions() const {
     const auto& dofs = assembler_.dofs();
-    if (dofs.free_count == 0) {
+    if (dofs.free_count == 0) {  // (the `load` too: a part's calls are collective, every part makes them)
+      const VecX none = VecX::Zero(external_.size());
       nodal_results(dofs, u_, assembler_.linear_internal(p_, u_), external_, p_.mesh.node_count(), sol_,
-                    p_.subdomain.get());
+                    p_.subdomain.get(), &none, load_peak_);
       return;
     }
     VecX internal = assembler_.linear_internal(p_, u_, /*prescribed_only=*/true);
@@ -196,17 +198,26 @@ class LinearStatic {
     else
       out_of_balance = k * u_free;
     out_of_balance -= system_.rhs();
+    // The whole load of the free rows is the solved system's right-hand side without the node links
+    // (nodal_results' `load`): a closed gap pair's link force is its penalty times its gap, and it would
+    // hide the round-off a large penalty brings, which the residual is there to show.
+    const VecX& loads = links().empty() ? system_.rhs() : system_.saved_rhs();
+    VecX load         = VecX::Zero(external_.size());
     for (std::size_t d = 0; d < dofs.equation.size(); ++d)
-      if (const int eq = dofs.equation[d]; eq >= 0)
+      if (const int eq = dofs.equation[d]; eq >= 0) {
         internal(static_cast<Eigen::Index>(d)) = out_of_balance(eq) + external_(static_cast<Eigen::Index>(d));
-    nodal_results(dofs, u_, internal, external_, p_.mesh.node_count(), sol_, p_.subdomain.get());
+        load(static_cast<Eigen::Index>(d))     = loads(eq);
+      }
+    load_peak_ = std::max(load_peak_, nodal_results(dofs, u_, internal, external_, p_.mesh.node_count(), sol_,
+                                                    p_.subdomain.get(), &load, load_peak_));
   }
 
   Problem<M> p_;
   Assembler<M> assembler_;
   System<typename M::LinearSolver> system_;
-  VecX external_, u_;     ///< all DOFs
-  mutable Solution sol_;  // reactions and residual filled lazily with defer_reactions()
+  VecX external_, u_;             ///< all DOFs
+  mutable Solution sol_;          // reactions and residual filled lazily with defer_reactions()
+  mutable double load_peak_ = 0;  ///< the largest |load|^2 of the solves so far (nodal_results' scale)
   mutable SolveTimings time_;
   SolveTimings total_;
   mutable bool reactions_stale_ = false;

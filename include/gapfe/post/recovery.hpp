@@ -7,6 +7,7 @@
 //                  (and their eqps); centroids are the volume-weighted mean of the cell's points.
 // The LegacyQuad has no centroid point either: its centroid is the r-bar-A weighted mean of its four
 // sub-triangles (THEORY.md 2 item 4).
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
 #include <vector>
@@ -54,25 +55,33 @@ void nodal_displacements(const VecX& u, int nodes, Solution& s) {
 }
 
 /// Displacements, reactions = internal - external at prescribed DOFs, and the relative out-of-balance
-/// |internal - external| / |internal| at the free DOFs (all vectors over all DOFs). For a part of a
-/// partitioned problem (`part`) `internal` and `external` are the part's partial sums: they are summed over
-/// the parts first (the reactions are then totals at every local node) and the norms count each node once,
-/// at its owner, over every part (collective).
+/// |internal - external| / |internal| at the free DOFs (all vectors over all DOFs). `load`, where given,
+/// is the whole load the free DOFs were solved for (edge and nodal forces, and the loads of thermal strain,
+/// inertia and prescribed displacements), and the out-of-balance is relative to the largest of it, the
+/// internal force and `scale` (a sum of squares: the largest load the run has carried so far): a body in
+/// free thermal expansion, or flying on soft gap elements, has no internal force to speak of, a step that
+/// unloads to nothing no load, and their round-off would read as a residual of order 1. Returns |load|^2.
+/// For a part of a partitioned problem (`part`) the vectors are the part's partial sums: they are summed
+/// over the parts first (the reactions are then totals at every local node) and the norms count each node
+/// once, at its owner, over every part (collective).
 template <int DofsPerNode>
-void nodal_results(const DofMap<DofsPerNode>& dofs, const VecX& u, const VecX& internal, const VecX& external,
-                   int nodes, Solution& s, const Subdomain* part = nullptr) {
+double nodal_results(const DofMap<DofsPerNode>& dofs, const VecX& u, const VecX& internal,
+                     const VecX& external, int nodes, Solution& s, const Subdomain* part = nullptr,
+                     const VecX* load = nullptr, double scale = 0) {
   nodal_displacements<DofsPerNode>(u, nodes, s);
   s.reaction.setZero(nodes, 3);
-  VecX total_internal, total_external;
+  VecX total_internal, total_external, total_load;
   if (part) {
     total_internal = internal, total_external = external;
     part->sum_shared(total_internal.data(), DofsPerNode);
     part->sum_shared(total_external.data(), DofsPerNode);
+    if (load) total_load = *load, part->sum_shared(total_load.data(), DofsPerNode);
   }
   const VecX& in    = part ? total_internal : internal;
   const VecX& ex    = part ? total_external : external;
+  const VecX* whole = load ? (part ? &total_load : load) : nullptr;
   const int counted = part ? part->owned_nodes() : nodes;
-  double norms[2]   = {0, 0};  // out of balance, applied: sums of squares
+  double norms[3]   = {0, 0, 0};  // out of balance, internal, load: sums of squares
   for (int n = 0; n < nodes; ++n)
     for (int c = 0; c < DofsPerNode; ++c) {
       const int d             = dofs.dof(n, c);
@@ -80,11 +89,13 @@ void nodal_results(const DofMap<DofsPerNode>& dofs, const VecX& u, const VecX& i
       if (dofs.equation[d] < 0)
         s.reaction(n, c) = unbalanced;
       else if (n < counted)
-        norms[0] += unbalanced * unbalanced;
+        norms[0] += unbalanced * unbalanced, norms[2] += whole ? (*whole)(d) * (*whole)(d) : 0.0;
       if (n < counted) norms[1] += in(d)*in(d);
     }
-  if (part) part->sum(norms, 2);
-  s.residual = norms[1] > 0 ? std::sqrt(norms[0] / norms[1]) : 0.0;
+  if (part) part->sum(norms, 3);
+  const double size = std::max({norms[1], norms[2], scale});
+  s.residual        = size > 0 ? std::sqrt(norms[0] / size) : 0.0;
+  return norms[2];
 }
 
 /// Strain and stress at every stiffness point of every cell, or (`centroids`) one value per cell; cells

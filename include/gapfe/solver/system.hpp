@@ -119,6 +119,8 @@ class System {
     saved_rhs_ = rhs_;
   }
   bool saved() const { return saved_values_.size() == static_cast<std::size_t>(k_.nonZeros()); }
+  /// The right-hand side save() kept (a contact driver's: the loads without its node links).
+  const VecX& saved_rhs() const { return saved_rhs_; }
   void restore() {
     std::copy(saved_values_.begin(), saved_values_.end(), k_.valuePtr());
     rhs_ = saved_rhs_;
