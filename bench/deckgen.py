@@ -305,6 +305,37 @@ def press_fit_deck(ns=6, nh=8, nz=10, a=12.5, b=25.0, w=0.001, c=50.0, length=50
     return "\n".join(lines) + "\n"
 
 
+def shrink_fit_deck(ns=10, nh=20, nz=1, b=25.0, w=0.01, c=50.0, h=2.5, cooling=100.0, omega=0.0, steps=1,
+                    contact="saac", E=200000.0, nu=0.3, alpha=1.2e-5, rho=7.85e-9):
+    """A hub b + w..c cooled by `cooling` onto a solid steel shaft 0..b across a column of gap elements
+    (material 2, IJDIR = 1), then spun up to `omega` [rad/s] (units mm, N, MPa, t; plane strain: u_z = 0 on
+    both faces). The temperature field is given at every node (card 9, one card a node: the shaft at 0, the
+    hub at -cooling, T_ref = 0), which a deck applies in its first load step; the spin rises by omega / steps
+    in every step (INCI = 0), so omega^2 grows quadratically with the step. bench/closed_forms.py has its
+    closed form (Lame in plane strain with the temperature change and the spin): with the defaults the cold
+    contact pressure is 95.6 and the fit lifts off at 3,893 rad/s."""
+    ni, nj = ns + nh + 2, nz + 1
+    rs = [b * i / ns for i in range(ns + 1)] + [b + w + (c - b - w) * k / nh for k in range(nh + 1)]
+    temperatures = [f(rs[I - 1], 10) + f(h * (J - 1) / nz, 10) + f(0.0 if I <= ns + 1 else -cooling, 10)
+                    for J in range(1, nj + 1) for I in range(1, ni + 1)]
+    lines = [f"$ contact = {contact}",
+             f"SHRINK FIT: HUB {b + w:g}-{c:g} COOLED BY {cooling:g} ONTO A SOLID SHAFT 0-{b:g}, SPUN TO {omega:g} RAD/S",
+             control(numtc=len(temperatures), nummat=2, inert=1 if omega else 0, nlinc=steps),
+             mesh_control(ni, nj, 8, 2, 3),
+             segment([(1, 1, 0.0, 0.0), (ns + 1, 1, b, 0.0)], 1), segment([(ns + 2, 1, b + w, 0.0), (ni, 1, c, 0.0)], 1),
+             segment([(1, nj, 0.0, h), (ns + 1, nj, b, h)], 1), segment([(ns + 2, nj, b + w, h), (ni, nj, c, h)], 1),
+             segment([(1, 1, 0.0, 0.0), (1, nj, 0.0, h)], 1), segment([(ns + 1, 1, b, 0.0), (ns + 1, nj, b, h)], 1),
+             segment([(ns + 2, 1, b + w, 0.0), (ns + 2, nj, b + w, h)], 1), segment([(ni, 1, c, 0.0), (ni, nj, c, h)], 1),
+             bc(1, ni, 1, 1, 2), bc(1, ni, nj, nj, 2),
+             block(1, 1, ns + 1, 1, nj), block(2, ns + 1, ns + 2, 1, nj, ijdir=1), block(1, ns + 2, ni, 1, nj)]
+    lines += temperatures
+    lines += material(1, [isotropic(E, nu, alpha)], density=rho)
+    lines += material(2, [isotropic(E * 1e-9, 0.0)])
+    if omega:
+        lines += [f(0.0, 10) + f(omega / steps, 10) + f(0.0, 10)]
+    return "\n".join(lines) + "\n"
+
+
 def press_fit_normal_force(a=12.5, b=25.0, w=0.001, c=50.0, length=50.0, q=75.0, E=200000.0):
     """press_fit_deck's closed form (nu = 0): the normal force N = p 2 pi b L the fit carries under the outer
     pressure q, p = (q - q_c) c^2 (b^2 - a^2) / (b^2 (c^2 - a^2)) with q_c = w E (c^2 - b^2) / (2 b c^2) the
@@ -349,6 +380,7 @@ def main():
         (out / "projectile.deck").write_text(projectile_deck())
         (out / "press_fit.deck").write_text(press_fit_deck())
         (out / "push_while_pressing.deck").write_text(press_fit_deck(mu=0.2, ramp=True))
+        (out / "shrink_fit.deck").write_text(shrink_fit_deck(omega=5000.0, steps=25))
         (out / "plastic_tube.deck").write_text(plastic_tube_deck())
         (out / "rate_tube.deck").write_text(plastic_tube_deck(rate=(1e-3, 0.05, 1e-3)))
         (out / "saac3x_tube.deck").write_text(saac3x_deck())
