@@ -66,6 +66,10 @@ inline constexpr OptionSpec kOptions[] = {
     {"--png", nullptr, "run",
      "also rasterize the run's pictures to PNG (rsvg-convert, Debian's librsvg2-bin)"},
     {"--threads", "N", "run", "OpenBLAS threads for the factorization's dense kernels (default 1)"},
+    {"--overwrite", nullptr, "run",
+     "replace results in --out that no gapfe run wrote there (without it such a folder is refused; a folder "
+     "a "
+     "run wrote is always replaced whole)"},
     {"--field", "FIELD", "plot",
      "the field to draw (repeat for more; default mises): u, u_r, u_z, u_t, s_rr, s_zz, s_tt, s_rz, s_rt, "
      "s_zt, mises, eqps, gap_state, contact_force, material"},
@@ -83,7 +87,7 @@ inline constexpr OptionSpec kOptions[] = {
 struct Args {
   std::string command, deck, out, variant;  ///< deck: the operand (DECK, or DIR for plot)
   std::vector<std::pair<std::string, std::string>> options;
-  bool quiet = false, help = false, version = false, png = false, no_png = false;
+  bool quiet = false, help = false, version = false, png = false, no_png = false, overwrite = false;
   int threads = 1;
   std::optional<std::vector<std::string>> plots;  ///< --plot / --field; unset: the default
   int step = 0;                                   ///< plot --step (0: the last)
@@ -181,7 +185,7 @@ inline Args parse(const std::vector<std::string>& a) {
         r.petsc_options.push_back(a[++k]);
       continue;
     }
-    if (s.empty() || s[0] != '-') {
+    if (s.empty() || s[0] != '-' || s == "-") {  // "-": standard input
       if (!r.deck.empty())
         throw UsageError("more than one " + std::string(r.command == "plot" ? "directory" : "deck") +
                          " given ('" + r.deck + "', '" + s + "')");
@@ -234,11 +238,12 @@ inline Args parse(const std::vector<std::string>& a) {
     } else if (s == "--units") {
       r.units = value;
     } else {
-      (s == "--quiet"     ? r.quiet
-       : s == "--help"    ? r.help
-       : s == "--version" ? r.version
-       : s == "--png"     ? r.png
-                          : r.no_png) = true;
+      (s == "--quiet"       ? r.quiet
+       : s == "--help"      ? r.help
+       : s == "--version"   ? r.version
+       : s == "--png"       ? r.png
+       : s == "--overwrite" ? r.overwrite
+                            : r.no_png) = true;
     }
   }
   if (r.help || r.version) return r;

@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <limits>
 #include <optional>
@@ -66,9 +65,9 @@ void run_plastic(const RunRequest& r, RunTimes& times) {
   FinishFiles finish{r, times, files};
   // plasticity.csv: the Newton record of every accepted increment (residuals: |R| / |F_int| after each
   // linear solve, separated by spaces; drift: max |sqrt f - 1| over the plastic points).
-  std::ofstream record;  // left closed where this process writes no files: its rows go nowhere
-  if (r.writes) record = detail::open_output(r.dir + "/plasticity.csv");
-  record << "step,inc,t,iterations,plastic_points,drift,residuals\n";
+  OutputFile record;  // left closed where this process writes no files: its rows go nowhere
+  if (r.writes) record = OutputFile(r.dir + "/plasticity.csv");
+  record.append("step,inc,t,iterations,plastic_points,drift,residuals\n");
   int last_step = 0;
   run_deck_plastic<M>(
       r.deck, r.scene,
@@ -96,11 +95,13 @@ void run_plastic(const RunRequest& r, RunTimes& times) {
           if (k > 0) row += ' ';
           detail::append_number(row, rep.residuals[k]);
         }
-        record << row << '\n' << std::flush;
+        row += '\n';
+        record.append(row);
         last_step = step;
         write_increment(r, times, files, step, inc, fe, {}, {rep.iterations, rep.plastic_points, 0, 0});
       },
       r.part);
+  record.close();
   finish.now();
 }
 
@@ -166,6 +167,7 @@ void run_contact(const RunRequest& r, RunTimes& times) {
             gaps ? gaps->write(step, inc, r.scene.gaps.pairs, c.states()) : std::vector<VtuField>{}, summary);
       },
       r.part);
+  if (gaps) gaps->close();
   finish.now();
 }
 

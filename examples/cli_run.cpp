@@ -1,5 +1,5 @@
 // `gapfe run`'s choice of a compiled variant (cli_variants.hpp) for a deck, after the checks that give a
-// combination the table does not hold a clear message; and the progress line.
+// combination the table does not hold a clear message.
 #include "cli_run.hpp"
 
 #include <cmath>
@@ -10,13 +10,6 @@
 #include "cli_variants.hpp"
 
 namespace gapfe::cli {
-
-void progress_line(const RunRequest& r, int step) {
-  if (r.progress) r.err << "\rstep " << step << "/" << r.deck.steps() << std::flush;
-}
-void progress_done(const RunRequest& r) {
-  if (r.progress) r.err << "\r" << std::string(32, ' ') << "\r" << std::flush;
-}
 
 void run_deck_request(const RunRequest& r, RunTimes& times) {
   const bool plastic         = !r.scene.needs.plasticity.empty();

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <iosfwd>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -129,8 +129,12 @@ using CliLuSolver = RuntimeSolver<EigenLu>;
 #endif
 
 /// The log's progress line.
-void progress_line(const RunRequest& r, int step);
-void progress_done(const RunRequest& r);
+inline void progress_line(const RunRequest& r, int step) {
+  if (r.progress) r.err << "\rstep " << step << "/" << r.deck.steps() << std::flush;
+}
+inline void progress_done(const RunRequest& r) {
+  if (r.progress) r.err << "\r" << std::string(32, ' ') << "\r" << std::flush;
+}
 
 /// The result files of a run: on the process that writes them (every process of a whole run; rank 0 of a
 /// partitioned one), empty elsewhere.

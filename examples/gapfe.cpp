@@ -75,7 +75,10 @@ void use_huge_pages(char** argv) {
 /// request with PETSc's options from the command line, ended once the run is over.
 class Mpi {
  public:
-  explicit Mpi(const char* program) : words_{program} {}
+  // -skip_petscrc: PETSc's options come from the command line and PETSC_OPTIONS only, never from a
+  // petscrc in the working or home folder (running in someone else's case folder would adopt its
+  // options: a solver, or -log_view :FILE writing over FILE); -options_file FILE still names one.
+  explicit Mpi(const char* program) : words_{program, "-skip_petscrc"} {}
 
   std::pair<int, int> start(const std::vector<std::string>& options) {
     if (!started_) {

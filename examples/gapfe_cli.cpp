@@ -17,8 +17,11 @@
 #include <unistd.h>
 #include <vector>
 
+#include "gapfe/core/text.hpp"
 #include "gapfe/io/deck_output.hpp"
 #include "gapfe/io/field_plot.hpp"
+#include "gapfe/io/input_file.hpp"
+#include "gapfe/io/run_folder.hpp"
 #include "gapfe/io/vtu_reader.hpp"
 #ifdef GAPFE_HAS_SCENE
 #include "gapfe/io/scene_file.hpp"
@@ -108,14 +111,6 @@ void log_per_step(std::ostream& log, const std::string& what, const std::vector<
       << " (step " << (worst - per_step.begin()) + 1 << ")\n";
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::system_error(errno, std::generic_category(), "cannot open deck '" + path + "'");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
@@ -144,7 +139,7 @@ void describe(std::ostream& out, const Deck& d, const DeckScene& s) {
   const char* format = d.options.format == DeckFormat::elastic ? "elastic (SAAS/SAGA, no yield cards)"
                        : d.options.format == DeckFormat::saac3 ? "saac3 (rate card, yield cards)"
                                                                : "saac (yield cards)";
-  out << "deck: " << d.title << "\n"
+  out << "deck: " << detail::visible_text(d.title) << "\n"
       << "  format " << format << "; element " << d.options.element << "; " << d.materials.size()
       << " material(s)\n"
       << "  mesh " << d.mesh.max_i << " x " << d.mesh.max_j << " index grid: " << s.grid.node_count()
@@ -164,7 +159,7 @@ bool is_scene_file(const std::string& path) {
 void describe_scene(std::ostream& out, const SceneModel& m) {
   const Deck& d      = m.deck;
   const DeckScene& s = m.scene;
-  out << "scene: " << d.title << "\n"
+  out << "scene: " << detail::visible_text(d.title) << "\n"
       << "  element " << d.options.element << "; " << d.materials.size() << " material(s)"
       << (d.rate ? "; rate card (saac3)" : "") << "\n"
       << "  mesh "
@@ -220,8 +215,9 @@ PlotUnits plot_units(const std::string& text) {
 
 /// The columns of a CSV file by name (history.csv), every row read as numbers.
 std::map<std::string, std::vector<double>> read_columns(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError("cannot open '" + path + "' (a run of more than one load step writes it)");
+  if (!std::filesystem::exists(path))
+    throw InputError("there is no '" + path + "' (a run of more than one load step writes it)");
+  std::istringstream in(read_input(path, "history"));
   std::string line;
   std::getline(in, line);
   std::vector<std::string> names{""};
@@ -236,11 +232,12 @@ std::map<std::string, std::vector<double>> read_columns(const std::string& path)
     std::size_t at = 0;
     for (const auto& name : names) {
       if (at > line.size())
-        throw InputError(path + ", line " + std::to_string(row) + ": fewer values than the header's columns");
-      const std::size_t end  = std::min(line.find(',', at), line.size());
-      char* stop             = nullptr;
-      const std::string word = line.substr(at, end - at);
-      const double v         = std::strtod(word.c_str(), &stop);
+        throw FileError(path + ", line " + std::to_string(row) + ": fewer values than the header's columns");
+      const std::size_t end = std::min(line.find(',', at), line.size());
+      char* stop            = nullptr;
+      std::string word      = line.substr(at, end - at);
+      word.erase(word.find_last_not_of(' ') + 1);  // a row's padding (io/output_file.hpp)
+      const double v = std::strtod(word.c_str(), &stop);
       if (word.empty() || *stop != '\0')
         throw InputError(path + ", line " + std::to_string(row) + ", column " + name + ": '" + word +
                          "' is not a number");
@@ -307,13 +304,15 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
     throw InputError("this gapfe was built without toml++ (libtomlplusplus-dev), so it reads decks only");
 #endif
   } else {
-    model.deck = read_deck(read_file(a.deck), a.options);
+    model.deck = read_deck(read_input(a.deck, "deck"), a.options);
   }
   const Deck& d    = model.deck;
   const long steps = a.command == "run" ? std::max(1, d.steps()) : 1;
   const long grid  = scene_file ? static_cast<long>(model.scene.grid.node_count())
                                 : static_cast<long>(d.mesh.max_i) * static_cast<long>(d.mesh.max_j);
-  if (large_model && a.command != "info" && grid * steps >= kLargeModel) large_model();
+  // (Not for standard input: the re-executed process would find it read already.)
+  if (large_model && a.command != "info" && !is_standard_input(a.deck) && grid * steps >= kLargeModel)
+    large_model();
   const double t_read = since(t0);
   t0                  = Clock::now();
   if (!scene_file) model.scene = build_scene(d);
@@ -361,9 +360,10 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
 
   if (a.command == "info") return ok;
   const auto [launch_rank, launch_size] = launcher_ranks();
-  if (launch_rank == 0) std::filesystem::create_directories(a.out);  // rank 0 of a launch writes the files
+  const std::string run_what            = "gapfe run " + a.deck;
   if (a.command == "mesh") {
     if (launch_rank != 0) return ok;
+    std::filesystem::create_directories(a.out);
     write_mesh_files(a.out, d, s);
     log << "wrote " << a.out << "/mesh.svg, mesh_nodes.csv, mesh_elements.csv, mesh.vtu\n";
     return ok;
@@ -466,8 +466,20 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
                            plot_units(d.options.units),
                            part ? &*part : nullptr,
                            rank == 0};
+  // Rank 0 of a launch writes the files; a run's folder holds one run (run_folder.hpp). Made ready only
+  // now, after every check of the request: a run refused before it starts leaves the last run's files.
+  if (launch_rank == 0) RunFolder::prepare(a.out, a.overwrite, run_what);
+  const bool writes  = launch_rank == 0;  // (a structured binding cannot be captured before C++20's P1091)
+  const auto stopped = [&](const std::exception& e) {  // the manifest says the files stop short, and why
+    if (writes) RunFolder::record_stopped(a.out, run_what, e.what());
+  };
   t0 = Clock::now();
-  run_deck_request(request, times);
+  try {
+    run_deck_request(request, times);
+  } catch (const std::exception& e) {
+    stopped(e);
+    throw;
+  }
   // setup: the Problem, DOF map, sparsity pattern, symbolic analysis and stress recovery.
   const double setup = since(t0) - times.assemble - times.factorize - times.solve - times.write;
   log << "time [s]: read " << t_read << ", mesh " << t_mesh << ", setup " << setup << ", assemble "
@@ -538,31 +550,37 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
       << (plastic && s.needs.gaps.empty() ? "plasticity.csv, " : "") << (fields ? "result.pvd, " : "")
       << "deformed.svg\n";
   std::vector<std::string> pictures = times.pictures;
-  if (d.steps() > 1 && !pictures.empty())  // the load-displacement curve of history.csv
-    pictures.push_back(draw_curve(a.out, "u_max", "load_factor", d.title));
+  if (d.steps() > 1 && !pictures.empty()) try {  // the load-displacement curve of history.csv
+      pictures.push_back(draw_curve(a.out, "u_max", "load_factor", d.title));
+    } catch (const std::exception& e) {
+      stopped(e);
+      throw;
+    }
   for (const std::string& picture : pictures)
     log << "wrote " << picture << (a.png && rasterize(picture) ? " and its .png" : "") << "\n";
   if (!times.pictures_skipped.empty()) log << "pictures not drawn: " << times.pictures_skipped << "\n";
+  if (launch_rank == 0) RunFolder::record(a.out, run_what, "complete");
   return ok;
 }
 
 /// `gapfe plot DIR`: a field of one step (result.pvd's VTU files) or a curve of history.csv.
-int plot(const Args& a, std::ostream& out) {
+int plot(const Args& a, std::ostream& out, std::ostream& err) {
   std::ostringstream null_stream;
   std::ostream& log     = a.quiet ? null_stream : out;
   const std::string dir = a.deck;
+  if (const std::string status = RunFolder::check(dir); status != "complete")
+    err << "gapfe: note: the run in " << detail::visible_text(dir) << " did not complete (" << status
+        << "): its files stop there\n";
   const PlotUnits units = plot_units(a.units);
   std::vector<std::string> written;
   if (!a.curve_x.empty()) {
     written.push_back(draw_curve(dir, a.curve_x, a.curve_y, std::filesystem::path(dir).filename().string()));
   } else {
     const std::string pvd = dir + "/result.pvd";
-    std::ifstream in(pvd);
-    if (!in) throw InputError("cannot open '" + pvd + "' (a run with output_vtu = none writes no VTU files)");
-    std::stringstream text;
-    text << in.rdbuf();
-    const auto datasets = read_pvd(text.str(), pvd);
-    if (datasets.empty()) throw InputError(pvd + " lists no files");
+    if (!std::filesystem::exists(pvd))
+      throw InputError("there is no '" + pvd + "' (a run with output_vtu = none writes no VTU files)");
+    const auto datasets = read_pvd(read_input(pvd, "collection"), pvd);
+    if (datasets.empty()) throw FileError(pvd + " lists no files");
     std::string file = datasets.back().second;
     if (a.step > 0) {
       char name[32];
@@ -578,11 +596,9 @@ int plot(const Args& a, std::ostream& out) {
       }
       file = it->second;
     }
-    std::ifstream vin(dir + "/" + file, std::ios::binary);
-    if (!vin) throw InputError("cannot open '" + dir + "/" + file + "', listed in " + pvd);
-    std::stringstream vtext;
-    vtext << vin.rdbuf();
-    const VtuData data     = read_vtu(vtext.str(), dir + "/" + file);
+    if (file.find('/') != std::string::npos || !RunFolder::run_file(file))
+      throw FileError(pvd + " lists '" + file + "', which is not a file a run writes beside it");
+    const VtuData data     = read_vtu(read_input(dir + "/" + file, "VTU file"), dir + "/" + file);
     const std::string stem = file.substr(0, file.size() - 4);
     for (const std::string& field : a.plots.value_or(std::vector<std::string>{"mises"})) {
       const std::string path = dir + "/plot_" + field + (a.step > 0 ? "_" + stem : std::string()) + ".svg";
@@ -627,7 +643,7 @@ int main(const std::vector<std::string>& args, std::ostream& out_stream, std::os
   try {
     a = parse(args);
   } catch (const UsageError& e) {
-    err << "gapfe: " << e.what() << "\n"
+    err << "gapfe: " << detail::visible_text(e.what()) << "\n"
         << (args.empty() ? help_text("")
                          : "(gapfe --help lists the commands, gapfe COMMAND --help the options)\n");
     return usage;
@@ -640,19 +656,27 @@ int main(const std::vector<std::string>& args, std::ostream& out_stream, std::os
     out << "gapfe " << GAPFE_VERSION_STRING << "\n";
     return ok;
   }
+  // Messages quote the input (names, paths, titles): shown with detail::visible_text, never raw.
+  const std::string input_name = detail::visible_text(is_standard_input(a.deck) ? "standard input" : a.deck);
+  const auto say               = [&](const std::string& head, const char* what) {
+    err << "gapfe: " << head << detail::visible_text(what, /*lines=*/true) << "\n";
+  };
   try {
-    return a.command == "plot" ? plot(a, out) : execute(a, out, err, progress, large_model, start_mpi);
+    return a.command == "plot" ? plot(a, out, err) : execute(a, out, err, progress, large_model, start_mpi);
   } catch (const InputError& e) {
-    err << "gapfe: error in " << a.deck << ": " << e.what() << "\n";
+    say("error in " + input_name + ": ", e.what());
     return input;
   } catch (const SolveError& e) {
-    err << "gapfe: cannot solve " << a.deck << ": " << e.what() << "\n";
+    say("cannot solve " + input_name + ": ", e.what());
     return solve;
+  } catch (const FileError& e) {
+    say("", e.what());
+    return system;
   } catch (const std::bad_alloc&) {
-    err << "gapfe: out of memory while processing " << a.deck << "\n";
+    say("out of memory while processing " + input_name, "");
     return system;
   } catch (const std::exception& e) {
-    err << "gapfe: " << e.what() << "\n";
+    say("", e.what());
     return system;
   }
 }

@@ -40,10 +40,10 @@ import sys
 root = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(root / "bench"))
 import deckgen  # noqa: E402  (the decks' one writer)
+from checks import check, finish  # noqa: E402  (tests/checks.py: the shared tally)
 
 gapfe = pathlib.Path(sys.argv[1]).resolve()
 work = pathlib.Path(sys.argv[2]).resolve()
-failures, checks = [], [0]
 
 A, B, W, C, L, E, Q, MU = 12.5, 25.0, 0.001, 50.0, 50.0, 200000.0, 75.0, 0.2
 PUSH, TWIST = 0.04, 0.04  # [mm] per phase that moves: well past the slide that takes the fit from stick to slip
@@ -66,13 +66,6 @@ PROGRAMS = {
 STEPS = (1, 5, 40)  # load steps per phase
 POLICIES = ("active-set", "augmented-lagrangian")
 EVENTS = ("locate", "step-end")
-
-
-def check(condition, what):
-    checks[0] += 1
-    if not condition:
-        failures.append(what)
-        print("FAILED:", what)
 
 
 def amplitude(program, k, steps):
@@ -377,5 +370,4 @@ def seed_models():
 
 work.mkdir(parents=True, exist_ok=True)
 runs = coulomb_family() + seed_models()
-print(f"{runs} runs, {checks[0]} checks, {len(failures)} failure(s)")
-sys.exit(1 if failures else 0)
+finish(f"{runs} runs, ")

@@ -45,19 +45,12 @@ root = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(root / "bench"))
 import deckgen  # noqa: E402  (the decks' one writer)
 from closed_forms import E, NU, ALPHA, RHO, annulus, fit  # noqa: E402
+from checks import check, finish  # noqa: E402  (tests/checks.py: the shared tally)
 
 gapfe = pathlib.Path(sys.argv[1]).resolve()
 work = pathlib.Path(sys.argv[2]).resolve()
-failures, checks = [], [0]
 POLICIES = ("saac", "active-set", "augmented-lagrangian")
 FORCE_TOLERANCE = {"saac": 0.02, "active-set": 0.01, "augmented-lagrangian": 0.01}
-
-
-def check(condition, what):
-    checks[0] += 1
-    if not condition:
-        failures.append(what)
-        print("FAILED:", what)
 
 
 # ---- the radial fit as a grid scene
@@ -357,7 +350,6 @@ def axial_gap(policy, accelerations):
     contact faces are horizontal), held only by the soft gap elements; an axial acceleration (amplitude
     `accelerations`) sets it down on the base, with a contact force equal to its weight rho a V."""
     nr, nb = 8, 4
-    rows = [("base", 0.0, 10.0, nb), ("upper", 10.01, 20.01, nb)]
     seg = lambda i1, j1, r1, z1, i2, j2, r2, z2: f"[[mesh.segments]]\npoints = [[{i1}, {j1}, {r1}, {z1}], [{i2}, {j2}, {r2}, {z2}]]\n"
     nj = 2 * nb + 2
     text = f'title = "AXIAL GAP {policy}"\n[mesh]\ngrid = [{nr + 1}, {nj}]\n'
@@ -478,5 +470,4 @@ def projectile():
 
 work.mkdir(parents=True, exist_ok=True)
 runs = radial_family() + shrink_fit() + axial_family() + angular_acceleration() + projectile()
-print(f"{runs} runs, {checks[0]} checks, {len(failures)} failure(s)")
-sys.exit(1 if failures else 0)
+finish(f"{runs} runs, ")

@@ -22,20 +22,12 @@ import xml.etree.ElementTree as ET
 
 import meshio
 import numpy as np
+from checks import check, finish  # noqa: E402  (tests/checks.py: the shared tally)
 
 gapfe = pathlib.Path(sys.argv[1]).resolve()
 work = pathlib.Path(sys.argv[2]).resolve()
 root = pathlib.Path(__file__).resolve().parent.parent
 SVG = "{http://www.w3.org/2000/svg}"
-failures = []
-checks = [0]
-
-
-def check(condition, what):
-    checks[0] += 1
-    if not condition:
-        failures.append(what)
-        print("FAILED:", what)
 
 
 def run(source, name, *extra):
@@ -202,5 +194,4 @@ mesh_dir = work / "mesh"
 subprocess.run([gapfe, "mesh", decks / "projectile.deck", "--out", mesh_dir, "--quiet"], check=True)
 check_titles(ET.parse(mesh_dir / "mesh.svg").getroot(), "projectile/mesh.svg")
 
-print(f"{checks[0]} checks, {len(failures)} failure(s)")
-sys.exit(1 if failures else 0)
+finish()

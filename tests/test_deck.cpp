@@ -396,7 +396,7 @@ TEST_CASE("The gapfe command: usage errors and unreadable decks") {
         gapfe::cli::usage);
   std::ostringstream e2;
   CHECK(gapfe::cli::main({"info", "/nonexistent/deck"}, out, e2) == gapfe::cli::system);
-  CHECK(e2.str().find("cannot open deck '/nonexistent/deck'") != std::string::npos);
+  CHECK(e2.str().find("cannot open the deck '/nonexistent/deck'") != std::string::npos);
   for (const char* bad : {"0", "two", "2x", "-1"}) {
     std::ostringstream e3;
     CHECK(gapfe::cli::main({"run", "x.deck", "--out", "/tmp", "--threads", bad}, out, e3) ==
@@ -454,7 +454,7 @@ double corner_area(const gapfe::GmshMesh& m, const gapfe::GmshElement& e) {
 /// The edges of physical group `tag`.
 int edges_in(const gapfe::GmshMesh& m, int tag) {
   return static_cast<int>(
-      std::count_if(m.edges.begin(), m.edges.end(), [&](const auto& e) { return e.physical == tag; }));
+      std::count_if(m.edges.begin(), m.edges.end(), [&](const auto& e) { return e.in(tag); }));
 }
 
 }  // namespace
@@ -473,14 +473,14 @@ TEST_CASE("[gmsh] the tube in MSH 4.1 and 2.2: nodes, counterclockwise cells, ph
     }
     for (const auto& c : m.cells) {
       CHECK(c.type == 3);
-      CHECK(c.physical == m.physical(2, "steel"));
+      CHECK(c.physical == std::vector<int>{m.physical(2, "steel")});
       CHECK(corner_area(m, c) == doctest::Approx(2 * 25 * 12.5).epsilon(1e-12));  // counterclockwise
     }
     CHECK(edges_in(m, m.physical(1, "bore")) == 2);
     CHECK(edges_in(m, m.physical(1, "bottom")) == 4);
     CHECK(edges_in(m, m.physical(1, "top")) == 4);
     for (const auto& e : m.edges)
-      if (e.physical == m.physical(1, "bore"))
+      if (e.in(m.physical(1, "bore")))
         for (int a = 0; a < 2; ++a)
           CHECK(m.nodes[static_cast<std::size_t>(e.nodes[static_cast<std::size_t>(a)])](0) == 100);
   }
@@ -507,7 +507,7 @@ TEST_CASE("[gmsh] 8-node quadrangles: mid-side nodes halfway along their edges, 
     }
   }
   CHECK(m.edges.size() == 9);  // 3-node lines; meshio's 4.1 writer gives them no physical group
-  for (const auto& e : m.edges) CHECK(e.physical == 0);
+  for (const auto& e : m.edges) CHECK(e.physical.empty());
 }
 
 TEST_CASE("[gmsh] malformed meshes: each a clear InputError naming the line and what is wrong") {
@@ -530,7 +530,21 @@ TEST_CASE("[gmsh] malformed meshes: each a clear InputError naming the line and 
       {head + nodes + replaced(quad, "2 1 3 1\n1 1 2 3 4", "3 1 4 1\n1 1 2 3 4"), "element type 4"},
       {head + nodes + replaced(quad, "1 1 2 3 4", "1 1 2 3 9"), "node 9 is not in $Nodes"},
       {head + replaced(nodes, "1\n2\n3\n4\n", "1\n2\n2\n4\n") + quad, "node 2 is given twice"},
-      {head + nodes + replaced(quad, "1 1 2 3 4", "1 1 2 2 1"), "zero area"},
+      {head + nodes + replaced(quad, "1 1 2 3 4", "1 1 2 2 1"),
+       "line 19 ($Elements): the element names node 1 twice"},
+      {head + nodes + replaced(quad, "1 1 2 3 4", "1 1 2 3 3"),
+       "line 19 ($Elements): the element names node 3 twice"},
+      {head + nodes + replaced(quad, "1 1 2 3 4", "1 1 3 2 4"), "zero area"},  // a bow tie: signed area 0
+      // the same cell twice in a 4.1 file (each element is given once there)
+      {head + nodes + "$Elements\n1 2 1 2\n2 1 3 2\n1 1 2 3 4\n2 2 3 4 1\n$EndElements\n",
+       "line 20 ($Elements): the element repeats the one of line 19 (the same nodes)"},
+      // two groups of one dimension with one name; an empty name; a quoted number
+      {head + "$PhysicalNames\n2\n2 1 \"steel\"\n2 2 \"steel\"\n$EndPhysicalNames\n" + nodes + quad,
+       "line 7 ($PhysicalNames): physical groups 1 and 2 of dimension 2 are both named \"steel\""},
+      {head + "$PhysicalNames\n1\n2 1 \"\"\n$EndPhysicalNames\n" + nodes + quad,
+       "line 6 ($PhysicalNames): an empty name"},
+      {head + nodes + replaced(quad, "1 1 2 3 4", "1 \"\" 2 3 4"), "a quoted word where an element's node"},
+      {head + nodes + replaced(quad, "2 1 3 1", "2 \"\" 3 1"), "a quoted word where a block's entity tag"},
       {head + nodes + "$Elements\n1 1 1 1\n1 1 1 1\n1 1 2\n$EndElements\n", "no triangles or quadrangles"},
       {head + nodes + quad.substr(0, quad.size() / 2), "the file ends in $Elements"},
       {head + quad + nodes, "$Elements before $Nodes"},
@@ -556,5 +570,64 @@ TEST_CASE("[gmsh] malformed meshes: each a clear InputError naming the line and 
   }
   const gapfe::GmshMesh m = read_mesh_file("tube_quad4_v22.msh");
   CHECK_THROWS_WITH_AS(m.physical(1, "outer"), doctest::Contains("has no curve physical group \"outer\""),
+                       gapfe::InputError);
+}
+
+TEST_CASE("[gmsh] sections gapfe does not use are skipped, their quoted strings included") {
+  // meshio and Gmsh write point data as $NodeData with a quoted field name (and spaces in it).
+  const std::string mesh =
+      "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n1\n2 1 \"steel\"\n"
+      "$EndPhysicalNames\n$Nodes\n4\n1 1 0 0\n2 2 0 0\n3 2 1 0\n4 1 1 0\n$EndNodes\n"
+      "$Elements\n1\n1 3 2 1 7 1 2 3 4\n$EndElements\n";
+  const std::string data =
+      "$NodeData\n1\n\"temperature rise\"\n1\n0.0\n3\n0\n1\n4\n1 1.0\n2 2.0\n3 3.0\n"
+      "4 4.0\n$EndNodeData\n";
+  const gapfe::GmshMesh m = gapfe::read_gmsh(mesh + data);
+  CHECK(m.cells.size() == 1);
+  CHECK(m.nodes.size() == 4);
+  CHECK_THROWS_WITH_AS(gapfe::read_gmsh(mesh + "$NodeData\n1\n\"temperature\n"),
+                       doctest::Contains("unterminated quoted string before $EndNodeData"),
+                       gapfe::InputError);
+  // A node tag below 1: refused with its line.
+  std::string zero = mesh;
+  zero.replace(zero.find("1 1 0 0"), 7, "0 1 0 0");
+  CHECK_THROWS_WITH_AS(gapfe::read_gmsh(zero), doctest::Contains("node tag 0"), gapfe::InputError);
+}
+
+TEST_CASE(
+    "[gmsh] MSH 2.2 writes a cell once per physical group: read once, in both; a true repeat is refused") {
+  // Gmsh -format msh22 with the surface in "steel" and in "all": element 2 is element 1 again (same nodes,
+  // type and elementary entity 7), in the other group. The curve "bore" is given once.
+  const std::string head =
+      "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n3\n1 3 \"bore\"\n2 1 "
+      "\"steel\"\n2 2 \"all\"\n$EndPhysicalNames\n$Nodes\n4\n1 1 0 0\n2 2 0 0\n3 2 1 0\n"
+      "4 1 1 0\n$EndNodes\n";
+  const std::string cells =
+      "$Elements\n3\n1 3 2 1 7 1 2 3 4\n2 3 2 2 7 1 2 3 4\n3 1 2 3 5 4 1\n$EndElements\n";
+  const gapfe::GmshMesh m = gapfe::read_gmsh(head + cells);
+  REQUIRE(m.cells.size() == 1);
+  CHECK(m.cells[0].in(m.physical(2, "steel")));
+  CHECK(m.cells[0].in(m.physical(2, "all")));
+  CHECK(m.edges.size() == 1);
+  // The same cell again in the same group, or in another entity (an overlapping mesh): refused.
+  for (const auto& [repeat, expected] : std::vector<std::pair<std::string, std::string>>{
+           {"2 3 2 1 7 1 2 3 4",
+            "line 20 ($Elements): the element repeats the one of line 19 (the same nodes, "
+            "in the same physical group)"},
+           {"2 3 2 2 8 1 2 3 4",
+            "line 20 ($Elements): the element repeats the one of line 19 (the same nodes)"},
+           {"2 3 2 0 7 1 2 3 4",
+            "line 20 ($Elements): the element repeats the one of line 19 (the same nodes)"}}) {
+    std::string text = head + cells;
+    text.replace(text.find("2 3 2 2 7 1 2 3 4"), 17, repeat);
+    const std::string line = repeat;  // a structured binding cannot be captured (C++20 before P1091 in clang)
+    CAPTURE(line);
+    CHECK_THROWS_WITH_AS(gapfe::read_gmsh(text), doctest::Contains(expected.c_str()), gapfe::InputError);
+  }
+  // A physical tag past 2^31 - 1 (it wrapped into another group): refused.
+  std::string wide = head + cells;
+  wide.replace(wide.find("1 3 2 1 7"), 9, "1 3 2 4294967297 7");
+  CHECK_THROWS_WITH_AS(gapfe::read_gmsh(wide),
+                       doctest::Contains("line 19 ($Elements): an element's physical tag"),
                        gapfe::InputError);
 }

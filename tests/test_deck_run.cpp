@@ -3,6 +3,7 @@
 // the constant-temperature card and the per-radian load option.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -1416,10 +1417,11 @@ TEST_CASE(
   // errors or a clean header (found by review).
   {
     const fs::path dir = scratch("history_short");
+    gapfe::RunFolder::record(dir.string(), "a hand-made run", "complete");  // plot reads a run's folder only
     std::ofstream(dir / "history.csv") << "step,u_max,load_factor\n1,0.5\n";
     std::ostringstream o, e;
     CHECK(gapfe::cli::main({"plot", dir.string(), "--x", "u_max", "--y", "load_factor"}, o, e) ==
-          gapfe::cli::input);
+          gapfe::cli::system);  // a malformed result file: a file problem
     CHECK(e.str().find("history.csv, line 2: fewer values than the header's columns") != std::string::npos);
     std::string scene = read_text(kScenes / "thick_tube_grid.toml");
     const auto swap   = [&](const std::string& from, const std::string& to) {
@@ -1436,6 +1438,44 @@ TEST_CASE(
   }
   // One load step: no history.csv.
   CHECK(!fs::exists(run_deck_file(kExamples / "thick_tube.deck", "history_one_step") / "history.csv"));
+}
+
+TEST_CASE("[files] result files never write through a link, and a failed write leaves no temporary") {
+  const fs::path dir = scratch("output_links");
+  std::ofstream(dir / "precious.txt") << "precious";
+  fs::create_symlink(dir / "precious.txt", dir / "nodes.csv");
+  // A table (appended rows) on a planted link: refused, naming the link (O_NOFOLLOW), the target untouched.
+  CHECK_THROWS_WITH_AS(gapfe::OutputFile((dir / "nodes.csv").string()),
+                       doctest::Contains("it is a symbolic link"), gapfe::FileError);
+  // A file written whole on a planted link: the link is replaced by the file, the target untouched.
+  fs::create_symlink(dir / "precious.txt", dir / "step_0001.vtu");
+  gapfe::detail::write_file_atomically((dir / "step_0001.vtu").string(), "new");
+  CHECK(!fs::is_symlink(dir / "step_0001.vtu"));
+  CHECK(read_text(dir / "step_0001.vtu") == "new");
+  CHECK(read_text(dir / "precious.txt") == "precious");
+  // A name taken by a folder: the rename fails, FileError names the file, and no temporary is left.
+  fs::create_directory(dir / "result.pvd");
+  std::ofstream(dir / "result.pvd" / "keep") << "x";
+  CHECK_THROWS_WITH_AS(gapfe::detail::write_file_atomically((dir / "result.pvd").string(), "new"),
+                       doctest::Contains("result.pvd"), gapfe::FileError);
+  int temporaries = 0;
+  for (const auto& e : fs::directory_iterator(dir))
+    temporaries += e.path().filename().string().find(".gapfe-") != std::string::npos;
+  CHECK(temporaries == 0);
+}
+
+TEST_CASE("[vtu] inline binary: the UInt32 byte count, then the values, in base64 (Python's base64 module)") {
+  // Expected strings: base64.b64encode(struct.pack('<I', nbytes) + struct.pack('<Nd', *values)). An empty
+  // array (a run with no cell of some kind) is its header alone.
+  const auto encoded = [](const auto& values) {
+    std::string s;
+    gapfe::detail::append_binary(s, values);
+    return s;
+  };
+  CHECK(encoded(std::vector<double>{}) == "AAAAAA==\n");
+  CHECK(encoded(std::vector<double>{1.0}) == "CAAAAAAAAAAAAPA/\n");
+  CHECK(encoded(std::vector<double>{1.0, -2.5}) == "EAAAAAAAAAAAAPA/AAAAAAAABMA=\n");
+  CHECK(encoded(std::vector<std::int32_t>{7}) == "BAAAAAcAAAA=\n");
 }
 
 TEST_CASE("[vtu] read_vtu reads back a run's files: every array equals the tables") {
@@ -1560,12 +1600,16 @@ TEST_CASE("[plot] gapfe plot: any field of any step, a history curve, and clear 
        {Case{{"plot", out.string(), "--field", "mieses"}, "unknown field 'mieses' (known: u, u_r"},
         Case{{"plot", out.string(), "--step", "99"}, "load step 99 is not in"},
         Case{{"plot", out.string(), "--x", "u_max", "--y", "load"}, "no column 'load'"},
-        Case{{"plot", (out / "missing").string()}, "cannot open"},
         Case{{"plot", out.string(), "--units", "mm"}, "units 'mm': expected LENGTH,FORCE,STRESS"}}) {
     CAPTURE(c.expected);
     std::ostringstream out2, err;
     CHECK(gapfe::cli::main(c.args, out2, err) == gapfe::cli::input);
     CHECK(err.str().find(c.expected) != std::string::npos);
+  }
+  {  // a folder no run wrote: a file problem (exit 3), not a model one
+    std::ostringstream out2, err;
+    CHECK(gapfe::cli::main({"plot", (out / "missing").string()}, out2, err) == gapfe::cli::system);
+    CHECK(err.str().find("holds no gapfe-run.txt") != std::string::npos);
   }
   // A deck asking for units, and a field the run cannot draw: the run goes on and says why.
   std::ostringstream o2, e2;

@@ -1,51 +1,60 @@
-// libFuzzer target for the input readers: read any bytes as a card deck and build its mesh and scene, as a
-// Gmsh MSH file (mesh/gmsh_reader.hpp), as a VTU file drawn as gapfe plot would (io/vtu_reader.hpp), and as a
-// scene file (io/scene_file.hpp) on the test meshes of tests/data/scenes (its [mesh] file names one of them).
+// libFuzzer target for the input readers: read any bytes as a card deck and build its mesh, scene and
+// load steps, as a Gmsh MSH file (mesh/gmsh_reader.hpp), as a VTU file drawn as gapfe plot would
+// (io/vtu_reader.hpp), and as a scene file (io/scene_file.hpp) on the test meshes of tests/data/scenes (its
+// [mesh] file names one of them). A deck or scene that reads and is small is then run as `gapfe run` runs
+// it (fuzz_run.hpp) with tiny limits (two load steps, eight Newton iterations) into a scratch folder made
+// ready by RunFolder.
 // The only acceptable outcomes are a result or an InputError / SolveError; anything else (a crash, another
-// exception, a sanitizer report, a hang) is a bug. CI runs it for a bounded time over examples/decks,
-// tests/data/*.msh and tests/data/scenes/*.toml.
+// exception, a FileError in the scratch folder, a sanitizer or _GLIBCXX_ASSERTIONS report, a hang) is a bug.
+// CI runs it for a bounded time over examples/decks, tests/data/*.msh and tests/data/scenes/*.toml.
 //   cmake -S . -B build/fuzz -DCMAKE_CXX_COMPILER=clang++ -DGAPFE_FUZZ=ON ...;
 //   build/fuzz/tests/fuzz/fuzz_deck
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
 #include <string_view>
 
 #include "gapfe/io/deck.hpp"
 #include "gapfe/io/deck_scene.hpp"
 #include "gapfe/io/field_plot.hpp"
+#include "gapfe/io/run_folder.hpp"
+#include "gapfe/io/step_loads.hpp"
 #include "gapfe/io/vtu_reader.hpp"
 #include "gapfe/mesh/gmsh_reader.hpp"
-#ifdef GAPFE_HAS_SCENE
-#include <filesystem>
-#include <fstream>
-#include <map>
-#include <sstream>
-#include <string>
 
+#include "fuzz_run.hpp"
+
+#ifdef GAPFE_HAS_SCENE
 #include "gapfe/io/scene_file.hpp"
+
+#include "fuzz_meshes.hpp"
+#endif
 
 namespace {
 
-/// The scene tests' meshes by file name, read once.
-std::string scene_mesh(const std::string& name) {
-  static const std::map<std::string, std::string> meshes = [] {
-    std::map<std::string, std::string> m;
-    for (const char* file : {"thick_tube.msh", "two_tubes.msh", "plastic_tube.msh"}) {
-      std::ifstream in(std::filesystem::path(GAPFE_SOURCE_DIR) / "tests/data/scenes" / file);
-      std::ostringstream s;
-      s << in.rdbuf();
-      m[file] = s.str();
-    }
-    return m;
+/// Run a deck and its scene as `gapfe run` would, small: up to two load steps, eight Newton iterations,
+/// into a scratch folder (the same one every input: RunFolder clears the last input's files).
+void run_small(gapfe::Deck deck, const gapfe::DeckScene& scene) {
+  if (scene.mesh.nodes.size() > 300 || scene.gaps.pairs.size() > 100) return;
+  deck.control.nlinc             = std::min(deck.control.nlinc, 2);
+  deck.options.newton_iterations = std::min(deck.options.newton_iterations, 8);
+  static const std::string dir   = [] {  // a char array: no destructor runs before the exit handler
+    static char name[] = "/tmp/gapfe_fuzz_XXXXXX";
+    if (!::mkdtemp(name)) __builtin_trap();
+    std::atexit([] { std::filesystem::remove_all(name); });  // libFuzzer ends with exit()
+    return std::string(name);
   }();
-  const auto it = meshes.find(name);
-  if (it == meshes.end()) throw gapfe::InputError("no mesh '" + name + "'");
-  return it->second;
+  gapfe::RunFolder::prepare(dir, false, "fuzz");
+  const bool gaps = !scene.needs.gaps.empty();
+  scene.needs.plasticity.empty() ? gapfe::fuzz::run_elastic(deck, scene, dir, gaps)
+                                 : gapfe::fuzz::run_plastic(deck, scene, dir, gaps);
 }
 
 }  // namespace
-#endif
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);
@@ -57,7 +66,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const gapfe::DeckScene scene = gapfe::build_scene(deck);
     for (const auto& x : scene.mesh.nodes)
       if (!x.allFinite()) __builtin_trap();  // the generator must reject what it cannot place
-    for (int step = 1; step <= deck.steps() && step <= 3; ++step) (void)gapfe::step_totals(deck, scene, step);
+    gapfe::StepLoads loads(deck, scene);
+    for (int step = 1; step <= deck.steps() && step <= 3; ++step) (void)loads.at(step);
+    if (size < (1u << 14)) run_small(deck, scene);
   } catch (const gapfe::InputError&) {
   } catch (const gapfe::SolveError&) {
   }
@@ -88,11 +99,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 #ifdef GAPFE_HAS_SCENE
   if (size < (1u << 14)) {  // a scene: its deck and scene as the command would run them
     try {
-      const gapfe::SceneModel m = gapfe::read_scene(text, scene_mesh, {}, limits);
-      for (int step = 1; step <= m.deck.steps() && step <= 3; ++step)
-        (void)gapfe::step_totals(m.deck, m.scene, step);
+      const gapfe::SceneModel m = gapfe::read_scene(text, gapfe::fuzz::scene_mesh, {}, limits);
+      gapfe::StepLoads loads(m.deck, m.scene);
+      for (int step = 1; step <= m.deck.steps() && step <= 3; ++step) (void)loads.at(step);
       for (const auto& p : m.scene.gaps.pairs)
         if (!std::isfinite(p.initial_gap) || !p.normal.allFinite()) __builtin_trap();
+      run_small(m.deck, m.scene);
     } catch (const gapfe::InputError&) {
     } catch (const gapfe::SolveError&) {
     }

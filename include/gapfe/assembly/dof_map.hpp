@@ -75,11 +75,11 @@ struct DofMap {
         if constexpr (DofsPerNode == 3) fixed[m.dof(n, dof::theta)] = true;
       }
     }
-    for (const auto& c : conditions) {  // later cards win, as in the seed
+    for (const auto& c : conditions) {  // later cards win, as in the seed (in the components they set)
       check(c, nn, [&](int node) { return static_cast<bool>(m.on_axis[node]); });
       for (int k = 0; k < DofsPerNode; ++k) {
         const int d = m.dof(c.node, k);
-        if (m.on_axis[c.node] && k != dof::z) continue;
+        if ((m.on_axis[c.node] && k != dof::z) || !((c.sets >> k) & 1)) continue;
         fixed[d]         = c.prescribed(k);
         m.prescribed(d)  = c.prescribed(k) ? c.value[k] : 0.0;
         m.nodal_force(d) = c.prescribed(k) ? 0.0 : c.value[k];

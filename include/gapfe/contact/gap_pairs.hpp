@@ -89,15 +89,10 @@ inline GapLayout grid_gap_pairs(const IJGrid& grid, const std::vector<char>& is_
                                 const std::vector<int>& direction, int global_direction = 0) {
   GapLayout out;
   out.direction.assign(grid.cells.size(), 0);
-  std::vector<int> cell_at(static_cast<std::size_t>(grid.max_i) * grid.max_j, -1);
-  const auto at = [&](int i, int j) -> int {
-    if (i < 1 || j < 1 || i > grid.max_i || j > grid.max_j) return -1;
-    return cell_at[static_cast<std::size_t>(j - 1) * grid.max_i + (i - 1)];
-  };
+  std::vector<int> cell_at(grid.box_points(), -1);  // a cell's lower-left corner lies in the box
+  const auto at = [&](int i, int j) -> int { return grid.in_box(i, j) ? cell_at[grid.box_index(i, j)] : -1; };
   for (std::size_t e = 0; e < grid.cells.size(); ++e)
-    if (is_gap[e])
-      cell_at[static_cast<std::size_t>(grid.cells[e].j - 1) * grid.max_i + (grid.cells[e].i - 1)] =
-          static_cast<int>(e);
+    if (is_gap[e]) cell_at[grid.box_index(grid.cells[e].i, grid.cells[e].j)] = static_cast<int>(e);
   for (std::size_t e = 0; e < grid.cells.size(); ++e) {
     if (!is_gap[e]) continue;
     const GridCell& c = grid.cells[e];

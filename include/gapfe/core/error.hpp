@@ -1,6 +1,7 @@
 #pragma once
 // Errors: InputError for a model that cannot be built (says what and where), SolveError for a
-// system that cannot be solved (singular, not positive definite). Nothing returns NaN silently.
+// system that cannot be solved (singular, not positive definite), FileError for a file that cannot be
+// read or written. Nothing returns NaN silently.
 #include <cstdio>
 #include <stdexcept>
 #include <string>
@@ -12,6 +13,12 @@ struct InputError : std::runtime_error {
 };
 
 struct SolveError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// A file that cannot be read or written (a result file, an output folder): names the path and the
+/// system's reason. Not InputError: the model may be fine.
+struct FileError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 

@@ -108,6 +108,8 @@ struct Deck {
   std::string plot_title;
   double plot_rmax = 0, plot_zmax = 0;
   std::vector<TemperaturePoint> temperature_points;
+  std::string temperature_where =
+      "DATA NO. 9, temperature card";  ///< how errors name a point (and its number)
   std::optional<double> constant_temperature;
   /// A scene's [temperature] history (an index into amplitudes); -1: the deck's, the whole field from the
   /// end of the first load step on (StepTotals::thermal_fraction).

@@ -22,7 +22,6 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
-#include <fstream>
 #include <optional>
 #include <string>
 #include <vector>
@@ -31,6 +30,7 @@
 #include "gapfe/io/deck_scene.hpp"
 #include "gapfe/io/field_plot.hpp"
 #include "gapfe/io/history_file.hpp"
+#include "gapfe/io/output_file.hpp"
 #include "gapfe/io/svg_canvas.hpp"
 #include "gapfe/io/vtu_writer.hpp"
 #include "gapfe/problem/results.hpp"
@@ -38,13 +38,6 @@
 namespace gapfe {
 
 namespace detail {
-
-inline std::ofstream open_output(const std::string& path) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out)
-    throw InputError("cannot write " + path + " (does the output directory exist and is it writable?)");
-  return out;
-}
 
 inline VtuCells grid_cells(const IJGrid& g) {
   VtuCells cells;
@@ -104,16 +97,19 @@ class StepFiles {
             Increments tables = Increments::all, Increments fields = Increments::all)
       : dir_(std::move(dir)), scene_(scene), step_time_(step_time), tables_(tables), fields_(fields) {
     prescribed_.assign(static_cast<std::size_t>(scene.grid.node_count()), 0);
-    for (const NodalCondition& c : scene.conditions) prescribed_[static_cast<std::size_t>(c.node)] |= c.code;
+    for (const NodalCondition& c : scene.conditions) {  // later conditions win in what they set (DofMap)
+      int& code = prescribed_[static_cast<std::size_t>(c.node)];
+      code      = (code & ~c.sets) | (c.code & c.sets);
+    }
     for (const int n : scene.strain_rate_test.bottom) prescribed_[static_cast<std::size_t>(n)] |= 2 | 4;
     for (const int n : scene.strain_rate_test.top) prescribed_[static_cast<std::size_t>(n)] |= 2;
     if (tables_ == Increments::none) return;
-    nodes_ = detail::open_output(dir_ + "/nodes.csv");
-    nodes_ << "step,inc,t,node,i,j,r,z,u_r,u_z,u_t\n";
-    reactions_ = detail::open_output(dir_ + "/reactions.csv");
-    reactions_ << "step,inc,t,node,i,j,r,z,R_r,R_z,R_t\n";
-    elements_ = detail::open_output(dir_ + "/elements.csv");
-    elements_ << "step,inc,t,element,i,j,material,r,z,s_rr,s_zz,s_tt,s_rz,s_rt,s_zt,eqps\n";
+    nodes_ = OutputFile(dir_ + "/nodes.csv");
+    nodes_.append("step,inc,t,node,i,j,r,z,u_r,u_z,u_t\n");
+    reactions_ = OutputFile(dir_ + "/reactions.csv");
+    reactions_.append("step,inc,t,node,i,j,r,z,R_r,R_z,R_t\n");
+    elements_ = OutputFile(dir_ + "/elements.csv");
+    elements_.append("step,inc,t,element,i,j,material,r,z,s_rr,s_zz,s_tt,s_rz,s_rt,s_zt,eqps\n");
   }
 
   /// One increment: the nodal solution and the centroid values (one per cell, cells then triangles, as
@@ -153,7 +149,7 @@ class StepFiles {
   const std::vector<std::string>& pictures_written() const { return pictures_written_; }
   const std::string& pictures_skipped() const { return pictures_skipped_; }
 
-  /// The end of a run: the held increment (a kind written `last`), then deformed.svg.
+  /// The end of a run: the held increment (a kind written `last`), the tables closed, then deformed.svg.
   void finish(const std::string& title) {
     if (held_) {
       Held h = std::move(*held_);
@@ -162,6 +158,9 @@ class StepFiles {
       if (fields_ == Increments::last)
         write_fields(h.step, h.inc, vtu_arrays(h.solution, h.values, std::move(h.extra_cells)));
     }
+    for (OutputFile* f : {&nodes_, &reactions_, &elements_}) f->close();
+    if (pvd_) pvd_->close();
+    if (history_) history_->close();
     write_deformed(title);
     pictures_written_.clear(), pictures_skipped_.clear();
     if (pictures_.empty()) return;
@@ -209,14 +208,11 @@ class StepFiles {
     std::string s;
     constexpr std::size_t kChunk = std::size_t(1) << 20;
     s.reserve(kChunk + 512);
-    const auto row_end = [&](std::ofstream& out) {
+    const auto row_end = [&](OutputFile& out) {  // (a piece of whole rows, one write: see output_file.hpp)
       s += '\n';
-      if (s.size() >= kChunk) out.write(s.data(), static_cast<std::streamsize>(s.size())), s.clear();
+      if (s.size() >= kChunk) out.append(s), s.clear();
     };
-    const auto flush = [&](std::ofstream& out) {
-      out.write(s.data(), static_cast<std::streamsize>(s.size())), s.clear();
-      out.flush();
-    };
+    const auto flush  = [&](OutputFile& out) { out.append(s), s.clear(); };
     const bool cached = !node_heads_.empty();
     for (int n = 0; n < g.node_count(); ++n) {
       s += prefix;
@@ -247,8 +243,6 @@ class StepFiles {
       row_end(elements_);
     }
     flush(elements_);
-    if (!nodes_ || !elements_ || !reactions_)
-      throw InputError("error while writing the CSV files in " + dir_);
   }
   /// "node,i,j,r,z," of node n (0-based; the table's node numbers are the deck's, 1-based).
   void node_head(std::string& s, int n) const {
@@ -310,8 +304,8 @@ class StepFiles {
       write_vtu(dir_ + "/" + name, mesh, point, cell, ids);
       if (++fields_written_ == 2) vtu_mesh_.emplace(std::move(mesh)), vtu_ids_ = std::move(ids);
     }
-    steps_.emplace_back(inc * step_time_, name);
-    write_pvd(dir_ + "/result.pvd", steps_);
+    if (!pvd_) pvd_.emplace(dir_ + "/result.pvd");
+    pvd_->add(inc * step_time_, name);
   }
 
   /// The centroid values of deck element e: they come cells first, then triangles.
@@ -401,14 +395,14 @@ class StepFiles {
   VtuData last_arrays_;  ///< the last increment's arrays and mesh, for the pictures
   std::vector<std::string> pictures_written_;
   std::string pictures_skipped_;
-  std::ofstream nodes_, elements_, reactions_;
+  OutputFile nodes_, elements_, reactions_;
   std::vector<int> prescribed_;  ///< per node: the OR of its BC codes (1 u_r, 2 u_z, 4 u_theta)
   int tables_written_ = 0, fields_written_ = 0;
   std::string node_heads_, element_heads_;  ///< the rows' mesh parts, from the second increment on
   std::vector<std::size_t> node_head_end_, element_head_end_;
   std::optional<VtuMesh> vtu_mesh_;  ///< the VTU files' mesh, from the second file on
   std::string vtu_ids_;              ///< and their element ids
-  std::vector<std::pair<double, std::string>> steps_;
+  std::optional<PvdFile> pvd_;       ///< result.pvd, from the first VTU file on
   int last_step_ = 0, split_ = 0;
 };
 
@@ -422,8 +416,8 @@ class GapFile {
  public:
   GapFile(const std::string& dir, const DeckScene& scene, bool friction = false, double step_time = 1.0)
       : scene_(scene), friction_(friction), step_time_(step_time) {
-    out_ = detail::open_output(dir + "/gaps.csv");
-    out_ << "step,inc,t,element,pair,node_a,node_b,status,gap,f_n,f_t\n";
+    out_ = OutputFile(dir + "/gaps.csv");
+    out_.append("step,inc,t,element,pair,node_a,node_b,status,gap,f_n,f_t\n");
   }
   /// Writes the rows and returns the VTU cell arrays: gap_state (0 structural, -1 a gap element that
   /// stays soft, else the seed's contact state 1-4), gap_size (smallest pair gap, 0 elsewhere) and
@@ -454,17 +448,16 @@ class GapFile {
       force.values[e] += st.normal_force;
       if (st.closed) state.values[e] += p.pair == 0 ? 1 : 2;  // 1 none, 2 first, 3 second, 4 both
     }
-    out_ << s;
-    out_.flush();
-    if (!out_) throw InputError("error while writing gaps.csv");
+    out_.append(s);
     return {std::move(state), std::move(size), std::move(force)};
   }
+  void close() { out_.close(); }
 
  private:
   const DeckScene& scene_;
   bool friction_;
   double step_time_ = 1.0;
-  std::ofstream out_;
+  OutputFile out_;
 };
 
 /// `gapfe mesh`: mesh.svg (the grid with node and element numbers, like the seed's plot option),

@@ -1,15 +1,13 @@
 #pragma once
 // From a read Deck to what an analysis needs: the I-J grid and its mesh with material tags, the
-// boundary conditions on nodes, the temperature field, the edge loads checked against the mesh, the
-// load-step totals, and which model features the deck requires (so the runner picks the smallest
-// variant). Everything that refers to the mesh is checked here and reported with its card and line.
+// boundary conditions on nodes, the temperature field, the edge loads checked against the mesh, and which
+// model features the deck requires (so the runner picks the smallest variant). Everything that refers to
+// the mesh is checked here and reported with its card and line; io/step_loads.hpp turns the scene's cards
+// into the loads in force after each step.
 //
 // Readings (README deck section): a BC card applies to the grid points in [I1, I2] x [J1, J2]; a
 // material block to the cells whose corners all lie in [I1, I2] x [J1, J2] (later blocks win); a BC
-// load is a total ring force; each step adds the BC values, its inertia increments and its surface
-// load increments to the totals of the steps before (angular velocities add, so the centrifugal
-// load goes with the square of their sum); the temperature field is a load of the first step (ramped
-// with it, then held).
+// load is a total ring force.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -97,18 +95,6 @@ inline std::string ij_text(int i, int j) {
   return "(I = " + std::to_string(i) + ", J = " + std::to_string(j) + ")";
 }
 
-/// Per-step edge loads keyed by (M, N) so that repeated cards merge; values accumulate, each times
-/// factor(card).
-template <class Factor>
-void add_edges(std::map<std::pair<int, int>, EdgeLoad>& acc, const std::vector<EdgeCard>& cards, int kind,
-               const Factor& factor) {
-  for (const auto& c : cards) {
-    EdgeLoad& l = acc[{c.node_m - 1, c.node_n - 1}];
-    l.node_m = c.node_m - 1, l.node_n = c.node_n - 1;
-    (kind == 0 ? l.pressure : kind == 1 ? l.shear : l.transverse_shear) += factor(c) * c.value;
-  }
-}
-
 /// The deck's materials as the scene's (in deck order) and the plasticity they ask for.
 inline void scene_materials(const Deck& d, DeckScene& s) {
   for (const auto& m : d.materials) {
@@ -129,7 +115,7 @@ inline void finish_scene(const Deck& d, DeckScene& s) {
   // ---- temperature: the field; the load program applies it (StepTotals::thermal_fraction)
   s.reference_temperature = d.control.tref;
   if (!d.temperature_points.empty())
-    s.temperature = nodal_temperatures(s.mesh, d.temperature_points);
+    s.temperature = nodal_temperatures(s.mesh, d.temperature_points, d.temperature_where);
   else if (d.constant_temperature)
     s.temperature = VecX::Constant(nn, *d.constant_temperature);
 
@@ -259,9 +245,9 @@ inline DeckScene build_scene(const Deck& d) {
   detail::scene_materials(d, s);
 
   // ---- material blocks: cells whose corners all lie in the block's nodal rectangle
-  std::vector<int> cell_at(static_cast<std::size_t>(g.max_i) * g.max_j, -1);
+  std::vector<int> cell_at(g.box_points(), -1);  // by lower-left corner, in the grid's index box
   for (std::size_t e = 0; e < g.cells.size(); ++e)
-    cell_at[static_cast<std::size_t>(g.cells[e].j - 1) * g.max_i + g.cells[e].i - 1] = static_cast<int>(e);
+    cell_at[g.box_index(g.cells[e].i, g.cells[e].j)] = static_cast<int>(e);
   const std::size_t ne = g.cells.size();
   s.material_id.assign(ne, 0);
   s.ijdir.assign(ne, 0);
@@ -275,11 +261,12 @@ inline DeckScene build_scene(const Deck& d) {
                        std::to_string(b.material) + " is not defined by a material card (defined: " + ids +
                        ")");
     }
-    const int index = static_cast<int>(mat - d.materials.data());
-    int selected    = 0;
-    for (int j = b.j1; j < b.j2; ++j)
-      for (int i = b.i1; i < b.i2; ++i) {
-        const int e = cell_at[static_cast<std::size_t>(j - 1) * g.max_i + i - 1];
+    const int index             = static_cast<int>(mat - d.materials.data());
+    int selected                = 0;
+    const auto [i1, i2, j1, j2] = g.box_cut(b.i1, b.i2 - 1, b.j1, b.j2 - 1);
+    for (int j = j1; j <= j2; ++j)
+      for (int i = i1; i <= i2; ++i) {
+        const int e = cell_at[g.box_index(i, j)];
         if (e < 0) continue;
         ++selected;
         const double deg = kTwoPi / 360.0;
@@ -323,8 +310,9 @@ inline DeckScene build_scene(const Deck& d) {
     int found      = 0;
     const int card = static_cast<int>(s.condition_cards.size());
     s.condition_cards.push_back("bc" + std::to_string(card + 1));
-    for (int j = b.j1; j <= b.j2; ++j)
-      for (int i = b.i1; i <= b.i2; ++i)
+    const auto [i1, i2, j1, j2] = g.box_cut(b.i1, b.i2, b.j1, b.j2);
+    for (int j = j1; j <= j2; ++j)
+      for (int i = i1; i <= i2; ++i)
         if (const int n = g.node(i, j); n >= 0)
           s.conditions.push_back({n, b.code, b.value}), s.condition_card.push_back(card), ++found;
     if (found == 0)
@@ -337,97 +325,6 @@ inline DeckScene build_scene(const Deck& d) {
 
   detail::finish_scene(d, s);
   return s;
-}
-
-/// Loads a fraction `f` of the way from totals `a` to totals `b`: every load linear in f. Angular
-/// velocities enter squared (centrifugal load), so omega^2 is what is interpolated. `a` and `b` are two
-/// steps of one deck, so their conditions list the same nodes with the same codes.
-inline StepTotals interpolate(const StepTotals& a, const StepTotals& b, double f) {
-  StepTotals t = b;
-  for (std::size_t k = 0; k < t.conditions.size(); ++k)
-    for (int c = 0; c < 3; ++c)
-      t.conditions[k].value[c] =
-          a.conditions[k].value[c] + f * (b.conditions[k].value[c] - a.conditions[k].value[c]);
-  const auto lerp    = [f](double x, double y) { return x + f * (y - x); };
-  t.thermal_fraction = lerp(a.thermal_fraction, b.thermal_fraction);
-  const double wa = a.inertia.angular_velocity, wb = b.inertia.angular_velocity;
-  t.inertia.axial_acceleration   = lerp(a.inertia.axial_acceleration, b.inertia.axial_acceleration);
-  t.inertia.angular_acceleration = lerp(a.inertia.angular_acceleration, b.inertia.angular_acceleration);
-  t.inertia.angular_velocity =
-      std::copysign(std::sqrt(std::max(lerp(wa * wa, wb * wb), 0.0)), wb != 0 ? wb : wa);
-  std::map<std::pair<int, int>, EdgeLoad> edges;
-  for (const auto& l : b.edge_loads) edges[{l.node_m, l.node_n}] = l;
-  for (auto& [key, l] : edges) l.pressure *= f, l.shear *= f, l.transverse_shear *= f;
-  for (const auto& l : a.edge_loads) {
-    EdgeLoad& e = edges[{l.node_m, l.node_n}];
-    e.node_m = l.node_m, e.node_n = l.node_n;
-    e.pressure += (1 - f) * l.pressure, e.shear += (1 - f) * l.shear,
-        e.transverse_shear += (1 - f) * l.transverse_shear;
-  }
-  t.edge_loads.clear();
-  for (const auto& [key, l] : edges) t.edge_loads.push_back(l);
-  return t;
-}
-
-/// Loads in force after step `step` (1-based): the sum of the increments of steps 1..step, or where a scene
-/// file gave a load history (Deck::amplitudes), its factor at `step` times the load's value.
-inline StepTotals step_totals(const Deck& d, const DeckScene& s, int step) {
-  // A block given once (INCI = 0, INCF = 0) repeats: its total is `step` times the increment.
-  const int inertia_blocks = d.control.inci == 0 ? 1 : step, surface_blocks = d.control.incf == 0 ? 1 : step;
-  const double inertia_scale = d.control.inci == 0 ? step : 1, surface_scale = d.control.incf == 0 ? step : 1;
-  const auto factor = [&](int amplitude, double scale) {
-    return amplitude < 0 ? scale : d.amplitudes[static_cast<std::size_t>(amplitude)].at(step);
-  };
-  StepTotals t;
-  // The temperature field: a deck applies it in the first load step (ramped over it like that step's
-  // loads, so that a split of the step splits it too) and holds it; a scene may give it a history.
-  t.thermal_fraction = factor(d.temperature_amplitude, step < 1 ? 0.0 : 1.0);
-  t.conditions       = s.conditions;
-  for (std::size_t k = 0; k < t.conditions.size(); ++k) {
-    const double f = factor(s.condition_amplitude.empty() ? -1 : s.condition_amplitude[k], step);
-    for (double& v : t.conditions[k].value) v *= f;
-  }
-  std::map<std::pair<int, int>, EdgeLoad> edges;
-  for (int k = 1; k <= inertia_blocks; ++k) {
-    const InertiaLoad in = d.inertia(k);
-    const int amplitude =
-        d.control.inert != 0 && d.control.inci == 0 ? d.blocks_read[0].inertia_amplitude : -1;
-    const double f = factor(amplitude, inertia_scale);
-    t.inertia.axial_acceleration += f * in.axial_acceleration;
-    t.inertia.angular_velocity += f * in.angular_velocity;
-    t.inertia.angular_acceleration += f * in.angular_acceleration;
-  }
-  const auto card_factor = [&](const EdgeCard& c) { return factor(c.amplitude, surface_scale); };
-  for (int k = 1; k <= surface_blocks; ++k) {
-    const LoadBlock& b = d.surface(k);
-    detail::add_edges(edges, b.pressure, 0, card_factor);
-    detail::add_edges(edges, b.shear, 1, card_factor);
-    detail::add_edges(edges, b.transverse_shear, 2, card_factor);
-  }
-  if (const StrainRateTest& x = s.strain_rate_test; x.active()) {
-    // The faces' conditions come last, so they win (dof_map.hpp); they keep the deck's own components of
-    // the node's last card and add u_z (and u_theta at the bottom).
-    std::map<int, NodalCondition> last;
-    for (const auto& c : t.conditions) last[c.node] = c;
-    const auto drive = [&](int n, int code, double u_z) {
-      const auto it    = last.find(n);
-      NodalCondition c = it != last.end() ? it->second : NodalCondition{n, 0, {}};
-      c.code |= code;
-      c.value[dof::z] = u_z;
-      if (code & 4) c.value[dof::theta] = 0;
-      t.conditions.push_back(c);
-    };
-    for (const int n : x.bottom) drive(n, 2 | 4, 0.0);
-    for (const int n : x.top) drive(n, 2, x.top_displacement(step));
-    if (x.shear_step != 0 && step >= 1)
-      for (const auto& [m, n] : x.top_edges) {
-        EdgeLoad& l = edges[{m, n}];
-        l.node_m = m, l.node_n = n;
-        l.transverse_shear += x.shear_step;
-      }
-  }
-  for (const auto& [key, load] : edges) t.edge_loads.push_back(load);
-  return t;
 }
 
 }  // namespace gapfe

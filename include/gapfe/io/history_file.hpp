@@ -17,16 +17,18 @@
 //   iterations             linear solves of the increment (1 for a linear step; Newton's, or the contact
 //                          policy's, otherwise)
 //   residual               the increment's relative residual (|K u - f| / |f|, or Newton's |R| / |F_int|)
-// Rows are flushed as they are written, so a run that fails keeps the history of what it accepted.
+// Each row is one write (io/output_file.hpp), so a run that fails or is killed keeps the history of what it
+// accepted, every row whole.
 #include <algorithm>
-#include <fstream>
 #include <map>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "gapfe/core/error.hpp"
+#include "gapfe/core/text.hpp"
 #include "gapfe/io/deck_scene.hpp"
+#include "gapfe/io/output_file.hpp"
 #include "gapfe/io/vtu_writer.hpp"
 #include "gapfe/problem/results.hpp"
 
@@ -65,8 +67,9 @@ class HistoryFile {
     for (Card& c : cards_) {
       std::sort(c.nodes.begin(), c.nodes.end());
       c.nodes.erase(std::unique(c.nodes.begin(), c.nodes.end()), c.nodes.end());
-      for (char& ch : c.name)  // a CSV header: no separators or quotes in a name (a group may hold any)
-        if (ch == ',' || ch == '"' || ch == '\n' || ch == '\r') ch = '_';
+      c.name = detail::visible_text(c.name);  // a CSV header: no control characters (core/text.hpp), and
+      for (char& ch : c.name)                 // no separators or quotes in a name (a group may hold any)
+        if (ch == ',' || ch == '"') ch = '_';
       std::string name = c.name;
       for (int k = 2; !used.insert(name).second; ++k) name = c.name + "_" + std::to_string(k);
       for (int comp = 0; comp < 3; ++comp)
@@ -74,9 +77,8 @@ class HistoryFile {
     }
     head += std::string(",u_max,closed,slipping") + (friction ? ",cone_ratio" : "") +
             ",plastic_points,iterations,residual\n";
-    out_.open(dir + "/history.csv", std::ios::binary);
-    if (!out_) throw InputError("cannot write " + dir + "/history.csv");
-    out_ << head << std::flush;
+    out_ = OutputFile(dir + "/history.csv");
+    out_.append(head);
   }
 
   void write(int step, double inc, const Solution& s, const IncrementSummary& summary) {
@@ -106,9 +108,10 @@ class HistoryFile {
     }
     row += ',';
     detail::append_number(row, s.residual);
-    out_ << row << '\n' << std::flush;
-    if (!out_) throw InputError("error while writing history.csv");
+    row += '\n';
+    out_.append(row);
   }
+  void close() { out_.close(); }
 
  private:
   struct Card {
@@ -120,7 +123,7 @@ class HistoryFile {
   int steps_        = 1;
   double step_time_ = 1;
   bool friction_    = false;
-  std::ofstream out_;
+  OutputFile out_;
 };
 
 }  // namespace gapfe

@@ -49,7 +49,6 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <initializer_list>
 #include <iomanip>
@@ -67,6 +66,7 @@
 #include "gapfe/contact/gap_pairs.hpp"
 #include "gapfe/io/deck.hpp"
 #include "gapfe/io/deck_scene.hpp"
+#include "gapfe/io/input_file.hpp"
 #include "gapfe/io/scene_mesh.hpp"
 #include "gapfe/io/scene_table.hpp"
 #include "gapfe/material/orientation.hpp"
@@ -306,6 +306,8 @@ class SceneBuilder {
       text = load_mesh(mesh_name_);
     } catch (const InputError& e) {
       throw InputError("scene: " + table->where("file") + ": " + e.what());
+    } catch (const FileError& e) {  // still a file problem (exit 3), now naming the key that named the file
+      throw FileError("scene: " + table->where("file") + ": " + e.what());
     }
     mesh_ = std::make_unique<GmshSceneMesh>(mesh_name_, text, model_.scene);
   }
@@ -379,6 +381,9 @@ class SceneBuilder {
       d.materials.push_back(m.deck);
     }
     d.control.nummat = static_cast<int>(d.materials.size());
+    // Per cell, the material (index into read) and surface that gave it one: a cell in two surface groups
+    // (a surface in "steel" and in "all") may be named by both, for one material only.
+    std::vector<std::pair<int, const std::string*>> given(s.material_id.size(), {-1, nullptr});
     for (std::size_t k = 0; k < read.size(); ++k) {
       const auto& [m, t] = read[k];
       const double deg   = kTwoPi / 360.0;
@@ -387,10 +392,13 @@ class SceneBuilder {
       for (const std::string& surface : m.surfaces)
         for (const int e :
              in_group(t, "surfaces", [&](const SceneMesh& g) { return g.surface_cells(surface); })) {
-          if (s.material_id[e] != 0 && s.material_id[e] != m.deck.id)
+          auto& [first, first_surface] = given[static_cast<std::size_t>(e)];
+          if (first >= 0 && first != static_cast<int>(k))
             throw InputError("scene: " + t.where("surfaces") + ": " + mesh_->cell_where(e) + ", in \"" +
-                             surface + "\", already has material " + std::to_string(s.material_id[e]) +
-                             "; a cell takes one material, so a surface is in two materials");
+                             surface + "\", is also in \"" + *first_surface + "\" of [materials." +
+                             read[static_cast<std::size_t>(first)].first.name +
+                             "]: a cell takes one material, so two materials may not name it");
+          first = static_cast<int>(k), first_surface = &surface;
           s.material_id[e] = m.deck.id;
           tag(e)           = cell_tag;
         }
@@ -439,7 +447,7 @@ class SceneBuilder {
       for (const std::string& name : groups) {
         s.condition_cards.back() += (s.condition_cards.back().empty() ? "" : "+") + name;
         for (const int n : in_group(b, "groups", [&](const SceneMesh& g) { return g.nodes(name); })) {
-          s.conditions.push_back({n, code, value});
+          s.conditions.push_back({n, code, value, given});
           s.condition_amplitude.push_back(history);
           s.condition_card.push_back(card);
         }
@@ -472,13 +480,27 @@ class SceneBuilder {
         throw InputError("scene: " + l.where() + ": a [[load]] needs pressure, shear or transverse_shear");
       const CardRef ref{"scene key '" + l.path() + ".curves'",
                         l.has("curves") ? SceneTable::line(*l.get("curves")) : 0};
-      for (const std::string& name : l.names("curves"))
+      // Each edge once per [[load]]: a curve named twice, or two curves that share an edge, would load it
+      // twice.
+      std::map<std::pair<int, int>, std::string> loaded;  // edge (sorted nodes) -> the curve that loads it
+      const std::vector<std::string> curves = l.names("curves");
+      for (std::size_t k = 0; k < curves.size(); ++k)
+        if (std::find(curves.begin(), curves.begin() + static_cast<std::ptrdiff_t>(k), curves[k]) !=
+            curves.begin() + static_cast<std::ptrdiff_t>(k))
+          throw InputError("scene: " + l.where("curves") + ": the curve \"" + curves[k] +
+                           "\" is listed twice (its edges would be loaded twice)");
+      for (const std::string& name : curves)
         for (const SceneEdge& e :
              in_group(l, "curves", [&](const SceneMesh& groups) { return groups.curve_edges(name); })) {
           int m = e.m, n = e.n;
           const std::string& edge = e.where;
-          const bool forward      = m >= 0 && n >= 0 && ccw.count({m, n}),
-                     backward     = m >= 0 && n >= 0 && ccw.count({n, m});
+          if (const auto [at, fresh] = loaded.emplace(std::minmax(m, n), name); !fresh)
+            throw InputError("scene: " + l.where("curves") + ": the curves \"" + at->second + "\" and \"" +
+                             name + "\" share " + edge +
+                             ": a [[load]] loads each edge once (name it in one curve, or "
+                             "give the two their own [[load]] tables to load it twice)");
+          const bool forward  = m >= 0 && n >= 0 && ccw.count({m, n}),
+                     backward = m >= 0 && n >= 0 && ccw.count({n, m});
           if (!forward && !backward)
             throw InputError("scene: " + l.where("curves") + ": " + edge + " is not a side of a cell");
           if (forward && backward)
@@ -525,6 +547,7 @@ class SceneBuilder {
     }
     const toml::node* p = t->get("points");
     if (!p) return;
+    d.temperature_where  = "scene: " + t->where("points") + ", point";
     const toml::array* a = p->as_array();
     if (!a || a->empty()) t->fail("points", "an array of [r, z, T] points");
     for (const toml::node& e : *a) {
@@ -629,17 +652,10 @@ inline SceneModel read_scene(std::string_view text, const SceneMeshLoader& load_
 /// Read a scene file from disk, its mesh path relative to the file's directory.
 inline SceneModel read_scene_file(const std::string& path,
                                   const std::vector<std::pair<std::string, std::string>>& overrides = {}) {
-  const auto slurp = [](const std::filesystem::path& file, const std::string& what) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw InputError("cannot open the " + what + " '" + file.string() + "'");
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-  };
   const std::filesystem::path base = std::filesystem::path(path).parent_path();
   SceneModel m                     = read_scene(
-                          slurp(path, "scene file"), [&](const std::string& name) { return slurp(base / name, "mesh"); },
-                          overrides);
+                          read_input(path, "scene file"),
+                          [&](const std::string& name) { return read_input((base / name).string(), "mesh"); }, overrides);
   if (!m.mesh_file.empty()) m.mesh_file = (base / m.mesh_file).string();
   return m;
 }

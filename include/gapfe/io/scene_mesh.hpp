@@ -105,7 +105,7 @@ class GmshSceneMesh final : public SceneMesh {
     const int tag = gmsh_.physical(2, name);
     std::vector<int> out;
     for (std::size_t e = 0; e < gmsh_.cells.size(); ++e)
-      if (gmsh_.cells[e].physical == tag) out.push_back(static_cast<int>(e));
+      if (gmsh_.cells[e].in(tag)) out.push_back(static_cast<int>(e));
     if (out.empty()) throw InputError("the surface group \"" + name + "\" has no cells in the mesh");
     return out;
   }
@@ -113,7 +113,7 @@ class GmshSceneMesh final : public SceneMesh {
     const int tag = gmsh_.physical(1, name);
     std::vector<SceneEdge> out;
     for (const GmshElement& x : gmsh_.edges)
-      if (x.physical == tag)
+      if (x.in(tag))
         out.push_back(
             {fe_.node[x.nodes[0]], fe_.node[x.nodes[1]],
              "the line element at line " + std::to_string(x.line) + " of the mesh (curve \"" + name + "\")"});
@@ -139,10 +139,12 @@ class GmshSceneMesh final : public SceneMesh {
   }
   std::string cell_where(int cell) const override {
     const GmshElement& c = gmsh_.cells[static_cast<std::size_t>(cell)];
-    const auto name      = gmsh_.physical_names.find({2, c.physical});
+    std::string groups;
+    for (const int tag : c.physical)
+      if (const auto name = gmsh_.physical_names.find({2, tag}); name != gmsh_.physical_names.end())
+        groups += (groups.empty() ? "" : ", ") + ("\"" + name->second + "\"");
     return "the cell at line " + std::to_string(c.line) + " of the mesh " +
-           (name != gmsh_.physical_names.end() ? "(surface group \"" + name->second + "\")"
-                                               : std::string("(in no named surface group)"));
+           (groups.empty() ? std::string("(in no named surface group)") : "(surface group " + groups + ")");
   }
 
  private:
@@ -244,8 +246,9 @@ class GridSceneMesh final : public SceneMesh {
   std::vector<int> nodes(const std::string& name) const override {
     const Rectangle& r = group(name);
     std::vector<int> out;
-    for (int j = r.j[0]; j <= r.j[1]; ++j)
-      for (int i = r.i[0]; i <= r.i[1]; ++i)
+    const auto [i1, i2, j1, j2] = grid_->box_cut(r.i[0], r.i[1], r.j[0], r.j[1]);
+    for (int j = j1; j <= j2; ++j)
+      for (int i = i1; i <= i2; ++i)
         if (const int n = grid_->node(i, j); n >= 0) out.push_back(n);
     if (out.empty()) throw InputError("the group \"" + name + "\" (" + r.text() + ") holds no grid point");
     std::sort(out.begin(), out.end());

@@ -11,13 +11,16 @@
 #include <utility>
 #include <vector>
 
+#include "gapfe/core/text.hpp"
 #include "gapfe/core/types.hpp"
 #include "gapfe/io/vtu_writer.hpp"
 
 namespace gapfe::detail {
 
-/// Text escaped for SVG/XML character data and attribute values.
-inline std::string xml_text(const std::string& s) {
+/// Text escaped for SVG/XML character data and attribute values; what XML cannot hold at all (a control
+/// character, a byte that is not UTF-8) shown as \xNN (core/text.hpp), so the picture always parses.
+inline std::string xml_text(const std::string& text) {
+  const std::string s = visible_text(text);
   std::string out;
   out.reserve(s.size());
   for (const char c : s)

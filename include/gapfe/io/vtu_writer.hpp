@@ -4,18 +4,18 @@
 // UInt32 byte count and the little-endian values): exact doubles, and several times faster to write
 // than text, which matters when every contact increment writes a file.
 //
-// Files are written to path + ".tmp" and renamed, so an interrupted run never leaves a half-written
-// file under the final name.
+// Files are written whole through write_file_atomically (io/output_file.hpp), so an interrupted run never
+// leaves a half-written file under the final name.
 #include <bit>
 #include <charconv>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <string>
 #include <vector>
 
 #include "gapfe/core/error.hpp"
+#include "gapfe/io/output_file.hpp"
 #include "gapfe/mesh/mesh.hpp"
 #include "gapfe/problem/results.hpp"
 
@@ -43,36 +43,17 @@ struct VtuCells {
 
 namespace detail {
 
-inline void append_number(std::string& s, double v) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  s.append(buf, r.ptr);
-}
-inline void append_number(std::string& s, long long v) {
-  char buf[24];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  s.append(buf, r.ptr);
-}
-
-/// Write `text` to `path` through a temporary file and a rename.
-inline void write_file_atomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out) throw InputError("cannot write " + path);
-    out.write(text.data(), static_cast<std::streamsize>(text.size()));
-    if (!out) throw InputError("error while writing " + path);
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw InputError("cannot rename " + tmp + " to " + path);
-}
-
 /// VTK inline binary: base64 of [UInt32 byte count][the values' bytes], then a newline. Written in place
 /// into `s` (resized once): at 1e6 nodes these arrays are 100 MB of text.
 template <class T>
 void append_binary(std::string& s, const std::vector<T>& values) {
   static_assert(std::endian::native == std::endian::little, "the VTU files declare LittleEndian");
   static constexpr char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  const auto bytes                = static_cast<std::uint32_t>(values.size() * sizeof(T));
+  if (values.size() * sizeof(T) > 0xffffffffu)  // the header's UInt32 would wrap: a file ParaView misreads
+    throw FileError("a VTU array of " + std::to_string(values.size()) +
+                    " values is past the 4 GiB that "
+                    "its UInt32 header can count: write fewer steps' fields, or a coarser mesh");
+  const auto bytes = static_cast<std::uint32_t>(values.size() * sizeof(T));
   unsigned char header[sizeof bytes];
   std::memcpy(header, &bytes, sizeof bytes);
   const auto* data    = reinterpret_cast<const unsigned char*>(values.data());
@@ -89,7 +70,9 @@ void append_binary(std::string& s, const std::vector<T>& values) {
   };
   std::size_t k = 0;
   for (; k + 3 <= n && k < 2 * 3; k += 3) encode(at(k) << 16 | at(k + 1) << 8 | at(k + 2));  // the header
-  for (const unsigned char* d = data + (k - sizeof bytes); k + 3 <= n; k += 3, d += 3)
+  // Past the header (k >= 4 whenever a whole group of data follows; an empty array stops at k = 3).
+  for (const unsigned char* d = k >= sizeof bytes ? data + (k - sizeof bytes) : data; k + 3 <= n;
+       k += 3, d += 3)
     encode(std::uint32_t(d[0]) << 16 | std::uint32_t(d[1]) << 8 | d[2]);
   if (const std::size_t rest = n - k; rest > 0) {
     const std::uint32_t b = at(k) << 16 | (rest > 1 ? at(k + 1) << 8 : 0u);
@@ -169,18 +152,6 @@ inline void write_vtu(const std::string& path, const VtuMesh& mesh, const std::v
 inline void write_vtu(const std::string& path, const std::vector<Vec2>& nodes, const VtuCells& cells,
                       const std::vector<VtuField>& point_data, const std::vector<VtuField>& cell_data) {
   write_vtu(path, VtuMesh(nodes, cells), point_data, cell_data);
-}
-
-/// A ParaView collection: one dataset per (time, file) pair; `time` is the load increment count.
-inline void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& steps) {
-  std::string s = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
-  for (const auto& [time, file] : steps) {
-    s += "<DataSet timestep=\"";
-    detail::append_number(s, time);
-    s += "\" file=\"" + file + "\"/>\n";
-  }
-  s += "</Collection>\n</VTKFile>\n";
-  detail::write_file_atomically(path, s);
 }
 
 /// An analysis' results on its mesh: displacement and reaction per node (`s`); centroid stress and strain

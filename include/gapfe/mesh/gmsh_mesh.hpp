@@ -35,7 +35,7 @@ struct GmshFeMesh {
     const int tag = g.physical(dim, name);
     std::vector<int> out;
     for (const GmshElement& e : dim == 1 ? g.edges : g.cells)
-      if (e.physical == tag)
+      if (e.in(tag))
         for (int k = 0; k < e.node_count; ++k)
           if (const int n = node[static_cast<std::size_t>(e.nodes[static_cast<std::size_t>(k)])]; n >= 0)
             out.push_back(n);
@@ -82,11 +82,20 @@ GmshFeMesh<NodesPerCell> gmsh_fe_mesh(const GmshMesh& g,
   for (const GmshElement& c : g.cells) {
     CellTag tag;
     if (!material_of_tag.empty()) {
-      const auto it = material_of_tag.find(c.physical);
-      if (it == material_of_tag.end())
+      // One material per cell: a cell in two surfaces that each have a material is ambiguous.
+      int found = -1, found_tag = 0;
+      for (const int group : c.physical)
+        if (const auto it = material_of_tag.find(group); it != material_of_tag.end()) {
+          if (found >= 0 && it->second != found)
+            throw InputError("line " + std::to_string(c.line) + ": the cell is in the surfaces \"" +
+                             g.physical_names.at({2, found_tag}) + "\" and \"" +
+                             g.physical_names.at({2, group}) + "\", which have different materials");
+          found = it->second, found_tag = group;
+        }
+      if (found < 0)
         throw InputError("line " + std::to_string(c.line) +
                          ": the cell is in no physical surface that has a material");
-      tag.material = it->second;
+      tag.material = found;
     }
     const auto at = [&](int k) {
       return fe.node[static_cast<std::size_t>(c.nodes[static_cast<std::size_t>(k)])];

@@ -16,12 +16,19 @@
 // quadrangle) is an error naming its type and line. Node orderings are Gmsh's, which are gapfe's too
 // (corners counterclockwise, then the mid-sides 0-1, 1-2, ...: element/quad8.hpp).
 //
+// Physical groups: an element may belong to several (a surface in "steel" and in "all"). MSH 4.1 gives the
+// groups of each entity; MSH 2.2 writes the element once per group it is in, and those copies (the same
+// nodes, type and elementary entity, another group) are read as one element in every group. A repeated
+// element otherwise (the same corner set again: in the same group, in another entity, or in a 4.1 file) is
+// an error, so that no cell is assembled twice.
+//
 // Checks, each an InputError naming the file's line: node tags may have gaps and come in any order, but each
-// once, and every element's nodes must exist; x = r >= 0 (to 1e-12 of the mesh size: a node a rounding error
-// left of the axis is put on it); z = 0 (a meridian section is flat); cells with zero or negative area are
-// refused after clockwise ones (negative signed area of the corners in (r, z)) are turned counterclockwise,
-// which gapfe's elements need (element to the left of each edge); a truncated file names the section it
-// ends in.
+// once, and every element's nodes must exist, each once in the element; x = r >= 0 (to 1e-12 of the mesh
+// size: a node a rounding error left of the axis is put on it); z = 0 (a meridian section is flat); cells
+// with zero or negative area are refused after clockwise ones (negative signed area of the corners in (r, z))
+// are turned counterclockwise, which gapfe's elements need (element to the left of each edge); every count
+// and tag in its range (tags up to 2^31 - 1); numbers are never quoted, names are ("" is no name); two
+// physical groups of one dimension may not share a name; a truncated file names the section it ends in.
 //
 // Units: whatever the file holds, read as the model's length unit (the library never converts).
 #include <algorithm>
@@ -37,17 +44,20 @@
 
 #include "gapfe/core/error.hpp"
 #include "gapfe/core/types.hpp"
+#include "gapfe/mesh/gmsh_words.hpp"
 
 namespace gapfe {
 
 /// A 2-D cell or a 1-D edge of a Gmsh mesh: its nodes as indices into GmshMesh::nodes (Gmsh's order),
-/// its physical group (0: none) and its Gmsh element type.
+/// its physical groups and its Gmsh element type.
 struct GmshElement {
   int type       = 0;          ///< Gmsh element type: 1, 8 (lines), 2, 9 (triangles), 3, 16 (quadrangles)
   int node_count = 0;          ///< 2, 3, 6, 4 or 8
   std::array<int, 8> nodes{};  ///< 0-based node indices, counterclockwise for cells
-  int physical = 0;            ///< physical group tag (0: the element belongs to none)
-  int line     = 0;            ///< line of the file where it is defined (for later errors)
+  std::vector<int> physical;   ///< the physical group tags it belongs to (none: empty)
+  int line = 0;                ///< line of the file where it is defined (for later errors)
+
+  bool in(int group) const { return std::find(physical.begin(), physical.end(), group) != physical.end(); }
 };
 
 struct GmshMesh {
@@ -73,146 +83,63 @@ struct GmshMesh {
   }
 };
 
-namespace detail {
-
-/// Gmsh's element types that gapfe reads, with their node counts (0: skipped, -1: not supported).
-inline int gmsh_node_count(int type) {
-  switch (type) {
-    case 1:
-      return 2;  // 2-node line
-    case 8:
-      return 3;  // 3-node line
-    case 2:
-      return 3;  // 3-node triangle
-    case 9:
-      return 6;  // 6-node triangle
-    case 3:
-      return 4;  // 4-node quadrangle
-    case 16:
-      return 8;  // 8-node quadrangle
-    case 15:
-      return 0;  // point: skipped
-    default:
-      return -1;
-  }
-}
-/// The corners of a Gmsh cell type: 3 for triangles (2, 9), else 4 (quadrangles 3, 16).
-inline int gmsh_corners(int type) {
-  return type == 2 || type == 9 ? 3 : 4;
-}
-inline int gmsh_dimension(int type) {
-  return type == 1 || type == 8 ? 1 : type == 15 ? 0 : 2;
-}
-
-/// The file as whitespace-separated words with their line numbers, read in order.
-class GmshWords {
- public:
-  explicit GmshWords(std::string_view text) : text_(text) {}
-
-  /// The next word; InputError naming `what` and the section when the file ends.
-  std::string_view word(const char* what) {
-    skip_space();
-    if (at_ >= text_.size())
-      throw InputError("the file ends in " + section_ + " (line " + std::to_string(line_) + ") where " +
-                       what + " was expected: truncated?");
-    const std::size_t start = at_;
-    if (text_[at_] == '"') {  // a quoted name, spaces included
-      const std::size_t end = text_.find('"', at_ + 1);
-      if (end == std::string_view::npos || text_.substr(at_, end - at_).find('\n') != std::string_view::npos)
-        fail(std::string("an unterminated quoted name where ") + what + " was expected");
-      at_ = end + 1;
-      return text_.substr(start + 1, end - start - 1);
-    }
-    while (at_ < text_.size() && !std::isspace(static_cast<unsigned char>(text_[at_]))) ++at_;
-    return text_.substr(start, at_ - start);
-  }
-  long integer(const char* what) {
-    const std::string_view w = word(what);
-    long v                   = 0;
-    std::size_t k            = w[0] == '-' || w[0] == '+' ? 1 : 0;
-    if (k == w.size()) fail(std::string(what) + ": expected an integer, found '" + std::string(w) + "'");
-    for (; k < w.size(); ++k) {
-      if (w[k] < '0' || w[k] > '9' || v > 100'000'000'000L)
-        fail(std::string(what) + ": expected an integer, found '" + std::string(w) + "'");
-      v = v * 10 + (w[k] - '0');
-    }
-    return w[0] == '-' ? -v : v;
-  }
-  /// An integer in [lo, hi].
-  int count(const char* what, long lo, long hi) {
-    const long v = integer(what);
-    if (v < lo || v > hi)
-      fail(std::string(what) + " = " + std::to_string(v) + ": expected " + std::to_string(lo) + " to " +
-           std::to_string(hi));
-    return static_cast<int>(v);
-  }
-  double real(const char* what) {
-    const std::string w(word(what));
-    char* end      = nullptr;
-    const double v = std::strtod(w.c_str(), &end);
-    if (end != w.c_str() + w.size() || !std::isfinite(v))
-      fail(std::string(what) + ": expected a finite number, found '" + w + "'");
-    return v;
-  }
-  /// Skip to the line after `$End<name>`.
-  void skip_section(const std::string& name) {
-    const std::string end = "$End" + name;
-    for (;;) {
-      const std::string_view w = word(end.c_str());
-      if (w == end) return;
-    }
-  }
-  void expect(const std::string& token) {
-    const std::string_view w = word(token.c_str());
-    if (w != token) fail("expected " + token + ", found '" + std::string(w) + "'");
-  }
-  bool done() {
-    skip_space();
-    return at_ >= text_.size();
-  }
-  int line() const { return line_; }
-  void enter(const std::string& section) { section_ = section; }
-  [[noreturn]] void fail(const std::string& why) const {
-    throw InputError("line " + std::to_string(line_) + " (" + section_ + "): " + why);
-  }
-
- private:
-  void skip_space() {
-    while (at_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[at_]))) {
-      if (text_[at_] == '\n') ++line_;
-      ++at_;
-    }
-  }
-  std::string_view text_;
-  std::size_t at_      = 0;
-  int line_            = 1;
-  std::string section_ = "the file's start";
-};
-
-}  // namespace detail
-
 /// Read an MSH 4.1 or 2.2 ASCII file held in `text`. Throws InputError naming the line and what was wrong.
 inline GmshMesh read_gmsh(std::string_view text) {
   GmshMesh m;
   detail::GmshWords in(text);
-  std::unordered_map<long, int> index;                 // node tag -> index
-  std::map<std::pair<int, int>, int> entity_physical;  // 4.1: (dim, entity tag) -> first physical tag
+  std::unordered_map<long, int> index;                              // node tag -> index
+  std::map<std::pair<int, int>, std::vector<int>> entity_physical;  // 4.1: (dim, entity tag) -> groups
+  // Every element read so far by (dimension, its sorted nodes): where it is (index into cells or edges) and
+  // its elementary entity (2.2; -1 in 4.1), to find MSH 2.2's copies of an element in another group.
+  struct Seen {
+    int index;
+    long entity;
+  };
+  std::map<std::pair<int, std::array<int, 8>>, Seen> seen;
   bool format = false, nodes = false, elements = false;
   // Elements may name nodes of a $Nodes section that follows them only in files gapfe does not write;
   // Gmsh writes $Nodes first, and so the reader requires it.
-  const auto add_element = [&](int type, int physical, const std::vector<long>& tags, int line) {
+  const auto add_element = [&](int type, const std::vector<int>& physical, long entity,
+                               const std::vector<long>& tags, int line) {
     const int count = detail::gmsh_node_count(type);
     if (count == 0) return;  // a point
+    const std::string where = "line " + std::to_string(line) + " ($Elements): ";
     GmshElement e;
     e.type = type, e.node_count = count, e.physical = physical, e.line = line;
     for (int k = 0; k < count; ++k) {
       const auto it = index.find(tags[static_cast<std::size_t>(k)]);
       if (it == index.end())
-        throw InputError("line " + std::to_string(line) + " ($Elements): node " +
-                         std::to_string(tags[static_cast<std::size_t>(k)]) + " is not in $Nodes");
+        throw InputError(where + "node " + std::to_string(tags[static_cast<std::size_t>(k)]) +
+                         " is not in $Nodes");
       e.nodes[static_cast<std::size_t>(k)] = it->second;
     }
-    if (detail::gmsh_dimension(type) == 1) {
+    std::array<int, 8> key;
+    key.fill(-1);
+    std::copy(e.nodes.begin(), e.nodes.begin() + count, key.begin());
+    std::sort(key.begin(), key.begin() + count);
+    for (int k = 1; k < count; ++k)
+      if (key[static_cast<std::size_t>(k)] == key[static_cast<std::size_t>(k - 1)])
+        throw InputError(
+            where + "the element names node " +
+            std::to_string(m.node_tags[static_cast<std::size_t>(key[static_cast<std::size_t>(k)])]) +
+            " twice (a collapsed element)");
+    const int dim                  = detail::gmsh_dimension(type);
+    std::vector<GmshElement>& list = dim == 1 ? m.edges : m.cells;
+    if (const auto it = seen.find({dim, key}); it != seen.end()) {
+      GmshElement& first = list[static_cast<std::size_t>(it->second.index)];
+      // MSH 2.2 writes an element once per physical group it is in: the same element in another group.
+      const bool copy = m.version == 2.2 && first.type == type && it->second.entity == entity &&
+                        physical.size() == 1 && !first.physical.empty() && !first.in(physical.front());
+      if (!copy)
+        throw InputError(
+            where + "the element repeats the one of line " + std::to_string(first.line) + " (the same nodes" +
+            (physical.size() == 1 && first.in(physical.front()) ? ", in the same physical group" : "") +
+            "): a cell or edge is given once (in every physical group it belongs to)");
+      first.physical.push_back(physical.front());
+      return;
+    }
+    seen.emplace(std::make_pair(dim, key), Seen{static_cast<int>(list.size()), entity});
+    if (dim == 1) {
       m.edges.push_back(e);
       return;
     }
@@ -262,10 +189,19 @@ inline GmshMesh read_gmsh(std::string_view text) {
       in.fail("the file does not start with $MeshFormat: not an MSH file?");
     } else if (name == "PhysicalNames") {
       const int n = in.count("the number of names", 0, 1'000'000);
+      std::map<std::pair<int, std::string>, int> tag_of_name;  // (a linear scan was quadratic in n)
       for (int k = 0; k < n; ++k) {
-        const int dim                = in.count("a physical group's dimension", 0, 3);
-        const int tag                = in.count("a physical group's tag", 1, 2'147'483'647L);
-        m.physical_names[{dim, tag}] = std::string(in.word("a physical group's name"));
+        const int dim             = in.count("a physical group's dimension", 0, 3);
+        const int tag             = in.count("a physical group's tag", 1, 2'147'483'647L);
+        const std::string group   = std::string(in.name("a physical group's name"));
+        const auto [named, fresh] = tag_of_name.try_emplace({dim, group}, tag);
+        if (!fresh && named->second != tag)
+          in.fail("physical groups " + std::to_string(named->second) + " and " + std::to_string(tag) +
+                  " of dimension " + std::to_string(dim) + " are both named \"" + group +
+                  "\": a name picks one group");
+        if (!m.physical_names.emplace(std::make_pair(dim, tag), group).second)
+          in.fail("physical group " + std::to_string(tag) + " of dimension " + std::to_string(dim) +
+                  " is named twice");
       }
       in.expect("$EndPhysicalNames");
     } else if (name == "Entities" && m.version == 4.1) {
@@ -276,10 +212,9 @@ inline GmshMesh read_gmsh(std::string_view text) {
           const int tag = in.count("an entity tag", 0, 2'147'483'647L);
           for (int c = 0; c < (dim == 0 ? 3 : 6); ++c) in.real("an entity's bounding box");
           const int n = in.count("the number of physical tags", 0, 1'000'000);
-          for (int p = 0; p < n; ++p) {
-            const long physical = in.integer("a physical tag");
-            if (p == 0) entity_physical[{dim, tag}] = static_cast<int>(std::labs(physical));
-          }
+          for (int p = 0; p < n; ++p)  // (a negative tag gives the group's orientation)
+            entity_physical[{dim, tag}].push_back(
+                static_cast<int>(std::labs(in.count("a physical tag", -2'147'483'647L, 2'147'483'647L))));
           if (dim > 0) {
             const int b = in.count("the number of bounding entities", 0, 100'000'000);
             for (int q = 0; q < b; ++q) in.integer("a bounding entity");
@@ -290,6 +225,7 @@ inline GmshMesh read_gmsh(std::string_view text) {
       if (nodes) in.fail("a second $Nodes section");
       nodes          = true;
       const auto add = [&](long tag, double x, double y, double z) {
+        if (tag < 1) in.fail("node tag " + std::to_string(tag) + ": Gmsh's tags start at 1");
         if (!index.emplace(tag, static_cast<int>(m.nodes.size())).second)
           in.fail("node " + std::to_string(tag) + " is given twice");
         if (z != 0)
@@ -353,36 +289,41 @@ inline GmshMesh read_gmsh(std::string_view text) {
         in.integer("the smallest element tag");
         in.integer("the largest element tag");
         for (int b = 0; b < blocks; ++b) {
-          const int dim      = in.count("a block's entity dimension", 0, 3);
-          const int entity   = in.count("a block's entity tag", 0, 2'147'483'647L);
-          const int type     = read_type();
-          const int n        = in.count("a block's element count", 0, 1'000'000'000);
-          const auto it      = entity_physical.find({dim, entity});
-          const int physical = it == entity_physical.end() ? 0 : it->second;
-          const int count    = std::max(detail::gmsh_node_count(type), type == 15 ? 1 : 0);
+          const int dim                   = in.count("a block's entity dimension", 0, 3);
+          const int entity                = in.count("a block's entity tag", 0, 2'147'483'647L);
+          const int type                  = read_type();
+          const int n                     = in.count("a block's element count", 0, 1'000'000'000);
+          const auto it                   = entity_physical.find({dim, entity});
+          const std::vector<int> physical = it == entity_physical.end() ? std::vector<int>{} : it->second;
+          const int count                 = std::max(detail::gmsh_node_count(type), type == 15 ? 1 : 0);
           for (int k = 0; k < n; ++k) {
             in.integer("an element tag");
             const int line = in.line();
             for (int a = 0; a < count; ++a)
               tags[static_cast<std::size_t>(a)] = in.integer("an element's node");
-            add_element(type, physical, tags, line);
+            add_element(type, physical, -1, tags, line);
           }
         }
       } else {
         const int n = in.count("the number of elements", 0, 1'000'000'000);
         for (int k = 0; k < n; ++k) {
           in.integer("an element tag");
-          const int line  = in.line();
-          const int type  = read_type();
+          const int line = in.line();
+          const int type = read_type();
+          // Tags: the physical group (0: none), the elementary entity, then any others (partitions).
           const int ntags = in.count("the number of element tags", 0, 100);
           int physical    = 0;
+          long entity     = 0;
           for (int t = 0; t < ntags; ++t) {
-            const long v = in.integer("an element tag value");
-            if (t == 0) physical = static_cast<int>(std::labs(v));
+            const int v = in.count(t == 0 ? "an element's physical tag" : "an element tag value",
+                                   t == 0 ? 0 : -2'147'483'647L, 2'147'483'647L);
+            if (t == 0) physical = v;
+            if (t == 1) entity = v;
           }
           const int count = std::max(detail::gmsh_node_count(type), type == 15 ? 1 : 0);
           for (int a = 0; a < count; ++a) tags[static_cast<std::size_t>(a)] = in.integer("an element's node");
-          add_element(type, physical, tags, line);
+          add_element(type, physical > 0 ? std::vector<int>{physical} : std::vector<int>{}, entity, tags,
+                      line);
         }
       }
       in.expect("$EndElements");

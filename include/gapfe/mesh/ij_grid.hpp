@@ -21,6 +21,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -62,8 +63,12 @@ struct GridCell {
 
 struct IJGrid {
   int max_i = 0, max_j = 0;
-  std::vector<int> row_min, row_max;        ///< IMIN(J), IMAX(J) at [J - 1]; 0, -1 for an empty row
-  std::vector<int> node_at;                 ///< node at [(J - 1) max_i + I - 1], -1 when absent
+  /// The index box the line segment cards reach, I in [i0, i0 + box_i), J in [j0, j0 + box_j): every node
+  /// lies in it, and the per-point arrays below span it, not MAXI x MAXJ (memory follows what the cards
+  /// place).
+  int i0 = 1, j0 = 1, box_i = 0, box_j = 0;
+  std::vector<int> row_min, row_max;        ///< IMIN(J), IMAX(J) at [J - j0]; 0, -1 for an empty row
+  std::vector<int> node_at;                 ///< node at box_index(I, J), -1 when absent
   std::vector<Vec2> nodes;                  ///< (r, z) [length]
   std::vector<std::array<int, 2>> node_ij;  ///< (I, J) of every node
   std::vector<char> placed;                 ///< 1 when a segment card placed the node
@@ -72,9 +77,16 @@ struct IJGrid {
 
   int node_count() const { return static_cast<int>(nodes.size()); }
   bool inside(int i, int j) const { return i >= 1 && i <= max_i && j >= 1 && j <= max_j; }
+  bool in_box(int i, int j) const { return i >= i0 && i < i0 + box_i && j >= j0 && j < j0 + box_j; }
+  /// Points of the box, and the index of (I, J) in it (for per-point arrays); (I, J) must lie in the box.
+  std::size_t box_points() const { return static_cast<std::size_t>(box_i) * static_cast<std::size_t>(box_j); }
+  std::size_t box_index(int i, int j) const { return static_cast<std::size_t>(j - j0) * box_i + (i - i0); }
   /// Node number (0-based) at (I, J), -1 when that grid point does not exist.
-  int node(int i, int j) const {
-    return inside(i, j) ? node_at[static_cast<std::size_t>(j - 1) * max_i + (i - 1)] : -1;
+  int node(int i, int j) const { return in_box(i, j) ? node_at[box_index(i, j)] : -1; }
+  /// [I1, I2] x [J1, J2] (a card's index rectangle) cut to the box, where every grid point lies: its
+  /// loops then follow the grid, not MAXI x MAXJ. An empty cut has lo > hi.
+  std::array<int, 4> box_cut(int i1, int i2, int j1, int j2) const {
+    return {std::max(i1, i0), std::min(i2, i0 + box_i - 1), std::max(j1, j0), std::min(j2, j0 + box_j - 1)};
   }
 
   /// The grid as a finite-element mesh: quadrilaterals as cells, 3-corner cells as triangles.
@@ -133,45 +145,99 @@ inline double ccw_sweep(double from, double to) {  // in [0, 2 pi)
 
 }  // namespace detail
 
+namespace detail {
+
+/// Where a line segment card's points go in index space: its first point, the step (di, dj) and the number
+/// of steps (0 for a single point). Checks the card's type, indices and coordinates first.
+struct IndexPath {
+  GridPoint from;
+  int di = 0, dj = 0, steps = 0;
+};
+inline IndexPath index_path(const Segment& c, int card, int max_i, int max_j) {
+  const int t = static_cast<int>(c.type);
+  if (t < 0 || t > 6)
+    throw InputError(grid_where(card) + ": segment type must be 0-6, got " + std::to_string(t));
+  const int used = c.type == SegmentType::point ? 1 : c.type == SegmentType::arc_three_points ? 3 : 2;
+  for (int k = 0; k < used; ++k) {
+    const GridPoint& p = c.p[k];
+    if (p.i < 1 || p.i > max_i || p.j < 1 || p.j > max_j)
+      throw InputError(grid_where(card) + ": point " + std::to_string(k + 1) + " index (" +
+                       std::to_string(p.i) + ", " + std::to_string(p.j) + ") is outside 1..MAXI = " +
+                       std::to_string(max_i) + ", 1..MAXJ = " + std::to_string(max_j));
+    if (!p.x.allFinite()) throw InputError(grid_where(card) + ": non-finite coordinate");
+  }
+  IndexPath path{c.p[0]};
+  if (c.type != SegmentType::point)
+    path.steps = index_steps(c.p[0], c.type == SegmentType::arc_three_points ? c.p[2] : c.p[1], card, path.di,
+                             path.dj);
+  return path;
+}
+
+/// The index box of the points the cards place, and the nodes their rows will hold (IMIN..IMAX of each
+/// row): found from the cards alone, before anything per grid point is allocated, so that a deck's memory
+/// follows what it places and not MAXI x MAXJ. A box far larger than its nodes (cards placing a few points
+/// far apart in index) is refused: the generator fills the box.
+inline void grid_box(IJGrid& g, const std::vector<IndexPath>& paths) {
+  std::map<int, std::pair<int, int>> rows;  // J -> smallest and largest I placed
+  int i0 = g.max_i, i1 = 1, j0 = g.max_j, j1 = 1;
+  for (const IndexPath& p : paths)
+    for (int k = 0; k <= p.steps; ++k) {
+      const int i = p.from.i + k * p.di, j = p.from.j + k * p.dj;
+      auto [row, fresh] = rows.try_emplace(j, i, i);
+      if (!fresh)
+        row->second.first  = std::min(row->second.first, i),
+        row->second.second = std::max(row->second.second, i);
+      i0 = std::min(i0, i), i1 = std::max(i1, i), j0 = std::min(j0, j), j1 = std::max(j1, j);
+    }
+  if (rows.empty()) throw InputError("mesh: the line segment cards place no points");
+  double nodes = 0;
+  for (const auto& [j, extent] : rows) nodes += extent.second - extent.first + 1;
+  const double box = static_cast<double>(i1 - i0 + 1) * static_cast<double>(j1 - j0 + 1);
+  // The generator's arrays span the box (about 20 bytes a point): up to 1e7 points beyond 4 per node
+  // (200 MB) are allowed, so parts numbered far apart still mesh; a box far past its nodes is refused
+  // before anything is allocated.
+  if (box > 4 * nodes + 1e7)
+    throw InputError(
+        "mesh: the line segment cards place points across I " + std::to_string(i0) + "-" +
+        std::to_string(i1) + ", J " + std::to_string(j0) + "-" + std::to_string(j1) + " (" +
+        std::to_string(static_cast<long long>(box)) + " grid points) for " +
+        std::to_string(static_cast<long long>(nodes)) +
+        " nodes: the generator works on that index box; number the grid's parts closer together");
+  g.i0 = i0, g.j0 = j0, g.box_i = i1 - i0 + 1, g.box_j = j1 - j0 + 1;
+}
+
+}  // namespace detail
+
 /// Build the grid. `max_i`, `max_j`: MAXI, MAXJ (Data 3). Throws InputError naming the card (1-based
 /// in `segments`) or the element for indices out of range, malformed segments, grid points without
-/// neighbours and cells of zero or negative area. `Solver` solves the Laplace system.
+/// neighbours and cells of zero or negative area.
 inline IJGrid generate_ij_grid(int max_i, int max_j, const std::vector<Segment>& segments) {
   if (max_i < 1 || max_j < 1)
     throw InputError("mesh: MAXI and MAXJ must be >= 1, got " + std::to_string(max_i) + " and " +
                      std::to_string(max_j));
   IJGrid g;
   g.max_i = max_i, g.max_j = max_j;
-  const std::size_t points = static_cast<std::size_t>(max_i) * static_cast<std::size_t>(max_j);
+  std::vector<detail::IndexPath> paths;
+  for (std::size_t s = 0; s < segments.size(); ++s)
+    paths.push_back(detail::index_path(segments[s], static_cast<int>(s) + 1, max_i, max_j));
+  detail::grid_box(g, paths);
+  const std::size_t points = g.box_points();
   std::vector<Vec2> x(points, Vec2::Zero());
   std::vector<char> fixed(points, 0);
-  const auto at = [&](int i, int j) { return static_cast<std::size_t>(j - 1) * max_i + (i - 1); };
+  const auto at = [&](int i, int j) { return g.box_index(i, j); };
 
   // ---- place the points of every segment card (POINTS, CIRCLE)
   for (std::size_t s = 0; s < segments.size(); ++s) {
     const int card   = static_cast<int>(s) + 1;
     const Segment& c = segments[s];
-    const int t      = static_cast<int>(c.type);
-    if (t < 0 || t > 6)
-      throw InputError(detail::grid_where(card) + ": segment type must be 0-6, got " + std::to_string(t));
-    const int used = c.type == SegmentType::point ? 1 : c.type == SegmentType::arc_three_points ? 3 : 2;
-    for (int k = 0; k < used; ++k) {
-      const GridPoint& p = c.p[k];
-      if (!g.inside(p.i, p.j))
-        throw InputError(detail::grid_where(card) + ": point " + std::to_string(k + 1) + " index (" +
-                         std::to_string(p.i) + ", " + std::to_string(p.j) + ") is outside 1..MAXI = " +
-                         std::to_string(max_i) + ", 1..MAXJ = " + std::to_string(max_j));
-      if (!p.x.allFinite()) throw InputError(detail::grid_where(card) + ": non-finite coordinate");
-    }
-    const auto put = [&](int i, int j, const Vec2& v) { x[at(i, j)] = v, fixed[at(i, j)] = 1; };
+    const auto put   = [&](int i, int j, const Vec2& v) { x[at(i, j)] = v, fixed[at(i, j)] = 1; };
     if (c.type == SegmentType::point) {
       put(c.p[0].i, c.p[0].j, c.p[0].x);
       continue;
     }
     const GridPoint& a = c.p[0];
     const GridPoint& b = c.type == SegmentType::arc_three_points ? c.p[2] : c.p[1];
-    int di = 0, dj = 0;
-    const int n = detail::index_steps(a, b, card, di, dj);
+    const int di = paths[s].di, dj = paths[s].dj, n = paths[s].steps;
     if (c.type == SegmentType::arc_three_points || c.type == SegmentType::arc_centre) {
       Vec2 centre;
       double sweep = 0;
@@ -213,27 +279,29 @@ inline IJGrid generate_ij_grid(int max_i, int max_j, const std::vector<Segment>&
   }
 
   // ---- row limits (MNIMX) and node numbering: J ascending, I ascending within a row
-  g.row_min.assign(max_j, 0), g.row_max.assign(max_j, -1);
-  for (int j = 1; j <= max_j; ++j)
-    for (int i = 1; i <= max_i; ++i)
+  const int i_end = g.i0 + g.box_i, j_end = g.j0 + g.box_j;  // one past the box
+  g.row_min.assign(static_cast<std::size_t>(g.box_j), 0),
+      g.row_max.assign(static_cast<std::size_t>(g.box_j), -1);
+  const auto row = [&](std::vector<int>& v, int j) -> int& { return v[static_cast<std::size_t>(j - g.j0)]; };
+  for (int j = g.j0; j < j_end; ++j)
+    for (int i = g.i0; i < i_end; ++i)
       if (fixed[at(i, j)]) {
-        if (g.row_max[j - 1] < 0) g.row_min[j - 1] = i;
-        g.row_max[j - 1] = i;
+        if (row(g.row_max, j) < 0) row(g.row_min, j) = i;
+        row(g.row_max, j) = i;
       }
   g.node_at.assign(points, -1);
   // Reserved to the exact count: at 1e6 points a growing vector's copies are fresh memory to touch.
   std::size_t node_count = 0;
-  for (int j = 1; j <= max_j; ++j)
-    node_count += static_cast<std::size_t>(g.row_max[j - 1] - g.row_min[j - 1] + 1);
+  for (int j = g.j0; j < j_end; ++j)
+    node_count += static_cast<std::size_t>(row(g.row_max, j) - row(g.row_min, j) + 1);
   g.nodes.reserve(node_count), g.node_ij.reserve(node_count), g.placed.reserve(node_count);
-  for (int j = 1; j <= max_j; ++j)
-    for (int i = g.row_min[j - 1]; i <= g.row_max[j - 1]; ++i) {
+  for (int j = g.j0; j < j_end; ++j)
+    for (int i = row(g.row_min, j); i <= row(g.row_max, j); ++i) {
       g.node_at[at(i, j)] = static_cast<int>(g.nodes.size());
       g.nodes.push_back(x[at(i, j)]);
       g.node_ij.push_back({i, j});
       g.placed.push_back(fixed[at(i, j)]);
     }
-  if (g.nodes.empty()) throw InputError("mesh: the line segment cards place no points");
 
   // ---- interior points: the discrete Laplace equation on the index lattice (grid_laplace.hpp)
   if (std::find(g.placed.begin(), g.placed.end(), 0) != g.placed.end()) {
@@ -252,9 +320,9 @@ inline IJGrid generate_ij_grid(int max_i, int max_j, const std::vector<Segment>&
     // Initial guess, written into x (zero at the unknowns so far): linear in I between the nearest
     // placed points of the row (exact for straight top and bottom boundaries, and close for gentle
     // curves), which saves most CG iterations.
-    for (int j = 1; j <= max_j; ++j) {
+    for (int j = g.j0; j < j_end; ++j) {
       int left = 0;
-      for (int i = g.row_min[j - 1]; i <= g.row_max[j - 1]; ++i) {
+      for (int i = row(g.row_min, j); i <= row(g.row_max, j); ++i) {
         if (g.placed[g.node(i, j)]) {
           if (left > 0 && i > left + 1)
             for (int k = left + 1; k < i; ++k)
@@ -263,7 +331,7 @@ inline IJGrid generate_ij_grid(int max_i, int max_j, const std::vector<Segment>&
         }
       }
     }
-    detail::GridLaplace laplace(max_i, max_j, state);
+    detail::GridLaplace laplace(g.box_i, g.box_j, state);
     laplace.solve(rhs, x);
     for (std::size_t n = 0; n < g.nodes.size(); ++n)
       if (!g.placed[n]) g.nodes[n] = x[at(g.node_ij[n][0], g.node_ij[n][1])];
@@ -286,11 +354,11 @@ inline IJGrid generate_ij_grid(int max_i, int max_j, const std::vector<Segment>&
     return a;
   };
   int quads = 0, triangles = 0;
-  g.cells.reserve(static_cast<std::size_t>(max_i - 1) * static_cast<std::size_t>(max_j - 1));  // at most
-  for (int j = 1; j < max_j; ++j) {
-    const int lo =
-        std::min(g.row_min[j - 1] > 0 ? g.row_min[j - 1] : max_i, g.row_min[j] > 0 ? g.row_min[j] : max_i);
-    const int hi = std::max(g.row_max[j - 1], g.row_max[j]);
+  g.cells.reserve(node_count);  // at most (a cell per node but the last row's and column's)
+  for (int j = g.j0; j + 1 < j_end; ++j) {
+    const int lo = std::min(row(g.row_min, j) > 0 ? row(g.row_min, j) : max_i,
+                            row(g.row_min, j + 1) > 0 ? row(g.row_min, j + 1) : max_i);
+    const int hi = std::max(row(g.row_max, j), row(g.row_max, j + 1));
     for (int i = lo; i < hi; ++i) {
       GridCell cell;
       cell.i = i, cell.j = j, cell.corners = 0;

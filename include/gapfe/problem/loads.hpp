@@ -16,6 +16,11 @@ struct NodalCondition {
   /// (XR, XZ, XT): displacement [length] or total force [force] per component. A std::array, not an
   /// Eigen vector, so that `{n, code}` and `{n, code, {}}` mean zeros rather than uninitialized storage.
   std::array<double, 3> value{};
+  /// The components this condition sets (a bit mask as `code`). Where conditions on one node overlap, the
+  /// later sets each of its components (DofMap). A deck's card sets all three, as in the seed; a scene's
+  /// [[boundary]] only the directions it names, so `fix = ["z"]` on one curve and a force along r on
+  /// another leave their shared corner fixed along z and loaded along r.
+  int sets = 7;
   bool prescribed(int component) const { return (code >> component) & 1; }
 };
 

@@ -20,6 +20,7 @@
 #include "gapfe/driver/linear_static.hpp"
 #include "gapfe/driver/nonlinear_static.hpp"
 #include "gapfe/io/deck_scene.hpp"
+#include "gapfe/io/step_loads.hpp"
 #include "gapfe/material/hill.hpp"
 
 namespace gapfe {
@@ -112,8 +113,9 @@ Problem<M> deck_problem(const Deck& d, const DeckScene& s, int step, const DeckP
 template <class M, class OnStep>
 void run_deck(const Deck& d, const DeckScene& s, OnStep&& on_step, const DeckPart* part = nullptr) {
   LinearStatic<M> fe(deck_problem<M>(d, s, 1, part));
+  StepLoads loads(d, s);
   for (int step = 1; step <= d.steps(); ++step) {
-    if (step > 1) set_step_loads(fe.problem(), d, s, step);
+    if (step > 1) set_loads(fe.problem(), loads.at(step), s);
     fe.solve(/*same_stiffness=*/step > 1);
     on_step(step, static_cast<double>(step), static_cast<const LinearStatic<M>&>(fe));
   }
@@ -131,8 +133,9 @@ void run_deck_plastic(const Deck& d, const DeckScene& s, OnIncrement&& on_increm
   newton.tolerance      = d.options.newton_tolerance;
   newton.max_iterations = d.options.newton_iterations;
   NonlinearStatic<M> fe(deck_problem<M>(d, s, 1, part), {}, newton);
+  StepLoads loads(d, s);
   for (int step = 1; step <= d.steps(); ++step) {
-    const StepTotals before = step_totals(d, s, step - 1), after = step_totals(d, s, step);
+    const StepTotals before = loads.at(step - 1), after = loads.at(step);
     double done = 0, size = 1;
     while (done < 1 - 1e-12) {
       const double to = std::min(1.0, done + size);
@@ -181,11 +184,12 @@ void run_deck_contact(const Deck& d, const DeckScene& s, double penalty_factor, 
   options.friction       = F::kFriction ? d.options.friction : 0.0;
   if (s.gap_material >= 0) options.gap_materials.push_back(s.gap_material);
   Run fe(deck_problem<M>(d, s, 1, part), part ? part->pairs : s.gaps.pairs, options);
+  StepLoads loads(d, s);
   StepTotals before, after;
   int cached                           = -1;  // the step whose end totals are in `after`
   const typename Run::LoadsAt loads_at = [&](Problem<M>& p, double t) {
     const int step = std::clamp(static_cast<int>(std::ceil(t - 1e-12)), 1, d.steps());
-    if (step != cached) before = step_totals(d, s, step - 1), after = step_totals(d, s, step), cached = step;
+    if (step != cached) before = loads.at(step - 1), after = loads.at(step), cached = step;
     set_loads(p, interpolate(before, after, t - (step - 1)), s);
   };
   int step                               = 1;

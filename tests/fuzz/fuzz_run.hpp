@@ -1,0 +1,16 @@
+#pragma once
+// The run half of fuzz_deck.cpp: a small deck or scene run as `gapfe run` runs it (examples/cli_families.hpp:
+// the step loop, the files, the pictures) into `dir`, on the 3-DOF quad4bbar, without gaps or with SAAC's.
+// The elastic and the plastic model are instantiated in a translation unit each (fuzz_run_elastic.cpp,
+// fuzz_run_plastic.cpp) so that the sanitizer build compiles them side by side, and this header stays light.
+#include <string>
+
+#include "gapfe/io/deck.hpp"
+#include "gapfe/io/deck_scene.hpp"
+
+namespace gapfe::fuzz {
+
+void run_elastic(const Deck& deck, const DeckScene& scene, const std::string& dir, bool gaps);
+void run_plastic(const Deck& deck, const DeckScene& scene, const std::string& dir, bool gaps);
+
+}  // namespace gapfe::fuzz
