@@ -110,6 +110,12 @@ def two_groups():
                 mesh, f'[materials.steel]\nsurfaces = ["steel"]\n{STEEL}',
                 f"[[load]]\ncurves = {curves}\npressure = 100.0\n"))
             refused(["run", d / f"load_{v}.toml", "--out", d / "x"], 1, "load[1].curves", "(line 13)", needle)
+    # Saved with Mesh.SaveAll = 1, MSH 2.2 loses every element's physical tag: the message says so.
+    shutil.copy(root / "tests/data/scenes/two_groups_v22_saveall.msh", d)
+    (d / "saveall.toml").write_text(scene("two_groups_v22_saveall.msh",
+                                          f'[materials.steel]\nsurfaces = ["steel"]\n{STEEL}'))
+    refused(["run", d / "saveall.toml", "--out", d / "x"], 1, "materials.steel.surfaces",
+            'the surface group "steel" has no cells', "Mesh.SaveAll = 1")
 
 
 # ---- two [[boundary]] tables meeting at a corner: each sets only its own directions there

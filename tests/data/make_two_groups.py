@@ -38,4 +38,9 @@ for version, name in [(2.2, "two_groups_v22.msh"), (4.1, "two_groups_v41.msh")]:
     gmsh.option.setNumber("Mesh.MshFileVersion", version)
     gmsh.write(str(here / "scenes" / name))
     print("wrote", name)
+# Mesh.SaveAll = 1: MSH 2.2 then writes every element once with physical tag 0 (the names stay).
+gmsh.option.setNumber("Mesh.MshFileVersion", 2.2)
+gmsh.option.setNumber("Mesh.SaveAll", 1)
+gmsh.write(str(here / "scenes" / "two_groups_v22_saveall.msh"))
+print("wrote two_groups_v22_saveall.msh")
 gmsh.finalize()

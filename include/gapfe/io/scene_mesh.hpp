@@ -101,12 +101,21 @@ class GmshSceneMesh final : public SceneMesh {
     size_scene_cells(s);
   }
 
+  /// Why a named group can be empty: Gmsh's Mesh.SaveAll = 1 writes MSH 2.2 elements without their
+  /// physical tags (the names stay in $PhysicalNames).
+  std::string untagged() const {
+    for (const GmshElement& c : gmsh_.cells)
+      if (!c.physical.empty()) return "";
+    return ": no cell of the mesh has a physical tag (Gmsh's Mesh.SaveAll = 1 writes MSH 2.2 without them; "
+           "save with Mesh.SaveAll = 0, or as MSH 4.1)";
+  }
   std::vector<int> surface_cells(const std::string& name) const override {
     const int tag = gmsh_.physical(2, name);
     std::vector<int> out;
     for (std::size_t e = 0; e < gmsh_.cells.size(); ++e)
       if (gmsh_.cells[e].in(tag)) out.push_back(static_cast<int>(e));
-    if (out.empty()) throw InputError("the surface group \"" + name + "\" has no cells in the mesh");
+    if (out.empty())
+      throw InputError("the surface group \"" + name + "\" has no cells in the mesh" + untagged());
     return out;
   }
   std::vector<SceneEdge> curve_edges(const std::string& name) const override {
@@ -117,7 +126,8 @@ class GmshSceneMesh final : public SceneMesh {
         out.push_back(
             {fe_.node[x.nodes[0]], fe_.node[x.nodes[1]],
              "the line element at line " + std::to_string(x.line) + " of the mesh (curve \"" + name + "\")"});
-    if (out.empty()) throw InputError("the curve group \"" + name + "\" has no line elements in the mesh");
+    if (out.empty())
+      throw InputError("the curve group \"" + name + "\" has no line elements in the mesh" + untagged());
     return out;
   }
   std::vector<int> nodes(const std::string& name) const override {
