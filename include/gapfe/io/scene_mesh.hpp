@@ -178,7 +178,8 @@ class GridSceneMesh final : public SceneMesh {
     const std::string most = std::to_string(limits.max_grid_points);
     if (!(size[0] >= 1 && size[1] >= 1 && size[0] == std::floor(size[0]) && size[1] == std::floor(size[1]) &&
           size[0] * size[1] <= static_cast<double>(limits.max_grid_points)))
-      mesh.fail("grid", "[MAXI, MAXJ], whole numbers >= 1 with MAXI x MAXJ at most " + most);
+      mesh.fail("grid", "[MAXI, MAXJ], whole numbers >= 1 with MAXI x MAXJ at most " + most + " (" +
+                            detail::number_text(size[0]) + " x " + detail::number_text(size[1]) + " is not)");
     const int max_i = static_cast<int>(size[0]), max_j = static_cast<int>(size[1]);
     std::vector<Segment> segments;
     const std::vector<SceneTable> cards = mesh.tables("segments", {"type", "points", "centre"});
