@@ -51,6 +51,12 @@ struct RunTimes {
   /// Per load step (index step - 1), the largest relative residual of its accepted increments: a linear
   /// law's |K u - f| / |f|, Newton's |R| / |F_int| for a law with history (the log prints them).
   std::vector<double> step_residual;
+  /// Global equilibrium (Solution::balance): per load step its accepted increments' largest
+  /// Balance::relative(), the largest of the run with its step, and the last increment's balance.
+  std::vector<double> step_balance;
+  double balance   = 0;
+  int balance_step = 0;
+  Balance last_balance;
   /// Runs with friction: per load step (index step - 1), the largest |f_t| / (mu f_n) of a closed pair
   /// (ConeExcess), and where over the run it was largest (the log and the warning past Coulomb's cone).
   std::vector<double> step_cone;
@@ -161,7 +167,11 @@ void write_increment(const RunRequest& r, RunTimes& times, RunFiles& files, int 
   if constexpr (Fe::Law::kLinear)
     if (residual > times.equilibrium) times.equilibrium = residual, times.equilibrium_step = step;
   keep_largest(times.step_residual, step, residual);
-  const auto start = std::chrono::steady_clock::now();
+  const Balance& balance = fe.solution().balance;
+  keep_largest(times.step_balance, step, balance.relative());
+  if (!(balance.relative() <= times.balance)) times.balance = balance.relative(), times.balance_step = step;
+  times.last_balance = balance;
+  const auto start   = std::chrono::steady_clock::now();
   if (const Subdomain* part = fe.problem().subdomain.get()) {
     const Solution whole = gather_solution(*part, fe.solution());
     auto values          = gather_cells(*part, fe.centroid_values(Recovered::stress), Recovered::stress);
@@ -182,7 +192,7 @@ inline RunFiles step_files(const RunRequest& r) {
   files.emplace(r.dir, r.scene, r.deck.step_time(), increments(r.deck.options.output_csv),
                 increments(r.deck.options.output_vtu));
   files->draw_fields(r.pictures, r.units);
-  files->keep_history(r.deck.steps(), r.deck.options.friction_model() != "none");
+  files->keep_history(r.deck.steps(), {r.deck.options.friction_model() != "none", r.variant == "saga"});
   return files;
 }
 

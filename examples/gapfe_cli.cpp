@@ -46,6 +46,11 @@ constexpr double kLockingPoisson = 0.49;
 /// answers to the discretization error up to 1e9 and loses them beyond, which this threshold marks.
 constexpr double kResidualWarning = 1e-4;
 
+/// Above this |applied + reactions| / load of an accepted increment `gapfe run` warns that the run is out
+/// of global equilibrium (docs/checks.md); a run that iterates (plasticity, contact) to a looser Newton
+/// tolerance is held to that instead. Round-off gives 1e-15 to 1e-12 on the examples.
+constexpr double kBalanceWarning = 1e-8;
+
 /// The largest Poisson's ratio of any material table row, and its material's deck number.
 std::pair<int, double> largest_poisson(const Deck& d) {
   std::pair<int, double> worst{0, -1.0};
@@ -500,6 +505,27 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
           << "): the stiffness is ill-conditioned (a large gap_penalty? a nearly incompressible material? a "
              "body held by little more than its gaps?), so its results may be inaccurate\n";
   }
+  log_per_step(log,
+               "global balance per load step (|applied + reactions| / load, along the axis and about it)",
+               times.step_balance);
+  const Balance& b = times.last_balance;
+  log << "global balance at the end: axial force of the loads " << b.applied_axial << ", of the reactions "
+      << b.reaction_axial;
+  if (variant == "saga")
+    log << "; torque of the loads " << b.applied_torque << ", of the reactions " << b.reaction_torque;
+  log << "\n";
+  const bool iterates = plastic || !s.needs.gaps.empty();
+  const double balance_limit =
+      iterates ? std::max(kBalanceWarning, d.options.newton_tolerance) : kBalanceWarning;
+  if (!(times.balance <= balance_limit))
+    err << "gapfe: warning: load step " << times.balance_step
+        << " is out of global equilibrium: the applied loads "
+        << "and the reactions differ by " << times.balance << " of the load (above " << balance_limit << ")"
+        << (plastic && d.options.plasticity == "tangent"
+                ? ": plasticity = tangent (the seed's one solve per increment) leaves an out-of-balance; "
+                  "plasticity = return-mapping iterates it away\n"
+                : ": the solve did not reach equilibrium (see the residual above), so its results may be "
+                  "inaccurate\n");
   if (plastic && s.needs.gaps.empty())
     log << "plasticity: " << d.options.plasticity << "; " << times.increments << " increments ("
         << times.cut_steps << " from cut steps), " << times.newton_iterations << " linear solves ("

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "gapfe/assembly/assembler.hpp"
+#include "gapfe/post/balance.hpp"
 #include "gapfe/post/recovery.hpp"
 #include "gapfe/problem/problem.hpp"
 #include "gapfe/problem/results.hpp"
@@ -181,10 +182,12 @@ class LinearStatic {
   /// 10% of the two-tube contact run).
   void reactions() const {
     const auto& dofs = assembler_.dofs();
+    Vec2 body        = body_force_totals(assembler_, p_);  // the element loads' share of the global balance
+    if (const Subdomain* part = p_.subdomain.get()) part->sum(body.data(), 2);
     if (dofs.free_count == 0) {  // (the `load` too: a part's calls are collective, every part makes them)
       const VecX none = VecX::Zero(external_.size());
-      nodal_results(dofs, u_, assembler_.linear_internal(p_, u_), external_, p_.mesh.node_count(), sol_,
-                    p_.subdomain.get(), &none, load_peak_);
+      nodal_results(dofs, u_, assembler_.linear_internal(p_, u_), external_, p_.mesh.nodes, sol_,
+                    p_.subdomain.get(), {&none, load_peak_, body});
       return;
     }
     VecX internal = assembler_.linear_internal(p_, u_, /*prescribed_only=*/true);
@@ -208,8 +211,8 @@ class LinearStatic {
         internal(static_cast<Eigen::Index>(d)) = out_of_balance(eq) + external_(static_cast<Eigen::Index>(d));
         load(static_cast<Eigen::Index>(d))     = loads(eq);
       }
-    load_peak_ = std::max(load_peak_, nodal_results(dofs, u_, internal, external_, p_.mesh.node_count(), sol_,
-                                                    p_.subdomain.get(), &load, load_peak_));
+    load_peak_ = nodal_results(dofs, u_, internal, external_, p_.mesh.nodes, sol_, p_.subdomain.get(),
+                               {&load, load_peak_, body});
   }
 
   Problem<M> p_;
@@ -217,7 +220,7 @@ class LinearStatic {
   System<typename M::LinearSolver> system_;
   VecX external_, u_;             ///< all DOFs
   mutable Solution sol_;          // reactions and residual filled lazily with defer_reactions()
-  mutable double load_peak_ = 0;  ///< the largest |load|^2 of the solves so far (nodal_results' scale)
+  mutable double load_peak_ = 0;  ///< the largest |load|^2 of the solves so far (SolveLoads::peak)
   mutable SolveTimings time_;
   SolveTimings total_;
   mutable bool reactions_stale_ = false;

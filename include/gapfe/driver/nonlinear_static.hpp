@@ -159,6 +159,7 @@ class NonlinearStatic {
     u_committed_ = u_;
     previous_dt_ = context_.dt;
     last_solves_ = report_.converged ? report_.iterations : -1;
+    load_peak_   = std::max(step_peak_, last_size_);
   }
   /// Forget the last solve(): back to the committed state.
   void reject() {
@@ -208,8 +209,13 @@ class NonlinearStatic {
     bool tangent = !(extrapolate && last_solves_ == 0 && options_.predict_convergence);
     evaluate(tangent, &prescribed_step);
     lap(&SolveTimings::assemble);
+    // The residual's scale for the step (SolveLoads::peak): the loads and the internal force at its start
+    // as well as the run's accepted steps'. A heated body's start carries its thermal load, which a free
+    // expansion relaxes to nothing (|F_int| ~ round-off at the solution). Not the iterates': a diverging
+    // one must not loosen the test of the next.
+    step_peak_ = nodal_results(dofs, u_, internal_, external_, p_.mesh.nodes, sol_, p_.subdomain.get(),
+                               {&external_, load_peak_});
     if (extrapolate) {  // the extrapolated start may already be in equilibrium (a proportional elastic step)
-      nodal_results(dofs, u_, internal_, external_, p_.mesh.node_count(), sol_, p_.subdomain.get());
       if (!std::isfinite(sol_.residual)) throw SolveError("the residual is not finite");
       report_.converged = sol_.residual <= options_.tolerance;
       if (report_.converged) report_.residuals.push_back(sol_.residual);
@@ -241,7 +247,8 @@ class NonlinearStatic {
       tangent          = again && !converged_next(it + 1, before_last, last);
       evaluate(tangent, nullptr);
       lap(&SolveTimings::assemble);
-      nodal_results(dofs, u_, internal_, external_, p_.mesh.node_count(), sol_, p_.subdomain.get());
+      last_size_ = nodal_results(dofs, u_, internal_, external_, p_.mesh.nodes, sol_, p_.subdomain.get(),
+                                 {&external_, step_peak_});
       report_.residuals.push_back(sol_.residual);
       report_.iterations = it + 1;
       if (!std::isfinite(sol_.residual)) throw SolveError("the residual is not finite");
@@ -342,6 +349,9 @@ class NonlinearStatic {
   double previous_dt_ = 0;    ///< the last accepted step's dt
   int last_solves_    = -1;   ///< Newton corrections of the last accepted step (-1: none, or not converged)
   VecX external_, internal_, predictor_;
+  /// Sums of squares the residual is measured against (SolveLoads::peak): the accepted steps' largest, this
+  /// step's (its start included) and that of the last evaluation.
+  double load_peak_ = 0, step_peak_ = 0, last_size_ = 0;
   Solution sol_;
   SolveTimings time_, total_;
   std::function<void(const VecX&, bool)> link_update_;

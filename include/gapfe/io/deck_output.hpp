@@ -131,10 +131,10 @@ class StepFiles {
     if (picture) last_arrays_ = std::move(arrays);
   }
 
-  /// history.csv (io/history_file.hpp) for a run of `steps` load steps, when there is more than one;
-  /// `friction`: with its cone_ratio column.
-  void keep_history(int steps, bool friction = false) {
-    if (steps > 1) history_.emplace(dir_, scene_, steps, step_time_, friction);
+  /// history.csv (io/history_file.hpp) for a run of `steps` load steps, when there is more than one, with
+  /// the optional `columns`.
+  void keep_history(int steps, HistoryColumns columns = {}) {
+    if (steps > 1) history_.emplace(dir_, scene_, steps, step_time_, columns);
   }
 
   /// The fields (io/field_plot.hpp) finish() draws for the last increment, as plot_FIELD.svg, in `units`;

@@ -17,6 +17,10 @@
 //   iterations             linear solves of the increment (1 for a linear step; Newton's, or the contact
 //                          policy's, otherwise)
 //   residual               the increment's relative residual (|K u - f| / |f|, or Newton's |R| / |F_int|)
+//   applied_z, reaction_z  global equilibrium (Solution::balance): the axial force of every applied load
+//                          (edge tractions, nodal forces, body forces) and of every reaction [force]
+//   applied_torque, reaction_torque   with 3 DOF per node: their torques about the axis [force x length]
+//   balance                |applied + reaction| / the load's size, the larger of the two directions
 // Each row is one write (io/output_file.hpp), so a run that fails or is killed keeps the history of what it
 // accepted, every row whole.
 #include <algorithm>
@@ -34,6 +38,12 @@
 
 namespace gapfe {
 
+/// Which optional columns history.csv has.
+struct HistoryColumns {
+  bool friction = false;  ///< the run has friction at its gap pairs: cone_ratio
+  bool torque   = false;  ///< 3 DOF per node: applied_torque, reaction_torque
+};
+
 /// What an increment's driver knows beyond its solution.
 struct IncrementSummary {
   int iterations = 1, plastic_points = 0, closed = 0, slipping = 0;
@@ -42,10 +52,9 @@ struct IncrementSummary {
 
 class HistoryFile {
  public:
-  /// `friction`: the run has friction at its gap pairs (the cone_ratio column).
   HistoryFile(const std::string& dir, const DeckScene& scene, int steps, double step_time,
-              bool friction = false)
-      : steps_(steps), step_time_(step_time), friction_(friction) {
+              HistoryColumns columns = {})
+      : steps_(steps), step_time_(step_time), columns_(columns) {
     // Each card's nodes (each once) and the components it prescribes.
     std::map<int, Card> by_index;
     for (std::size_t k = 0; k < scene.conditions.size(); ++k) {
@@ -75,8 +84,9 @@ class HistoryFile {
       for (int comp = 0; comp < 3; ++comp)
         if ((c.code >> comp) & 1) head += std::string(",R_") + "rzt"[comp] + "_" + name;
     }
-    head += std::string(",u_max,closed,slipping") + (friction ? ",cone_ratio" : "") +
-            ",plastic_points,iterations,residual\n";
+    head += std::string(",u_max,closed,slipping") + (columns.friction ? ",cone_ratio" : "") +
+            ",plastic_points,iterations,residual,applied_z,reaction_z" +
+            (columns.torque ? ",applied_torque,reaction_torque" : "") + ",balance\n";
     out_ = OutputFile(dir + "/history.csv");
     out_.append(head);
   }
@@ -101,13 +111,19 @@ class HistoryFile {
       row += ',';
       detail::append_number(row, static_cast<long long>(v));
     }
-    if (friction_) row += ',', detail::append_number(row, summary.cone_ratio);
+    if (columns_.friction) row += ',', detail::append_number(row, summary.cone_ratio);
     for (const int v : {summary.plastic_points, summary.iterations}) {
       row += ',';
       detail::append_number(row, static_cast<long long>(v));
     }
-    row += ',';
-    detail::append_number(row, s.residual);
+    const Balance& b = s.balance;
+    std::vector<double> tail{s.residual, b.applied_axial, b.reaction_axial};
+    if (columns_.torque) tail.insert(tail.end(), {b.applied_torque, b.reaction_torque});
+    tail.push_back(b.relative());
+    for (const double v : tail) {
+      row += ',';
+      detail::append_number(row, v);
+    }
     row += '\n';
     out_.append(row);
   }
@@ -122,7 +138,7 @@ class HistoryFile {
   std::vector<Card> cards_;
   int steps_        = 1;
   double step_time_ = 1;
-  bool friction_    = false;
+  HistoryColumns columns_;
   OutputFile out_;
 };
 

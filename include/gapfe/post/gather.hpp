@@ -11,7 +11,7 @@
 namespace gapfe {
 
 /// Displacements and reactions of every node of the whole mesh on part 0 (rows: whole nodes); the residual
-/// is a total already. Other parts get an empty Solution.
+/// and the global balance are totals already. Other parts get an empty Solution.
 inline Solution gather_solution(const Subdomain& domain, const Solution& local) {
   const PartLayout& l = domain.layout();
   const int owned     = l.owned_nodes;
@@ -25,6 +25,7 @@ inline Solution gather_solution(const Subdomain& domain, const Solution& local) 
   const std::vector<double> table = domain.gather_rows(rows.data(), owned, 6, l.global_node.data(), whole);
   Solution out;
   out.residual = local.residual;
+  out.balance  = local.balance;
   if (table.empty()) return out;
   out.displacement.resize(whole, 3), out.reaction.resize(whole, 3);
   for (int n = 0; n < whole; ++n)

@@ -54,20 +54,33 @@ void nodal_displacements(const VecX& u, int nodes, Solution& s) {
     for (int c = 0; c < DofsPerNode; ++c) s.displacement(n, c) = u(n * DofsPerNode + c);
 }
 
-/// Displacements, reactions = internal - external at prescribed DOFs, and the relative out-of-balance
-/// |internal - external| / |internal| at the free DOFs (all vectors over all DOFs). `load`, where given,
-/// is the whole load the free DOFs were solved for (edge and nodal forces, and the loads of thermal strain,
-/// inertia and prescribed displacements), and the out-of-balance is relative to the largest of it, the
-/// internal force and `scale` (a sum of squares: the largest load the run has carried so far): a body in
-/// free thermal expansion, or flying on soft gap elements, has no internal force to speak of, a step that
-/// unloads to nothing no load, and their round-off would read as a residual of order 1. Returns |load|^2.
+/// What a solve's out-of-balance and its global balance are measured against, beyond the internal force.
+struct SolveLoads {
+  /// The whole load the free DOFs were solved for (edge and nodal forces, and the loads of thermal strain,
+  /// inertia and prescribed displacements; all DOFs, read at the free ones), or nullptr.
+  const VecX* load = nullptr;
+  double peak      = 0;  ///< |load|^2 of the largest load the run has carried so far
+  /// Totals of body forces that `external` does not hold (a linear law's are element loads): the axial
+  /// force and the torque about the axis [force, force x length].
+  Vec2 body = Vec2::Zero();
+};
+
+/// Displacements at the nodes at `positions` (r, z), reactions = internal - external at prescribed DOFs, the
+/// relative out-of-balance
+/// |internal - external| / |internal| at the free DOFs (all vectors over all DOFs) and the global balance
+/// (Solution::balance: applied = external + loads.body). The out-of-balance is relative to the largest of
+/// the internal force, `loads.load` and `loads.peak`: a body in free thermal expansion, or flying on soft
+/// gap elements, has no internal force to speak of, a step that unloads to nothing no load, and their
+/// round-off would read as a residual of order 1. Returns the size it used (a sum of squares: the caller's
+/// next `peak`).
 /// For a part of a partitioned problem (`part`) the vectors are the part's partial sums: they are summed
-/// over the parts first (the reactions are then totals at every local node) and the norms count each node
-/// once, at its owner, over every part (collective).
+/// over the parts first (the reactions are then totals at every local node) and the norms and sums count
+/// each node once, at its owner, over every part (collective; `loads.body` is every part's total already).
 template <int DofsPerNode>
 double nodal_results(const DofMap<DofsPerNode>& dofs, const VecX& u, const VecX& internal,
-                     const VecX& external, int nodes, Solution& s, const Subdomain* part = nullptr,
-                     const VecX* load = nullptr, double scale = 0) {
+                     const VecX& external, const std::vector<Vec2>& positions, Solution& s,
+                     const Subdomain* part = nullptr, const SolveLoads& loads = {}) {
+  const int nodes = static_cast<int>(positions.size());
   nodal_displacements<DofsPerNode>(u, nodes, s);
   s.reaction.setZero(nodes, 3);
   VecX total_internal, total_external, total_load;
@@ -75,13 +88,15 @@ double nodal_results(const DofMap<DofsPerNode>& dofs, const VecX& u, const VecX&
     total_internal = internal, total_external = external;
     part->sum_shared(total_internal.data(), DofsPerNode);
     part->sum_shared(total_external.data(), DofsPerNode);
-    if (load) total_load = *load, part->sum_shared(total_load.data(), DofsPerNode);
+    if (loads.load) total_load = *loads.load, part->sum_shared(total_load.data(), DofsPerNode);
   }
   const VecX& in    = part ? total_internal : internal;
   const VecX& ex    = part ? total_external : external;
-  const VecX* whole = load ? (part ? &total_load : load) : nullptr;
+  const VecX* whole = loads.load ? (part ? &total_load : loads.load) : nullptr;
   const int counted = part ? part->owned_nodes() : nodes;
-  double norms[3]   = {0, 0, 0};  // out of balance, internal, load: sums of squares
+  // Sums over the nodes: out of balance, internal, load (squares); applied and reaction along the axis
+  // and about it, their sizes (sums of |.|), and the largest radius.
+  double sums[10] = {};
   for (int n = 0; n < nodes; ++n)
     for (int c = 0; c < DofsPerNode; ++c) {
       const int d             = dofs.dof(n, c);
@@ -89,13 +104,29 @@ double nodal_results(const DofMap<DofsPerNode>& dofs, const VecX& u, const VecX&
       if (dofs.equation[d] < 0)
         s.reaction(n, c) = unbalanced;
       else if (n < counted)
-        norms[0] += unbalanced * unbalanced, norms[2] += whole ? (*whole)(d) * (*whole)(d) : 0.0;
-      if (n < counted) norms[1] += in(d)*in(d);
+        sums[0] += unbalanced * unbalanced, sums[2] += whole ? (*whole)(d) * (*whole)(d) : 0.0;
+      if (n >= counted) continue;
+      sums[1] += in(d)*in(d);
+      const double reaction = dofs.equation[d] < 0 ? unbalanced : 0.0;
+      const double arm      = c == 1 ? 1.0 : c == 2 ? positions[static_cast<std::size_t>(n)](0) : 0.0;
+      const int at          = c == 1 ? 3 : 6;  // axial force, or torque about the axis (u_theta)
+      if (c == 0) continue;
+      sums[at] += arm * ex(d), sums[at + 1] += arm * reaction;
+      sums[at + 2] += std::abs(arm * ex(d)) + std::abs(arm * reaction);
+      if (c == 2) sums[9] = std::max(sums[9], arm);
     }
-  if (part) part->sum(norms, 3);
-  const double size = std::max({norms[1], norms[2], scale});
-  s.residual        = size > 0 ? std::sqrt(norms[0] / size) : 0.0;
-  return norms[2];
+  if (part) {
+    part->sum(sums, 9);
+    sums[9] = part->max(sums[9]);
+  }
+  const double size = std::max({sums[1], sums[2], loads.peak});
+  s.residual        = size > 0 ? std::sqrt(sums[0] / size) : 0.0;
+  Balance& b        = s.balance;
+  b.applied_axial = sums[3] + loads.body(0), b.reaction_axial = sums[4];
+  b.size_axial     = sums[5] + std::abs(loads.body(0)) + std::sqrt(size);
+  b.applied_torque = sums[6] + loads.body(1), b.reaction_torque = sums[7];
+  b.size_torque = DofsPerNode == 3 ? sums[8] + std::abs(loads.body(1)) + sums[9] * std::sqrt(size) : 0.0;
+  return size;
 }
 
 /// Strain and stress at every stiffness point of every cell, or (`centroids`) one value per cell; cells

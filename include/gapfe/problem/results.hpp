@@ -6,17 +6,40 @@
 // PointValues: global (r, z, theta) Voigt order [rr, zz, hoop, rz, z-theta, theta-r] and material axes
 // [NN, SS, TT, NS, ST, TN]. Strains carry engineering shears; stresses are tensor components. Units:
 // stress as the moduli. Forces are total ring forces (core/types.hpp).
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "gapfe/core/types.hpp"
 
 namespace gapfe {
 
+/// Global equilibrium of the whole body (docs/checks.md): the applied loads (edge tractions, nodal forces,
+/// body forces) and the reactions summed over every node, along the axis and, with 3 DOF per node, as a
+/// torque about it. These are the two balances axisymmetry has: a rigid axial translation and a rigid
+/// rotation strain nothing, so the elements' internal forces sum to zero in both, thermal strain included;
+/// a radial force has no such sum (a ring's radial loads are carried by its hoop stress).
+/// `size_*` is the load's size the imbalance is measured against: the sum of |applied| and |reaction|
+/// over the nodes, and at least the magnitude of the loads the solve carried (thermal loads included,
+/// which sum to nothing, and the loads of prescribed displacements), so that a self-equilibrated load reads
+/// its round-off as a small number. Forces [force], torques [force x length].
+struct Balance {
+  double applied_axial = 0, reaction_axial = 0, size_axial = 0;
+  double applied_torque = 0, reaction_torque = 0, size_torque = 0;
+  /// The larger of |applied + reaction| / size along the axis and about it (0 where the size is 0).
+  double relative() const {
+    const auto part = [](double a, double r, double size) { return size > 0 ? std::abs(a + r) / size : 0.0; };
+    return std::max(part(applied_axial, reaction_axial, size_axial),
+                    part(applied_torque, reaction_torque, size_torque));
+  }
+};
+
 /// Nodal results. Rows are nodes; columns (r, z, theta); u_theta and its reaction are 0 in 2-DOF.
 struct Solution {
   Eigen::Matrix<double, Eigen::Dynamic, 3> displacement;  ///< [length]
   Eigen::Matrix<double, Eigen::Dynamic, 3> reaction;      ///< total ring force at prescribed DOFs [force]
   double residual = 0.0;  ///< |K u - f| / |f| over free DOFs after the solve (equilibrium check)
+  Balance balance;        ///< global equilibrium of the applied loads and the reactions
 };
 
 /// Strain and stress at one stiffness point or one cell centroid.
