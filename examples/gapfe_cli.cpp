@@ -511,8 +511,10 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
   const Balance& b = times.last_balance;
   log << "global balance at the end: axial force of the loads " << b.applied_axial << ", of the reactions "
       << b.reaction_axial;
-  if (variant == "saga")
+  if (variant == "saga") {
     log << "; torque of the loads " << b.applied_torque << ", of the reactions " << b.reaction_torque;
+    if (!s.needs.gaps.empty()) log << ", of the gap pairs (theta forces at two radii) " << b.gap_torque;
+  }
   log << "\n";
   const bool iterates = plastic || !s.needs.gaps.empty();
   const double balance_limit =

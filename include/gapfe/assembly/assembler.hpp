@@ -135,6 +135,8 @@ class Assembler {
     return System<Solver>(take_pattern());
   }
   const Connectivity<2>& links() const { return links_; }
+  /// Whether link l adds anything here: it is not zero and this part assembles it.
+  bool assembles_link(std::size_t l) const { return link_owned_[l] && !link_values_[l].zero(); }
   std::vector<NodeLink>& link_values() { return link_values_; }
   const std::vector<NodeLink>& link_values() const { return link_values_; }
   /// Stiffness points of the mesh: the size of a History of material points.
@@ -379,8 +381,6 @@ class Assembler {
   }
 
  private:
-  /// Whether link l adds anything here: it is not zero and this part assembles it.
-  bool assembles_link(std::size_t l) const { return link_owned_[l] && !link_values_[l].zero(); }
   /// out(dof) += v over the element's (or link's) DOFs.
   template <std::size_t NPC, class Vector>
   void add_to(const std::array<int, NPC>& nodes, const Vector& v, VecX& out) const {

@@ -182,12 +182,17 @@ class LinearStatic {
   /// 10% of the two-tube contact run).
   void reactions() const {
     const auto& dofs = assembler_.dofs();
-    Vec2 body        = body_force_totals(assembler_, p_);  // the element loads' share of the global balance
-    if (const Subdomain* part = p_.subdomain.get()) part->sum(body.data(), 2);
+    // The global balance's terms no nodal vector holds: the body forces (element loads) and the links'
+    // torque.
+    const Vec2 body = body_force_totals(assembler_, p_);
+    double terms[3] = {body(0), body(1), link_torque(assembler_, p_, u_)};
+    if (const Subdomain* part = p_.subdomain.get()) part->sum(terms, 3);
+    SolveLoads solved{nullptr, load_peak_, Vec2(terms[0], terms[1]), terms[2]};
     if (dofs.free_count == 0) {  // (the `load` too: a part's calls are collective, every part makes them)
       const VecX none = VecX::Zero(external_.size());
+      solved.load     = &none;
       nodal_results(dofs, u_, assembler_.linear_internal(p_, u_), external_, p_.mesh.nodes, sol_,
-                    p_.subdomain.get(), {&none, load_peak_, body});
+                    p_.subdomain.get(), solved);
       return;
     }
     VecX internal = assembler_.linear_internal(p_, u_, /*prescribed_only=*/true);
@@ -211,8 +216,9 @@ class LinearStatic {
         internal(static_cast<Eigen::Index>(d)) = out_of_balance(eq) + external_(static_cast<Eigen::Index>(d));
         load(static_cast<Eigen::Index>(d))     = loads(eq);
       }
-    load_peak_ = nodal_results(dofs, u_, internal, external_, p_.mesh.nodes, sol_, p_.subdomain.get(),
-                               {&load, load_peak_, body});
+    solved.load = &load;
+    load_peak_ =
+        nodal_results(dofs, u_, internal, external_, p_.mesh.nodes, sol_, p_.subdomain.get(), solved);
   }
 
   Problem<M> p_;

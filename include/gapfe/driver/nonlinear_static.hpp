@@ -33,6 +33,7 @@
 
 #include "gapfe/assembly/assembler.hpp"
 #include "gapfe/core/history.hpp"
+#include "gapfe/post/balance.hpp"
 #include "gapfe/post/recovery.hpp"
 #include "gapfe/problem/problem.hpp"
 #include "gapfe/problem/results.hpp"
@@ -214,7 +215,7 @@ class NonlinearStatic {
     // expansion relaxes to nothing (|F_int| ~ round-off at the solution). Not the iterates': a diverging
     // one must not loosen the test of the next.
     step_peak_ = nodal_results(dofs, u_, internal_, external_, p_.mesh.nodes, sol_, p_.subdomain.get(),
-                               {&external_, load_peak_});
+                               {&external_, load_peak_, Vec2::Zero(), links_torque()});
     if (extrapolate) {  // the extrapolated start may already be in equilibrium (a proportional elastic step)
       if (!std::isfinite(sol_.residual)) throw SolveError("the residual is not finite");
       report_.converged = sol_.residual <= options_.tolerance;
@@ -248,7 +249,7 @@ class NonlinearStatic {
       evaluate(tangent, nullptr);
       lap(&SolveTimings::assemble);
       last_size_ = nodal_results(dofs, u_, internal_, external_, p_.mesh.nodes, sol_, p_.subdomain.get(),
-                                 {&external_, step_peak_});
+                                 {&external_, step_peak_, Vec2::Zero(), links_torque()});
       report_.residuals.push_back(sol_.residual);
       report_.iterations = it + 1;
       if (!std::isfinite(sol_.residual)) throw SolveError("the residual is not finite");
@@ -282,6 +283,12 @@ class NonlinearStatic {
     return sol_;
   }
 
+  /// The node links' torque at u_ over every part (the global balance's gap term; collective).
+  double links_torque() const {
+    double torque = link_torque(assembler_, p_, u_);
+    if (const Subdomain* part = p_.subdomain.get()) part->sum(&torque, 1);
+    return torque;
+  }
   /// NewtonOptions::stall_factor's test on this step's residuals so far.
   bool stalled() const {
     const auto& r                 = report_.residuals;

@@ -19,7 +19,8 @@
 //   residual               the increment's relative residual (|K u - f| / |f|, or Newton's |R| / |F_int|)
 //   applied_z, reaction_z  global equilibrium (Solution::balance): the axial force of every applied load
 //                          (edge tractions, nodal forces, body forces) and of every reaction [force]
-//   applied_torque, reaction_torque   with 3 DOF per node: their torques about the axis [force x length]
+//   applied_torque, reaction_torque, gap_torque   with 3 DOF per node: their torques about the axis, and
+//                          the gap pairs' own (Balance::gap_torque) [force x length]
 //   balance                |applied + reaction| / the load's size, the larger of the two directions
 // Each row is one write (io/output_file.hpp), so a run that fails or is killed keeps the history of what it
 // accepted, every row whole.
@@ -41,7 +42,7 @@ namespace gapfe {
 /// Which optional columns history.csv has.
 struct HistoryColumns {
   bool friction = false;  ///< the run has friction at its gap pairs: cone_ratio
-  bool torque   = false;  ///< 3 DOF per node: applied_torque, reaction_torque
+  bool torque   = false;  ///< 3 DOF per node: applied_torque, reaction_torque, gap_torque
 };
 
 /// What an increment's driver knows beyond its solution.
@@ -86,7 +87,7 @@ class HistoryFile {
     }
     head += std::string(",u_max,closed,slipping") + (columns.friction ? ",cone_ratio" : "") +
             ",plastic_points,iterations,residual,applied_z,reaction_z" +
-            (columns.torque ? ",applied_torque,reaction_torque" : "") + ",balance\n";
+            (columns.torque ? ",applied_torque,reaction_torque,gap_torque" : "") + ",balance\n";
     out_ = OutputFile(dir + "/history.csv");
     out_.append(head);
   }
@@ -118,7 +119,7 @@ class HistoryFile {
     }
     const Balance& b = s.balance;
     std::vector<double> tail{s.residual, b.applied_axial, b.reaction_axial};
-    if (columns_.torque) tail.insert(tail.end(), {b.applied_torque, b.reaction_torque});
+    if (columns_.torque) tail.insert(tail.end(), {b.applied_torque, b.reaction_torque, b.gap_torque});
     tail.push_back(b.relative());
     for (const double v : tail) {
       row += ',';

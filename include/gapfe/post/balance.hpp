@@ -1,11 +1,18 @@
 #pragma once
-// The body forces' totals for the global balance (Solution::balance, post/recovery.hpp's nodal_results):
-// a linear law's body forces are element loads of the right-hand side and no vector of the driver holds
-// them at every node, so their totals come from the elements' own load integration (the same
-// ElementKernel::shape_load the right-hand side is built from: one source of truth). Over a cell's shape
+// What the global balance (Solution::balance, post/recovery.hpp's nodal_results) needs beyond the nodal
+// vectors of a solve.
+//
+// The body forces' totals: a linear law's body forces are element loads of the right-hand side and no vector
+// of the driver holds them at every node, so their totals come from the elements' own load integration (the
+// same ElementKernel::shape_load the right-hand side is built from: one source of truth). Over a cell's shape
 // nodes, an inner node of the legacy quad included: its static condensation moves a load to the corners
 // without changing the force along the axis or the torque about it (rigid axial translation and rotation
 // strain nothing).
+//
+// The node links' torque: a link's two forces are equal and opposite, so they sum to nothing along the axis,
+// but a gap pair across a radial gap carries its theta force at two radii, r_a and r_b, and so exerts the
+// torque f_theta (r_b - r_a) on the structure (the seed's gap element, Eq. 1-3, is a spring between the two
+// nodes; 4e-7 of the load on the press fit pushed and twisted, whose gap is 4e-5 of its radius).
 #include "gapfe/assembly/assembler.hpp"
 
 namespace gapfe {
@@ -36,6 +43,27 @@ Vec2 body_force_totals(const Assembler<M>& a, const Problem<M>& p) {
         }
       });
   return total;
+}
+
+/// The torque about the axis of the node links' internal forces at `u` (all DOFs) over the links this part
+/// assembles (a partitioned caller sums over the parts); 0 with 2 DOF per node [force x length].
+template <class M>
+double link_torque(const Assembler<M>& a, const Problem<M>& p, const VecX& u) {
+  constexpr int kNd = M::Kinematics::kDofsPerNode;
+  double torque     = 0;
+  if constexpr (kNd == 3) {
+    for (std::size_t l = 0; l < a.links().size(); ++l) {
+      if (!a.assembles_link(l)) continue;
+      const NodeLink& link = a.link_values()[l];
+      const auto& nodes    = a.links()[l];
+      const Vec<2 * kNd> f =
+          link.template element_stiffness<kNd>() * a.gather(nodes, u) - link.template element_load<kNd>();
+      for (int end = 0; end < 2; ++end)
+        torque += p.mesh.nodes[static_cast<std::size_t>(nodes[static_cast<std::size_t>(end)])](0) *
+                  f(end * kNd + 2);
+    }
+  }
+  return torque;
 }
 
 }  // namespace gapfe

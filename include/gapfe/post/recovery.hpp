@@ -63,19 +63,21 @@ struct SolveLoads {
   /// Totals of body forces that `external` does not hold (a linear law's are element loads): the axial
   /// force and the torque about the axis [force, force x length].
   Vec2 body = Vec2::Zero();
+  /// The torque of the node links' internal forces (post/balance.hpp's link_torque) [force x length].
+  double link_torque = 0;
 };
 
 /// Displacements at the nodes at `positions` (r, z), reactions = internal - external at prescribed DOFs, the
 /// relative out-of-balance
 /// |internal - external| / |internal| at the free DOFs (all vectors over all DOFs) and the global balance
-/// (Solution::balance: applied = external + loads.body). The out-of-balance is relative to the largest of
-/// the internal force, `loads.load` and `loads.peak`: a body in free thermal expansion, or flying on soft
-/// gap elements, has no internal force to speak of, a step that unloads to nothing no load, and their
-/// round-off would read as a residual of order 1. Returns the size it used (a sum of squares: the caller's
-/// next `peak`).
-/// For a part of a partitioned problem (`part`) the vectors are the part's partial sums: they are summed
-/// over the parts first (the reactions are then totals at every local node) and the norms and sums count
-/// each node once, at its owner, over every part (collective; `loads.body` is every part's total already).
+/// (Solution::balance: applied = external + loads.body, and the links' torque). The out-of-balance is
+/// relative to the largest of the internal force, `loads.load` and `loads.peak`: a body in free thermal
+/// expansion, or flying on soft gap elements, has no internal force to speak of, a step that unloads to
+/// nothing no load, and their round-off would read as a residual of order 1. Returns the size it used (a sum
+/// of squares: the caller's next `peak`). For a part of a partitioned problem (`part`) the vectors are the
+/// part's partial sums: they are summed over the parts first (the reactions are then totals at every local
+/// node) and the norms and sums count each node once, at its owner, over every part (collective; `loads.body`
+/// and `loads.link_torque` are every part's totals already).
 template <int DofsPerNode>
 double nodal_results(const DofMap<DofsPerNode>& dofs, const VecX& u, const VecX& internal,
                      const VecX& external, const std::vector<Vec2>& positions, Solution& s,
@@ -124,7 +126,7 @@ double nodal_results(const DofMap<DofsPerNode>& dofs, const VecX& u, const VecX&
   Balance& b        = s.balance;
   b.applied_axial = sums[3] + loads.body(0), b.reaction_axial = sums[4];
   b.size_axial     = sums[5] + std::abs(loads.body(0)) + std::sqrt(size);
-  b.applied_torque = sums[6] + loads.body(1), b.reaction_torque = sums[7];
+  b.applied_torque = sums[6] + loads.body(1), b.reaction_torque = sums[7], b.gap_torque = loads.link_torque;
   b.size_torque = DofsPerNode == 3 ? sums[8] + std::abs(loads.body(1)) + sums[9] * std::sqrt(size) : 0.0;
   return size;
 }

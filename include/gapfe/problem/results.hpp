@@ -23,14 +23,17 @@ namespace gapfe {
 /// over the nodes, and at least the magnitude of the loads the solve carried (thermal loads included,
 /// which sum to nothing, and the loads of prescribed displacements), so that a self-equilibrated load reads
 /// its round-off as a small number. Forces [force], torques [force x length].
+/// The node links (gap pairs) add one term about the axis: a pair across a radial gap carries its theta
+/// force at two radii, so the pairs exert a torque `gap_torque` of their own (post/balance.hpp), which the
+/// balance counts: applied + reaction = gap_torque.
 struct Balance {
   double applied_axial = 0, reaction_axial = 0, size_axial = 0;
-  double applied_torque = 0, reaction_torque = 0, size_torque = 0;
-  /// The larger of |applied + reaction| / size along the axis and about it (0 where the size is 0).
+  double applied_torque = 0, reaction_torque = 0, gap_torque = 0, size_torque = 0;
+  /// The larger of |applied + reaction - gap| / size along the axis and about it (0 where the size is 0).
   double relative() const {
-    const auto part = [](double a, double r, double size) { return size > 0 ? std::abs(a + r) / size : 0.0; };
-    return std::max(part(applied_axial, reaction_axial, size_axial),
-                    part(applied_torque, reaction_torque, size_torque));
+    const auto part = [](double off, double size) { return size > 0 ? std::abs(off) / size : 0.0; };
+    return std::max(part(applied_axial + reaction_axial, size_axial),
+                    part(applied_torque + reaction_torque - gap_torque, size_torque));
   }
 };
 
