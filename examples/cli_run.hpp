@@ -169,7 +169,8 @@ void write_increment(const RunRequest& r, RunTimes& times, RunFiles& files, int 
   keep_largest(times.step_residual, step, residual);
   const Balance& balance = fe.solution().balance;
   keep_largest(times.step_balance, step, balance.relative());
-  if (!(balance.relative() <= times.balance)) times.balance = balance.relative(), times.balance_step = step;
+  if (!std::isnan(times.balance) && !(balance.relative() <= times.balance))  // (a NaN stays the worst)
+    times.balance = balance.relative(), times.balance_step = step;
   times.last_balance = balance;
   const auto start   = std::chrono::steady_clock::now();
   if (const Subdomain* part = fe.problem().subdomain.get()) {

@@ -51,7 +51,8 @@ root = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(root / "bench"))
 import deckgen as dg  # noqa: E402  (the decks' one writer)
 import numpy as np  # noqa: E402
-from closed_forms import annulus  # noqa: E402  (the compound cylinders' closed forms)
+import closed_forms  # noqa: E402  (the compound cylinders' closed forms)
+from closed_forms import annulus  # noqa: E402
 from checks import check, finish  # noqa: E402
 
 meshes = root / "tests" / "data" / "matrix"
@@ -331,6 +332,7 @@ def lame_bore(a, b):
 def spinning_bore(a, b):
     """u_r at the bore of a tube a..b spinning at OMEGA in plane strain with free surfaces
     (bench/closed_forms.py's annulus: u = A r + B / r - kappa r^3 / 8 with sigma_r = 0 at a and b)."""
+    assert (closed_forms.E, closed_forms.NU, closed_forms.RHO) == (E, NU, RHO), "the closed form's steel is not ours"
     body = annulus(a, b, omega=OMEGA)
     rows = [body["s"](a), body["s"](b)]
     A, B = np.linalg.solve([[r[0], r[1]] for r in rows], [-r[2] for r in rows])

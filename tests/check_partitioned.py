@@ -22,6 +22,7 @@ sys.dont_write_bytecode = True
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "bench"))
 import deckgen  # noqa: E402
+import check_matrix  # noqa: E402  (its fit and deck writer)
 
 TOLERANCE = 1e-8
 TABLES = ["nodes.csv", "reactions.csv", "elements.csv", "gaps.csv", "history.csv", "plasticity.csv"]
@@ -33,6 +34,8 @@ def field(column):
     """The field a column belongs to: its prefix for displacement, stress, reaction and pair-force components."""
     if column in ("applied_z", "reaction_z"):  # the global balance's sums: round-off where they cancel
         return "R_"
+    if column in ("applied_torque", "reaction_torque", "gap_torque"):  # its torques, one field
+        return "torque"
     prefix = column.split("_")[0] + "_"
     return prefix if prefix in ("u_", "s_", "R_", "f_") else column
 SKIPPED = {"residual", "residuals", "drift", "balance"}  # round-off measures, not answers
@@ -109,9 +112,16 @@ def main():
     os.makedirs(work, exist_ok=True)
     decks = {name: os.path.join(HERE, "..", "examples", "decks", name + ".deck")
              for name in ["thick_tube", "two_tubes", "plastic_tube"]}
+    # The global balance's terms summed over the parts: body forces along the axis and about it (a 3-DOF fit
+    # under an angular acceleration, tests/check_matrix.py's) and the gap pairs' torque (a press fit pushed
+    # and twisted, Coulomb).
+    fit = {"load": "angular_acceleration", "element": "legacy", "dofs": 3, "contact": "active-set",
+           "policy": "active-set", "plastic": False, "name": "partitioned"}
     for name, text in {"tube_40x20": deckgen.tube_deck(41, 21, h=50.0),
                        "two_tubes_20x20": deckgen.two_tubes_deck(n=20, nz=20, a=50.0, b=75.0, gap=0.02, c=100.0,
-                                                                 steps=10, contact="active-set")}.items():
+                                                                 steps=10, contact="active-set"),
+                       "fit_angular_acceleration": check_matrix.deck(fit, check_matrix.Body(True)),
+                       "press_fit_twisted": deckgen.press_fit_deck(ns=4, nh=4, nz=6, steps=4, twist=0.001)}.items():
         decks[name] = os.path.join(work, name + ".deck")
         with open(decks[name], "w") as f:
             f.write(text)

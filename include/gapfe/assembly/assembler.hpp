@@ -170,18 +170,35 @@ class Assembler {
   /// Body forces (seed Data 12) into `f` (all DOFs), for laws with history; their thermal strain is in
   /// the law.
   void add_body_forces(const Problem<M>& p, VecX& f) const {
+    for_each_body_load(p, [&]<class E, std::size_t NPC>(std::type_identity<E>,
+                                                        const std::array<int, NPC>& cell, const auto& fe,
+                                                        const auto&) {
+      static_assert(ElementKernel<Kin, E>::kInner == 0, "a condensed centre's load is the linear system's");
+      add_to(cell, fe, f);
+    });
+  }
+  /// Every cell's body-force load (seed Data 12; ElementKernel::shape_load) to
+  /// `visit(std::type_identity<E>, cell, load over the shape nodes, the shape nodes' (r, z))`, cells
+  /// without one skipped (an inner node of the legacy quad included: the load before condensation).
+  template <class Visit>
+  void for_each_body_load(const Problem<M>& p, Visit&& visit) const {
     cache_.reset();
-    for_each_cell<Elem>(
-        p.mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t,
-                                              const std::array<int, NPC>& cell, const CellTag& tag) {
-          using Kernel      = ElementKernel<Kin, E>;
-          const auto& lp    = local(p, tag, cell);
-          const BodyForce b = body_force(p.inertia, lp.density);
-          if (!b.any()) return;
-          const typename Kernel::Vector fe = Kernel::shape_load(
-              cell_coords<E>(p.mesh, cell), Kernel::restrict(lp.stiffness), Kernel::StrainVector::Zero(), b);
-          add_to(cell, fe, f);
-        });
+    for_each_cell<Elem>(p.mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t,
+                                                              const std::array<int, NPC>& cell,
+                                                              const CellTag& tag) {
+      using Kernel      = ElementKernel<Kin, E>;
+      const auto& lp    = local(p, tag, cell);
+      const BodyForce b = body_force(p.inertia, lp.density);
+      if (!b.any()) return;
+      const auto x  = cell_coords<E>(p.mesh, cell);
+      const auto fe = Kernel::shape_load(x, Kernel::restrict(lp.stiffness), Kernel::StrainVector::Zero(), b);
+      visit(std::type_identity<E>{}, cell, fe, E::shape_coords(x));
+    });
+  }
+  /// Node link l's internal force K (u_b - u_a) - f on its nodes a, b at `u` (all DOFs), node-major.
+  Vec<2 * kNd> link_force(std::size_t l, const VecX& u) const {
+    const NodeLink& link = link_values_[l];
+    return link.template element_stiffness<kNd>() * gather(links_[l], u) - link.template element_load<kNd>();
   }
 
   /// A linear law's system: element stiffness into `values` (zeroed first, no links), and
@@ -380,22 +397,18 @@ class Assembler {
     return ue;
   }
 
+  /// Internal force K u_e - f_e of every non-zero node link into `internal`.
+  void add_link_forces(const VecX& u, VecX& internal) const {
+    for (std::size_t l = 0; l < links_.size(); ++l)
+      if (assembles_link(l)) add_to(links_[l], link_force(l, u), internal);
+  }
+
  private:
   /// out(dof) += v over the element's (or link's) DOFs.
   template <std::size_t NPC, class Vector>
   void add_to(const std::array<int, NPC>& nodes, const Vector& v, VecX& out) const {
     for (int a = 0; a < static_cast<int>(NPC); ++a)
       for (int c = 0; c < kNd; ++c) out(dofs_.dof(nodes[a], c)) += v(a * kNd + c);
-  }
-  /// Internal force K u_e - f_e of every non-zero node link into `internal`.
-  void add_link_forces(const VecX& u, VecX& internal) const {
-    for (std::size_t l = 0; l < links_.size(); ++l) {
-      const NodeLink& link = link_values_[l];
-      if (!assembles_link(l)) continue;
-      const Vec<2 * kNd> f =
-          link.template element_stiffness<kNd>() * gather(links_[l], u) - link.template element_load<kNd>();
-      add_to(links_[l], f, internal);
-    }
   }
   template <class E>
   const int* offsets(std::size_t e) const {

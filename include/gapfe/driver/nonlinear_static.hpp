@@ -160,7 +160,7 @@ class NonlinearStatic {
     u_committed_ = u_;
     previous_dt_ = context_.dt;
     last_solves_ = report_.converged ? report_.iterations : -1;
-    load_peak_   = std::max(step_peak_, last_size_);
+    load_peak_   = std::max(load_peak_, step_scale_);
   }
   /// Forget the last solve(): back to the committed state.
   void reject() {
@@ -210,13 +210,11 @@ class NonlinearStatic {
     bool tangent = !(extrapolate && last_solves_ == 0 && options_.predict_convergence);
     evaluate(tangent, &prescribed_step);
     lap(&SolveTimings::assemble);
-    // The residual's scale for the step (SolveLoads::peak): the loads and the internal force at its start
-    // as well as the run's accepted steps'. A heated body's start carries its thermal load, which a free
-    // expansion relaxes to nothing (|F_int| ~ round-off at the solution). Not the iterates': a diverging
-    // one must not loosen the test of the next.
-    step_peak_ = nodal_results(dofs, u_, internal_, external_, p_.mesh.nodes, sol_, p_.subdomain.get(),
-                               {&external_, load_peak_, Vec2::Zero(), links_torque()});
+    step_scale_       = start_scale();
+    const double peak = std::max(load_peak_, step_scale_);  // SolveLoads::peak of every residual below
     if (extrapolate) {  // the extrapolated start may already be in equilibrium (a proportional elastic step)
+      nodal_results(dofs, u_, internal_, external_, p_.mesh.nodes, sol_, p_.subdomain.get(),
+                    {&external_, peak, Vec2::Zero(), links_torque()});
       if (!std::isfinite(sol_.residual)) throw SolveError("the residual is not finite");
       report_.converged = sol_.residual <= options_.tolerance;
       if (report_.converged) report_.residuals.push_back(sol_.residual);
@@ -248,8 +246,8 @@ class NonlinearStatic {
       tangent          = again && !converged_next(it + 1, before_last, last);
       evaluate(tangent, nullptr);
       lap(&SolveTimings::assemble);
-      last_size_ = nodal_results(dofs, u_, internal_, external_, p_.mesh.nodes, sol_, p_.subdomain.get(),
-                                 {&external_, step_peak_, Vec2::Zero(), links_torque()});
+      nodal_results(dofs, u_, internal_, external_, p_.mesh.nodes, sol_, p_.subdomain.get(),
+                    {&external_, peak, Vec2::Zero(), links_torque()});
       report_.residuals.push_back(sol_.residual);
       report_.iterations = it + 1;
       if (!std::isfinite(sol_.residual)) throw SolveError("the residual is not finite");
@@ -283,6 +281,31 @@ class NonlinearStatic {
     return sol_;
   }
 
+  /// The loads a step starts from, a sum of squares: the external loads and the structure's internal force
+  /// at the step's start, without the node links' (collective). A heated body starts with its thermal load
+  /// there, which a free expansion relaxes to nothing, so that its residual, measured against its internal
+  /// force alone, would be round-off over round-off; a step that unloads starts with the load it takes
+  /// off. Not the iterates' forces (a diverging one must not loosen the test of the next) and not the
+  /// links' (a gap pair's penalty times an extrapolated overlap is no load).
+  double start_scale() const {
+    VecX structure = internal_, loads = external_;
+    if (!links().empty()) {
+      VecX link_forces = VecX::Zero(u_.size());
+      assembler_.add_link_forces(u_, link_forces);
+      structure -= link_forces;
+    }
+    const Subdomain* part = p_.subdomain.get();
+    if (part) part->sum_shared(structure.data(), kNd), part->sum_shared(loads.data(), kNd);
+    const int counted = part ? part->owned_nodes() : p_.mesh.node_count();
+    double sums[2]    = {0, 0};
+    for (int n = 0; n < counted; ++n)
+      for (int c = 0; c < kNd; ++c) {
+        const int d = assembler_.dofs().dof(n, c);
+        sums[0] += structure(d) * structure(d), sums[1] += loads(d) * loads(d);
+      }
+    if (part) part->sum(sums, 2);
+    return std::max(sums[0], sums[1]);
+  }
   /// The node links' torque at u_ over every part (the global balance's gap term; collective).
   double links_torque() const {
     double torque = link_torque(assembler_, p_, u_);
@@ -356,9 +379,9 @@ class NonlinearStatic {
   double previous_dt_ = 0;    ///< the last accepted step's dt
   int last_solves_    = -1;   ///< Newton corrections of the last accepted step (-1: none, or not converged)
   VecX external_, internal_, predictor_;
-  /// Sums of squares the residual is measured against (SolveLoads::peak): the accepted steps' largest, this
-  /// step's (its start included) and that of the last evaluation.
-  double load_peak_ = 0, step_peak_ = 0, last_size_ = 0;
+  /// Sums of squares the residual is measured against besides the evaluation's own forces
+  /// (SolveLoads::peak): this step's start_scale() and the largest of the accepted steps'.
+  double load_peak_ = 0, step_scale_ = 0;
   Solution sol_;
   SolveTimings time_, total_;
   std::function<void(const VecX&, bool)> link_update_;

@@ -59,7 +59,9 @@ struct SolveLoads {
   /// The whole load the free DOFs were solved for (edge and nodal forces, and the loads of thermal strain,
   /// inertia and prescribed displacements; all DOFs, read at the free ones), or nullptr.
   const VecX* load = nullptr;
-  double peak      = 0;  ///< |load|^2 of the largest load the run has carried so far
+  /// A sum of squares the out-of-balance is measured against too: the largest load the run has carried
+  /// (LinearStatic), or the loads of the step's start and of the accepted steps (NonlinearStatic).
+  double peak = 0;
   /// Totals of body forces that `external` does not hold (a linear law's are element loads): the axial
   /// force and the torque about the axis [force, force x length].
   Vec2 body = Vec2::Zero();
@@ -67,17 +69,17 @@ struct SolveLoads {
   double link_torque = 0;
 };
 
-/// Displacements at the nodes at `positions` (r, z), reactions = internal - external at prescribed DOFs, the
-/// relative out-of-balance
-/// |internal - external| / |internal| at the free DOFs (all vectors over all DOFs) and the global balance
-/// (Solution::balance: applied = external + loads.body, and the links' torque). The out-of-balance is
-/// relative to the largest of the internal force, `loads.load` and `loads.peak`: a body in free thermal
-/// expansion, or flying on soft gap elements, has no internal force to speak of, a step that unloads to
-/// nothing no load, and their round-off would read as a residual of order 1. Returns the size it used (a sum
-/// of squares: the caller's next `peak`). For a part of a partitioned problem (`part`) the vectors are the
-/// part's partial sums: they are summed over the parts first (the reactions are then totals at every local
-/// node) and the norms and sums count each node once, at its owner, over every part (collective; `loads.body`
-/// and `loads.link_torque` are every part's totals already).
+/// Displacements at the nodes at `positions` (r, z), reactions = internal - external at prescribed DOFs,
+/// the relative out-of-balance |internal - external| / |internal| at the free DOFs (all vectors over all
+/// DOFs) and the global balance (Solution::balance: applied = external + loads.body, and the links'
+/// torque). The out-of-balance is relative to the largest of the internal force, `loads.load` and
+/// `loads.peak`: a body in free thermal expansion, or flying on soft gap elements, has no internal force to
+/// speak of, a step that unloads to nothing no load, and their round-off would read as a residual of order
+/// 1. Returns the size it used (a sum of squares: LinearStatic's next `peak`).
+/// For a part of a partitioned problem (`part`) the vectors are the part's partial sums: they are summed over
+/// the parts first (the reactions are then totals at every local node) and the norms and sums count each
+/// node once, at its owner, over every part (collective; `loads.body` and `loads.link_torque` are every
+/// part's totals already).
 template <int DofsPerNode>
 double nodal_results(const DofMap<DofsPerNode>& dofs, const VecX& u, const VecX& internal,
                      const VecX& external, const std::vector<Vec2>& positions, Solution& s,
@@ -96,9 +98,12 @@ double nodal_results(const DofMap<DofsPerNode>& dofs, const VecX& u, const VecX&
   const VecX& ex    = part ? total_external : external;
   const VecX* whole = loads.load ? (part ? &total_load : loads.load) : nullptr;
   const int counted = part ? part->owned_nodes() : nodes;
-  // Sums over the nodes: out of balance, internal, load (squares); applied and reaction along the axis
-  // and about it, their sizes (sums of |.|), and the largest radius.
-  double sums[10] = {};
+  // Sums over the nodes (one array: a part sums them in one call): squares of the out-of-balance, the
+  // internal force and the load at the free DOFs; along the axis and about it (index kAxial or kTorque +)
+  // the applied loads, the reactions and their sizes (sums of |.|); and the largest radius.
+  constexpr int kUnbalanced = 0, kInternal = 1, kLoad = 2, kAxial = 3, kTorque = 6, kRadius = 9, kSums = 10;
+  constexpr int kApplied = 0, kReaction = 1, kSize = 2;
+  double sums[kSums] = {};
   for (int n = 0; n < nodes; ++n)
     for (int c = 0; c < DofsPerNode; ++c) {
       const int d             = dofs.dof(n, c);
@@ -106,28 +111,33 @@ double nodal_results(const DofMap<DofsPerNode>& dofs, const VecX& u, const VecX&
       if (dofs.equation[d] < 0)
         s.reaction(n, c) = unbalanced;
       else if (n < counted)
-        sums[0] += unbalanced * unbalanced, sums[2] += whole ? (*whole)(d) * (*whole)(d) : 0.0;
+        sums[kUnbalanced] += unbalanced * unbalanced, sums[kLoad] += whole ? (*whole)(d) * (*whole)(d) : 0.0;
       if (n >= counted) continue;
-      sums[1] += in(d)*in(d);
+      sums[kInternal] += in(d)*in(d);
+      if (c == 0) continue;  // radial: no global balance (a ring's radial loads are carried by its hoop)
       const double reaction = dofs.equation[d] < 0 ? unbalanced : 0.0;
-      const double arm      = c == 1 ? 1.0 : c == 2 ? positions[static_cast<std::size_t>(n)](0) : 0.0;
-      const int at          = c == 1 ? 3 : 6;  // axial force, or torque about the axis (u_theta)
-      if (c == 0) continue;
-      sums[at] += arm * ex(d), sums[at + 1] += arm * reaction;
-      sums[at + 2] += std::abs(arm * ex(d)) + std::abs(arm * reaction);
-      if (c == 2) sums[9] = std::max(sums[9], arm);
+      const double arm      = c == 1 ? 1.0 : positions[static_cast<std::size_t>(n)](0);  // u_z; u_theta: r
+      double* sum           = sums + (c == 1 ? kAxial : kTorque);
+      sum[kApplied] += arm * ex(d), sum[kReaction] += arm * reaction;
+      sum[kSize] += std::abs(arm * ex(d)) + std::abs(arm * reaction);
+      if (c == 2) sums[kRadius] = std::max(sums[kRadius], arm);
     }
   if (part) {
-    part->sum(sums, 9);
-    sums[9] = part->max(sums[9]);
+    part->sum(sums, kRadius);
+    sums[kRadius] = part->max(sums[kRadius]);
   }
-  const double size = std::max({sums[1], sums[2], loads.peak});
-  s.residual        = size > 0 ? std::sqrt(sums[0] / size) : 0.0;
+  const double size = std::max({sums[kInternal], sums[kLoad], loads.peak});
+  s.residual        = size > 0 ? std::sqrt(sums[kUnbalanced] / size) : 0.0;
   Balance& b        = s.balance;
-  b.applied_axial = sums[3] + loads.body(0), b.reaction_axial = sums[4];
-  b.size_axial     = sums[5] + std::abs(loads.body(0)) + std::sqrt(size);
-  b.applied_torque = sums[6] + loads.body(1), b.reaction_torque = sums[7], b.gap_torque = loads.link_torque;
-  b.size_torque = DofsPerNode == 3 ? sums[8] + std::abs(loads.body(1)) + sums[9] * std::sqrt(size) : 0.0;
+  b.applied_axial   = sums[kAxial + kApplied] + loads.body(0);
+  b.reaction_axial  = sums[kAxial + kReaction];
+  b.size_axial      = sums[kAxial + kSize] + std::abs(loads.body(0)) + std::sqrt(size);
+  b.applied_torque  = sums[kTorque + kApplied] + loads.body(1);
+  b.reaction_torque = sums[kTorque + kReaction];
+  b.gap_torque      = loads.link_torque;
+  b.size_torque     = DofsPerNode == 3 ? sums[kTorque + kSize] + std::abs(loads.body(1)) +
+                                         std::abs(loads.link_torque) + sums[kRadius] * std::sqrt(size)
+                                       : 0.0;
   return size;
 }
 
