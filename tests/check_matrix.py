@@ -181,20 +181,17 @@ def scene_body(case, body):
     if load == "displacement":
         text += f"[[boundary]]\ngroups = \"top\"\ndisplacement = {{ z = {DELTA} }}\n"
     tops = '["top_shaft", "top_hub"]' if body.contact else '"top"'
-    if load == "pressure":
-        text += f"[[load]]\ncurves = \"{pressure_face(body)}\"\npressure = {P_OUTSIDE if body.contact else P}\n"
-    if load == "bore_pressure":
-        text += f"[[load]]\ncurves = \"bore\"\npressure = {P_BORE}\n"
-    if load == "shear":
-        text += f"[[load]]\ncurves = \"outside\"\nshear = {TAU}\n"
-    if load == "transverse_shear":
-        text += f"[[load]]\ncurves = {tops}\ntransverse_shear = {TAU}\n"
-    if load == "spin":
-        text += f"[inertia]\nangular_velocity = {OMEGA}\n"
-    if load == "angular_acceleration":
-        text += f"[inertia]\nangular_acceleration = {ANG_ACC}\n"
-    if load == "axial_acceleration":
-        text += f"[inertia]\naxial_acceleration = {AX_ACC}\n"
+    curve_loads = {"pressure": (f'"{pressure_face(body)}"', "pressure", P_OUTSIDE if body.contact else P),
+                   "bore_pressure": ('"bore"', "pressure", P_BORE), "shear": ('"outside"', "shear", TAU),
+                   "transverse_shear": (tops, "transverse_shear", TAU)}
+    inertia = {"spin": ("angular_velocity", OMEGA), "angular_acceleration": ("angular_acceleration", ANG_ACC),
+               "axial_acceleration": ("axial_acceleration", AX_ACC)}
+    if load in curve_loads:
+        curves, key, value = curve_loads[load]
+        text += f"[[load]]\ncurves = {curves}\n{key} = {value}\n"
+    if load in inertia:
+        key, value = inertia[load]
+        text += f"[inertia]\n{key} = {value}\n"
     if load == "temperature":
         text += f"[temperature]\nreference = 0.0\nvalue = {DT}\n"
     if body.contact:

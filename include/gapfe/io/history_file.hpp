@@ -21,7 +21,8 @@
 //                          (edge tractions, nodal forces, body forces) and of every reaction [force]
 //   applied_torque, reaction_torque, gap_torque   with 3 DOF per node: their torques about the axis, and
 //                          the gap pairs' own (Balance::gap_torque) [force x length]
-//   balance                |applied + reaction| / the load's size, the larger of the two directions
+//   balance                Balance::relative(): |applied + reaction| / the load's size, the larger of the
+//                          two directions (about the axis, applied + reaction - gap_torque)
 // Each row is one write (io/output_file.hpp), so a run that fails or is killed keeps the history of what it
 // accepted, every row whole.
 #include <algorithm>
