@@ -49,7 +49,8 @@ struct RunTimes {
   double equilibrium   = 0;
   int equilibrium_step = 0;
   /// Per load step (index step - 1), the largest relative residual of its accepted increments: a linear
-  /// law's |K u - f| / |f|, Newton's |R| / |F_int| for a law with history (the log prints them).
+  /// law's |K u - f| / |f|, Newton's |R| / |F_int| for a law with history (both relative to the loads too,
+  /// docs/checks.md; the log prints them).
   std::vector<double> step_residual;
   /// Global equilibrium (Solution::balance): per load step its accepted increments' largest
   /// Balance::relative(), the largest of the run with its step, and the last increment's balance.
@@ -159,7 +160,9 @@ template <class Fe>
 void write_increment(const RunRequest& r, RunTimes& times, RunFiles& files, int step, double inc,
                      const Fe& fe, std::vector<VtuField> extra_cells = {},
                      const IncrementSummary& summary = {}) {
-  if (!std::isfinite(fe.solution().residual) || !fe.solution().displacement.allFinite())
+  const Solution& solution = fe.solution();
+  if (!std::isfinite(solution.residual) || !solution.displacement.allFinite() ||
+      !solution.reaction.allFinite() || !std::isfinite(solution.balance.relative()))
     throw SolveError("load step " + std::to_string(step) + ": the solution is not finite");
   // A law with history reports Newton's out-of-balance here instead (the tangent integration leaves
   // one by design), so only a linear law's residual measures the solve.
@@ -169,8 +172,7 @@ void write_increment(const RunRequest& r, RunTimes& times, RunFiles& files, int 
   keep_largest(times.step_residual, step, residual);
   const Balance& balance = fe.solution().balance;
   keep_largest(times.step_balance, step, balance.relative());
-  if (!std::isnan(times.balance) && !(balance.relative() <= times.balance))  // (a NaN stays the worst)
-    times.balance = balance.relative(), times.balance_step = step;
+  if (balance.relative() > times.balance) times.balance = balance.relative(), times.balance_step = step;
   times.last_balance = balance;
   const auto start   = std::chrono::steady_clock::now();
   if (const Subdomain* part = fe.problem().subdomain.get()) {

@@ -522,7 +522,7 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
   // Each load step's worst relative residual: a step the solver could not hold to round-off shows where.
   log_per_step(log,
                std::string("residual per load step (") +
-                   (plastic ? "Newton's |R| / |F_int|" : "|K u - f| / |f|") +
+                   (plastic ? "Newton's |R| / (|F_int| or the loads)" : "|K u - f| / |f|") +
                    ", the largest of its increments)",
                times.step_residual);
   if (!plastic) {

@@ -113,14 +113,17 @@ def main():
     decks = {name: os.path.join(HERE, "..", "examples", "decks", name + ".deck")
              for name in ["thick_tube", "two_tubes", "plastic_tube"]}
     # The global balance's terms summed over the parts: body forces along the axis and about it (a 3-DOF fit
-    # under an angular acceleration, tests/check_matrix.py's) and the gap pairs' torque (a press fit pushed
-    # and twisted, Coulomb).
-    fit = {"load": "angular_acceleration", "element": "legacy", "dofs": 3, "contact": "active-set",
-           "policy": "active-set", "plastic": False, "name": "partitioned"}
+    # under an axial and an angular acceleration, tests/check_matrix.py's) and the gap pairs' torque (a press
+    # fit pushed and twisted, Coulomb).
+    fit = {"element": "legacy", "dofs": 3, "contact": "active-set", "policy": "active-set", "plastic": False,
+           "name": "partitioned"}
     for name, text in {"tube_40x20": deckgen.tube_deck(41, 21, h=50.0),
                        "two_tubes_20x20": deckgen.two_tubes_deck(n=20, nz=20, a=50.0, b=75.0, gap=0.02, c=100.0,
                                                                  steps=10, contact="active-set"),
-                       "fit_angular_acceleration": check_matrix.deck(fit, check_matrix.Body(True)),
+                       "fit_angular_acceleration": check_matrix.deck(dict(fit, load="angular_acceleration"),
+                                                                     check_matrix.Body(True)),
+                       "fit_axial_acceleration": check_matrix.deck(dict(fit, load="axial_acceleration"),
+                                                                   check_matrix.Body(True)),
                        "press_fit_twisted": deckgen.press_fit_deck(ns=4, nh=4, nz=6, steps=4, twist=0.001)}.items():
         decks[name] = os.path.join(work, name + ".deck")
         with open(decks[name], "w") as f:

@@ -224,9 +224,10 @@ class LinearStatic {
   Problem<M> p_;
   Assembler<M> assembler_;
   System<typename M::LinearSolver> system_;
-  VecX external_, u_;             ///< all DOFs
-  mutable Solution sol_;          // reactions and residual filled lazily with defer_reactions()
-  mutable double load_peak_ = 0;  ///< the largest |load|^2 of the solves so far (SolveLoads::peak)
+  VecX external_, u_;     ///< all DOFs
+  mutable Solution sol_;  // reactions and residual filled lazily with defer_reactions()
+  mutable double load_peak_ =
+      0;  ///< the largest |load|^2 and |F_int|^2 of the solves so far (SolveLoads::peak)
   mutable SolveTimings time_;
   SolveTimings total_;
   mutable bool reactions_stale_ = false;

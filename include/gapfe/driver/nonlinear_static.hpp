@@ -13,8 +13,9 @@
 // point elastic: System::skip_unchanged); the pattern and its analysis never change. An evaluation that is
 // expected to end the step (converged_next()) computes F_int alone: its tangent would never be factorized.
 //   * Laws with kIterate (ReturnMapping): Newton until |R_free| <= tolerance |F_int| (over all DOFs, so
-//     reactions count and displacement-controlled steps are measured too). Every iteration's residual is
-//     kept in the report (the quadratic-convergence test reads it).
+//     reactions count and displacement-controlled steps are measured too; or the loads the step starts
+//     from, and the accepted steps', where larger: start_scale(), docs/checks.md). Every iteration's residual
+//     is kept in the report (the quadratic-convergence test reads it).
 //   * Laws without (Tangent): the seed's one linear solve per increment with the start-of-step tangent.
 //     The out-of-balance left is reported; the next step's residual carries it (equilibrium correction),
 //     so the error does not accumulate as in a purely incremental scheme.
@@ -43,7 +44,7 @@ namespace gapfe {
 
 /// Newton's stopping rule and starting point.
 struct NewtonOptions {
-  double tolerance   = 1e-10;  ///< |R_free| / |F_int| to stop at [-]
+  double tolerance   = 1e-10;  ///< |R_free| / |F_int| to stop at (|F_int| or the step's loads) [-]
   int max_iterations = 30;     ///< a SolveError beyond this (the caller may cut the step)
   /// Laws with kIterate: start a step from the last accepted step's displacement change, scaled by the
   /// ratio of the steps' dt (context()), instead of from the committed displacements (the prescribed
@@ -210,7 +211,7 @@ class NonlinearStatic {
     bool tangent = !(extrapolate && last_solves_ == 0 && options_.predict_convergence);
     evaluate(tangent, &prescribed_step);
     lap(&SolveTimings::assemble);
-    step_scale_       = start_scale();
+    step_scale_       = start_scale(!extrapolate);
     const double peak = std::max(load_peak_, step_scale_);  // SolveLoads::peak of every residual below
     if (extrapolate) {  // the extrapolated start may already be in equilibrium (a proportional elastic step)
       nodal_results(dofs, u_, internal_, external_, p_.mesh.nodes, sol_, p_.subdomain.get(),
@@ -281,15 +282,16 @@ class NonlinearStatic {
     return sol_;
   }
 
-  /// The loads a step starts from, a sum of squares: the external loads and the structure's internal force
-  /// at the step's start, without the node links' (collective). A heated body starts with its thermal load
-  /// there, which a free expansion relaxes to nothing, so that its residual, measured against its internal
-  /// force alone, would be round-off over round-off; a step that unloads starts with the load it takes
-  /// off. Not the iterates' forces (a diverging one must not loosen the test of the next) and not the
-  /// links' (a gap pair's penalty times an extrapolated overlap is no load).
-  double start_scale() const {
-    VecX structure = internal_, loads = external_;
-    if (!links().empty()) {
+  /// The loads a step starts from, a sum of squares: the external loads and, from the committed state
+  /// (`committed`), the structure's internal force there without the node links' (collective). A heated
+  /// body starts with its thermal load there, which a free expansion relaxes to nothing, so that its
+  /// residual, measured against its internal force alone, would be round-off over round-off; a step that
+  /// unloads starts with the load it takes off. Not an extrapolated start's internal force (a guess, which
+  /// grows with the ratio of the steps' dt), nor the iterates' (a diverging one must not loosen the test of
+  /// the next), nor the links' (a gap pair's penalty times an overlap is no load).
+  double start_scale(bool committed) const {
+    VecX structure = committed ? internal_ : VecX::Zero(internal_.size()), loads = external_;
+    if (committed && !links().empty()) {
       VecX link_forces = VecX::Zero(u_.size());
       assembler_.add_link_forces(u_, link_forces);
       structure -= link_forces;

@@ -16,7 +16,8 @@
 //   plastic_points         integration points on the yield surface
 //   iterations             linear solves of the increment (1 for a linear step; Newton's, or the contact
 //                          policy's, otherwise)
-//   residual               the increment's relative residual (|K u - f| / |f|, or Newton's |R| / |F_int|)
+//   residual               the increment's relative residual (|K u - f| / |f|, or Newton's |R| / |F_int|;
+//                          relative to the loads too, docs/checks.md)
 //   applied_z, reaction_z  global equilibrium (Solution::balance): the axial force of every applied load
 //                          (edge tractions, nodal forces, body forces) and of every reaction [force]
 //   applied_torque, reaction_torque, gap_torque   with 3 DOF per node: their torques about the axis, and

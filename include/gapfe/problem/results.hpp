@@ -29,11 +29,15 @@ namespace gapfe {
 struct Balance {
   double applied_axial = 0, reaction_axial = 0, size_axial = 0;
   double applied_torque = 0, reaction_torque = 0, gap_torque = 0, size_torque = 0;
-  /// The larger of |applied + reaction - gap| / size along the axis and about it (0 where the size is 0).
+  /// The larger of |applied + reaction - gap| / size along the axis and about it (0 where the size is 0;
+  /// NaN where any term is: a warning, never a silent 0).
   double relative() const {
-    const auto part = [](double off, double size) { return size > 0 ? std::abs(off) / size : 0.0; };
-    return std::max(part(applied_axial + reaction_axial, size_axial),
-                    part(applied_torque + reaction_torque - gap_torque, size_torque));
+    const auto part = [](double off, double size) {
+      return std::isnan(off) || std::isnan(size) ? off + size : size > 0 ? std::abs(off) / size : 0.0;
+    };
+    const double axial = part(applied_axial + reaction_axial, size_axial);
+    const double about = part(applied_torque + reaction_torque - gap_torque, size_torque);
+    return std::isnan(axial) || axial > about ? axial : about;
   }
 };
 
@@ -70,15 +74,15 @@ struct SolveTimings {
 
 /// What the last nonlinear step did.
 struct StepReport {
-  std::vector<double> residuals;  ///< |R_free| / |F_int| after each linear solve (or at an extrapolated
-                                  ///< start already in equilibrium, when no solve was needed)
-  int iterations     = 0;         ///< linear solves (1 for Tangent)
-  int evaluations    = 0;         ///< passes over the elements for F_int (each with the return map)
-  int tangents       = 0;         ///< of those, the ones that assembled K_t too
-  bool converged     = false;     ///< residual <= tolerance (Tangent: never required)
-  bool stalled       = false;     ///< converged by NewtonOptions::stall_factor: at round-off, not tolerance
-  int plastic_points = 0;         ///< points on the yield surface at the end of the step
-  double drift       = 0.0;       ///< max |sqrt(f) - 1| over those points: off the surface [-]
+  std::vector<double> residuals;  ///< |R_free| / |F_int| (or the step's loads) after each linear solve (or at
+                                  ///< an extrapolated start already in equilibrium, when no solve was needed)
+  int iterations     = 0;      ///< linear solves (1 for Tangent)
+  int evaluations    = 0;      ///< passes over the elements for F_int (each with the return map)
+  int tangents       = 0;      ///< of those, the ones that assembled K_t too
+  bool converged     = false;  ///< residual <= tolerance (Tangent: never required)
+  bool stalled       = false;  ///< converged by NewtonOptions::stall_factor: at round-off, not tolerance
+  int plastic_points = 0;      ///< points on the yield surface at the end of the step
+  double drift       = 0.0;    ///< max |sqrt(f) - 1| over those points: off the surface [-]
 };
 
 }  // namespace gapfe
