@@ -76,13 +76,13 @@ struct SolveTimings {
 struct StepReport {
   std::vector<double> residuals;  ///< |R_free| / |F_int| (or the step's loads) after each linear solve (or at
                                   ///< an extrapolated start already in equilibrium, when no solve was needed)
-  int iterations     = 0;      ///< linear solves (1 for Tangent)
-  int evaluations    = 0;      ///< passes over the elements for F_int (each with the return map)
-  int tangents       = 0;      ///< of those, the ones that assembled K_t too
-  bool converged     = false;  ///< residual <= tolerance (Tangent: never required)
-  bool stalled       = false;  ///< converged by NewtonOptions::stall_factor: at round-off, not tolerance
-  int plastic_points = 0;      ///< points on the yield surface at the end of the step
-  double drift       = 0.0;    ///< max |sqrt(f) - 1| over those points: off the surface [-]
+  int iterations     = 0;         ///< linear solves (1 for Tangent)
+  int evaluations    = 0;         ///< passes over the elements for F_int (each with the return map)
+  int tangents       = 0;         ///< of those, the ones that assembled K_t too
+  bool converged     = false;     ///< residual <= tolerance (Tangent: never required)
+  bool stalled       = false;     ///< converged by NewtonOptions::stall_factor: at round-off, not tolerance
+  int plastic_points = 0;         ///< points on the yield surface at the end of the step
+  double drift       = 0.0;       ///< max |sqrt(f) - 1| over those points: off the surface [-]
 };
 
 }  // namespace gapfe
