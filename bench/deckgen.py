@@ -140,15 +140,20 @@ def helical_sleeve_deck():
 
 
 def two_tubes_deck(n=40, nz=80, a=1.0, b=1.5, gap=5e-4, c=2.0, h=None, p=100.0, steps=10, contact="saac",
-                   extension=(), sigma_y=None):
+                   extension=(), sigma_y=None, hardening=0.0, rate=None):
     """Two tubes across a radial gap (THEORY.md V5, plane strain): inner a..b and outer b + gap..c, n x nz
     cells each, one column of gap elements (material 2, IJDIR = 1) between them, bore pressure ramped to
     p in `steps` equal steps (INCF = 0). E = 200000, nu = 0.3; the gap material is 1e-9 as stiff.
-    Grid: I = 1..2n + 2 across, J = 1..nz + 1 up; h defaults to square cells of the inner tube."""
+    Grid: I = 1..2n + 2 across, J = 1..nz + 1 up; h defaults to square cells of the inner tube.
+    sigma_y: the inner tube yields (Mises, Prager hardening c = `hardening`); rate = (delta t, b, transition
+    rate): a SAAC3 deck (card 0 first), Drysdale-Zak rate dependence in the inner tube."""
     h = h if h is not None else (b - a) * nz / n
     ni, nj = 2 * n + 2, nz + 1
     node = lambda I, J: (J - 1) * ni + I
     lines = [f"$ contact = {contact}"] + [f"$ {e}" for e in extension]
+    if rate:
+        lines += ["$ format = saac3", rate_card(*rate)]
+    title_at = len(lines)
     lines += [f"TWO TUBES {a:g}-{b:g} AND {b + gap:g}-{c:g}, GAP {gap:g}, PRESSURE {p:g} IN {steps} STEPS",
               control(nummat=2 if sigma_y is None else 3, numpc=nz, nlinc=steps, incf=0), mesh_control(ni, nj, 8, 1, 3),
               segment([(1, 1, a, 0.0), (n + 1, 1, b, 0.0)], 1), segment([(n + 2, 1, b + gap, 0.0), (ni, 1, c, 0.0)], 1),
@@ -161,8 +166,8 @@ def two_tubes_deck(n=40, nz=80, a=1.0, b=1.5, gap=5e-4, c=2.0, h=None, p=100.0, 
         lines += material(1, [isotropic(200000.0, 0.3)])
     else:  # the inner tube (material 1) yields (Mises); the outer tube (material 3) stays elastic
         k = sigma_y / math.sqrt(3.0)
-        lines[1 + len(extension)] = lines[1 + len(extension)].replace("TWO TUBES", "PLASTIC TUBE IN A TUBE")
-        lines += material(1, [isotropic(200000.0, 0.3)], yield_card=[sigma_y] * 3 + [k] * 3 + [0.0])
+        lines[title_at] = lines[title_at].replace("TWO TUBES", "PLASTIC TUBE IN A TUBE")
+        lines += material(1, [isotropic(200000.0, 0.3)], yield_card=[sigma_y] * 3 + [k] * 3 + [hardening])
     lines += material(2, [isotropic(200000.0e-9, 0.0)])
     if sigma_y is not None:
         lines += material(3, [isotropic(200000.0, 0.3)])

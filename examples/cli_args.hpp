@@ -58,7 +58,9 @@ inline constexpr OptionSpec kOptions[] = {
      "with solver = petsc: a PETSc option (-ksp_type cg, -pc_type gamg, -pc_factor_mat_solver_type mumps, "
      "-log_view, ...)"},
     {"--contact", "C", "run mesh info", "shorthand for --set contact=C"},
-    {"--plasticity", "P", "run mesh info", "shorthand for --set plasticity=P (tangent, return-mapping)"},
+    {"--plasticity", "P", "run mesh info",
+     "shorthand for --set plasticity=P (return-mapping, the default; tangent, the seed's one-solve scheme "
+     "for legacy results)"},
     {"--output", "all|last|none", "run mesh info",
      "shorthand for --set output=...: which increments the CSV tables and VTU files get"},
     {"--plot", "FIELD", "run",

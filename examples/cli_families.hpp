@@ -64,10 +64,11 @@ void run_plastic(const RunRequest& r, RunTimes& times) {
   RunFiles files = step_files(r);
   FinishFiles finish{r, times, files};
   // plasticity.csv: the Newton record of every accepted increment (residuals: |R| / |F_int| after each
-  // linear solve, separated by spaces; drift: max |sqrt f - 1| over the plastic points).
+  // linear solve, separated by spaces; drift: max |sqrt f - 1| over the plastic points; time_error: a
+  // rate-dependent law's estimated time-integration error, StepReport::time_error).
   OutputFile record;  // left closed where this process writes no files: its rows go nowhere
   if (r.writes) record = OutputFile(r.dir + "/plasticity.csv");
-  record.append("step,inc,t,iterations,plastic_points,drift,residuals\n");
+  record.append("step,inc,t,iterations,plastic_points,drift,time_error,residuals\n");
   int last_step = 0;
   run_deck_plastic<M>(
       r.deck, r.scene,
@@ -82,6 +83,7 @@ void run_plastic(const RunRequest& r, RunTimes& times) {
         times.cut_steps += step == last_step || inc != std::floor(inc);
         times.plastic_points = rep.plastic_points;
         times.drift          = std::max(times.drift, rep.drift);
+        times.time_error     = std::max(times.time_error, rep.time_error);
         times.worst_residual = std::max(times.worst_residual, rep.residuals.back());
         times.stalled += rep.stalled;
         ++times.increments;
@@ -91,6 +93,7 @@ void run_plastic(const RunRequest& r, RunTimes& times) {
         detail::append_number(row, static_cast<long long>(rep.iterations)), row += ',';
         detail::append_number(row, static_cast<long long>(rep.plastic_points)), row += ',';
         detail::csv_number(row, rep.drift);
+        detail::csv_number(row, rep.time_error);
         for (std::size_t k = 0; k < rep.residuals.size(); ++k) {
           if (k > 0) row += ' ';
           detail::append_number(row, rep.residuals[k]);
@@ -160,6 +163,7 @@ void run_contact(const RunRequest& r, RunTimes& times) {
         if constexpr (!M::Material::kLinear) {
           note_relaxation(times, r.deck, step, inc, c.fe().states(), c.fe().problem().subdomain.get());
           summary.plastic_points = c.fe().report().plastic_points;
+          times.time_error       = std::max(times.time_error, c.fe().report().time_error);
         }
         // The pairs in the whole mesh's numbering (a part's are renumbered; their states are every part's).
         write_increment(

@@ -1,10 +1,11 @@
-// `gapfe run`'s choice of a compiled variant (cli_variants.hpp) for a deck, after the checks that give a
-// combination the table does not hold a clear message.
+// `gapfe run`'s choice of a compiled variant (cli_variants.hpp) for a deck, after the checks of the deck's
+// input and the library's rule of what combines (core/combinations.hpp), which the table mirrors.
 #include "cli_run.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <string_view>
 #include <utility>
 
 #include "cli_variants.hpp"
@@ -16,42 +17,28 @@ void run_deck_request(const RunRequest& r, RunTimes& times) {
   const bool gaps            = !r.scene.needs.gaps.empty();
   const DeckOptions& o       = r.deck.options;
   const std::string friction = o.friction_model();
-  if (friction != "none") {
+  if (friction != "none" && !gaps) {
     char mu[32];
     std::snprintf(mu, sizeof mu, "%g", o.friction);
-    const std::string head = "friction = " + std::string(mu) + ", slip = " + friction + ": ";
-    if (!gaps)
-      throw InputError(head +
-                       "the deck has no gap elements (material 2) to carry friction; remove the "
-                       "friction option or add a gap layer");
-    if (o.contact == "none")
-      throw InputError(head +
-                       "contact = none leaves every gap open; choose contact = saac, active-set or "
-                       "augmented-lagrangian");
-    if (friction != "coulomb" && o.contact != "saac")
-      throw InputError(head +
-                       "the seed's slip models run under the seed's stepping (contact = saac); with "
-                       "contact = " +
-                       o.contact + " use slip = coulomb");
-    if (friction == "coulomb" && o.contact == "saac")
-      throw InputError(head +
-                       "Coulomb friction needs an exact contact policy (contact = active-set or "
-                       "augmented-lagrangian): saac freezes the gap at closure, so the normal force of "
-                       "the friction cone never converges");
-    if (friction == "coulomb" && plastic && o.plasticity != "return-mapping")
-      throw InputError(head +
-                       "with yield cards Coulomb friction needs plasticity = return-mapping (slip and "
-                       "plastic flow converge together in its Newton iterations; tangent solves once "
-                       "per step)");
+    throw InputError("friction = " + std::string(mu) + ", slip = " + friction +
+                     ": the deck has no gap elements (material 2) to carry friction; remove the friction "
+                     "option or add a gap layer");
   }
+  // The library's one rule of what combines (core/combinations.hpp); the table holds every other variant.
+  Combination combination;
+  combination.history   = plastic;
+  combination.iterates  = o.plasticity == "return-mapping";
+  combination.condensed = r.element == "legacy";
+  combination.contact   = gaps ? std::string_view(o.contact) : std::string_view("none");
+  combination.friction  = friction;
+  if (const std::string_view why = unsupported(combination); !why.empty())
+    throw InputError("element = " + r.element + (plastic ? ", plasticity = " + o.plasticity : "") +
+                     (gaps ? ", contact = " + o.contact : "") +
+                     (friction != "none" ? ", slip = " + friction : "") + ": " + std::string(why));
   if (o.events == "step-end" && o.contact != "active-set" && o.contact != "augmented-lagrangian")
     throw InputError("events = step-end: contact = " + o.contact +
                      " does not locate status changes to begin with; it applies to contact = active-set "
                      "and augmented-lagrangian");
-  if (plastic && r.element == "legacy")
-    throw InputError(
-        "element = legacy with yield cards: the legacy quad's condensed centre node is not in the "
-        "plastic driver yet; use element = quad4bbar (the default for plastic decks) or quad4");
   const bool rate = plastic && r.deck.rate_dependent();
   if (rate) {
     const RateCard& c = *r.deck.rate;
@@ -63,11 +50,6 @@ void run_deck_request(const RunRequest& r, RunTimes& times) {
     if (!(c.rate_plastic_strain > 0) || !std::isfinite(c.rate_plastic_strain))
       throw InputError(
           "DATA NO. 0 (rate property card): the transition strain rate (columns 25-36) must be > 0");
-    if (gaps && o.contact != "saac" && o.contact != "none")
-      throw InputError(
-          "contact = " + o.contact +
-          " with rate-dependent plasticity (card 0, b != 0): the command offers it with contact = "
-          "saac (SAAC3 = SAAC2 + the rate law); the library's ContactStatic takes any policy");
   }
   const VariantKey key{r.variant, r.element,
                        plastic ? (rate ? "rate-dependent " : "") + o.plasticity : std::string("elastic"),

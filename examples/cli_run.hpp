@@ -44,6 +44,8 @@ struct RunTimes {
   int element_passes = 0, tangents = 0;  ///< Newton's F_int evaluations, and those that assembled K_t
   int stalled  = 0;  ///< increments accepted at round-off (NewtonOptions::stall_factor), not the tolerance
   double drift = 0, worst_residual = 0;
+  double time_error =
+      0;  ///< rate-dependent laws: the largest StepReport::time_error of an accepted increment
   /// Linear laws: the largest |K u - f| / |f| over the free DOFs of an accepted increment's solve (issue 15:
   /// ill-conditioning shows here, as round-off the factorization could not hold), and its load step.
   double equilibrium   = 0;

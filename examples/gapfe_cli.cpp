@@ -132,10 +132,25 @@ bool warn_seed_residual(std::ostream& err, const RunTimes& times) {
   err << "gapfe: warning: load step " << (worst - r.begin()) + 1 << " was accepted with a relative residual "
       << *worst << " (above " << kSeedResidualWarning
       << "): plasticity = tangent (the seed's one solve per increment) does not iterate, and out-of-balances "
-         "this large have put its answers off by 7% to 20 times (docs/checks.md); plasticity = "
-         "return-mapping "
-         "iterates every increment to newton_tolerance\n";
+         "this large have put its answers off by 7% to 20 times (docs/plasticity.md); plasticity = "
+         "return-mapping (the default) iterates every increment to newton_tolerance\n";
   return true;
+}
+
+/// A rate-dependent run under return-mapping: the largest estimated time error of an accepted increment in
+/// the log (DrysdaleZak::time_error, docs/plasticity.md "Time steps"), and a warning when it stayed above
+/// time_tolerance (a step cut to its smallest pieces, 1/1024, and still above it).
+void report_time_error(std::ostream& log, std::ostream& err, const RunTimes& times, const Deck& d) {
+  const double tol = d.options.time_tolerance;
+  log << "time steps: largest estimated time error of an increment " << times.time_error
+      << (tol > 0 ? " (time_tolerance " + detail::number_text(tol) + ")"
+                  : std::string(" (time_tolerance 0: off)"))
+      << "\n";
+  if (tol > 0 && times.time_error > tol)
+    err << "gapfe: warning: an increment kept an estimated time error " << times.time_error
+        << " (above time_tolerance " << tol
+        << "): load steps cut to 1/1024 did not meet it; more load steps, or a larger time_tolerance to "
+           "accept it\n";
 }
 
 /// The run's global balance (docs/checks.md) in the log, and the warning past its limit: kBalanceWarning, or
@@ -396,7 +411,19 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
                                     : "")
         << "\n";
   }
-  if (!s.needs.plasticity.empty()) log << "  plasticity: " << s.needs.plasticity.front() << "\n";
+  if (!s.needs.plasticity.empty())
+    log << "  plasticity: " << s.needs.plasticity.front() << "\n  integration: "
+        << (d.options.plasticity == "tangent"
+                ? "tangent (the seed's one solve per increment, for reproducing legacy results: not "
+                  "iterated, "
+                  "the log reports its out-of-balance)"
+                : "return-mapping (the default: backward Euler, Newton to newton_tolerance " +
+                      detail::number_text(d.options.newton_tolerance) + " in every increment" +
+                      (d.rate_dependent() && d.options.time_tolerance > 0
+                           ? "; steps cut to time_tolerance " + detail::number_text(d.options.time_tolerance)
+                           : std::string()) +
+                      ")")
+        << "\n";
   if (d.rate_dependent())
     log << "  rate: "
         << (s.needs.plasticity.empty() ? "ignored, no yield card (elastic)"
@@ -567,6 +594,7 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
         << times.element_passes << " element passes); worst residual " << times.worst_residual
         << ", largest drift off the yield surface " << times.drift << "; " << times.plastic_points
         << " plastic points at the end\n";
+  if (plastic && d.rate_dependent() && !seed) report_time_error(log, err, times, d);
   if (plastic && s.needs.gaps.empty() && times.stalled > 0)
     err << "gapfe: warning: " << times.stalled << " increment(s) stopped where the residual stopped falling, "
         << "at most 100 x newton_tolerance (" << d.options.newton_tolerance  // NewtonOptions::stall_factor

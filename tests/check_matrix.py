@@ -12,8 +12,8 @@ cases. The factors
                 centre the Newton driver does not support)
 
 are covered pairwise (every pair of levels of every two factors in some case; all_pairs() below, a greedy
-cover; plastic runs under the exact policies only on quad4bbar, the plastic default, for the command compiles
-no other, and one such request is checked to be refused in one line), the patch tests once more on every
+cover; a combination the library does not run, plasticity on the legacy quad, is checked to be refused in
+one line with the library's reason, core/combinations.hpp), the patch tests once more on every
 element, and every case runs from all three inputs: a card deck, a grid scene and a Gmsh scene on a mesh Gmsh
 made (tests/data/matrix, tests/data/make_matrix_meshes.py). Each run must meet what holds for it:
 
@@ -242,16 +242,9 @@ def all_pairs(factors, allowed):
     return cases
 
 
-def offered(c):
-    """Whether the command compiles the case's variant (examples/cli_variants.hpp)."""
-    return not (c["plastic"] and c["contact"] in POLICIES[1:] and c["element"] != "quad4bbar")
-
-
 def allowed(c):
     if c["plastic"] and c["element"] == "legacy":
-        return False  # NonlinearStatic: no condensed centre
-    if not offered(c):
-        return False
+        return False  # NonlinearStatic: no condensed centre (core/combinations.hpp; refused() checks it)
     if c["load"] in THETA_LOADS and c["dofs"] == 2:
         return False  # needs u_theta
     return True
@@ -413,15 +406,16 @@ def compare(where, answers, tolerance):
 
 
 def refused(folder):
-    """A combination the command does not compile: one line naming it, exit 1, no result files."""
-    case = {"load": "pressure", "element": "quad4", "dofs": 2, "contact": "active-set", "plastic": True,
+    """A combination the library does not run: one line with its reason, exit 1, no result files."""
+    case = {"load": "pressure", "element": "legacy", "dofs": 2, "contact": "active-set", "plastic": True,
             "policy": "active-set", "name": "refused"}
     folder.mkdir()
     path = folder / "input.deck"
     path.write_text(deck(case, Body(True)))
     proc = run(path, folder / "out", 2)
     lines = proc.stderr.strip().splitlines()
-    check(proc.returncode == 1 and len(lines) == 1 and "no compiled variant" in proc.stderr,
+    check(proc.returncode == 1 and len(lines) == 1 and "element = legacy" in proc.stderr
+          and "condensed centre" in proc.stderr,
           f"refused combination: exit {proc.returncode}, error stream {proc.stderr!r}")
     check(not (folder / "out" / "nodes.csv").exists(), "refused combination: wrote nodes.csv")
 

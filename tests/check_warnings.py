@@ -115,6 +115,22 @@ def seed_residual():
             silent(name, warnings)
 
 
+def time_error():
+    """A rate-dependent run under return-mapping keeps an increment past time_tolerance only where its steps
+    were cut to 1/1024: the rate tube in 2 steps with time_tolerance = 1e-9, without gaps and with them (the
+    SAAC3 two tubes); silent at the default tolerance in 20 steps, both."""
+    tube = lambda steps, *more: dg.plastic_tube_deck(ni=21, a=50.0, b=100.0, p=200.0, steps=steps, sigma_y=180.0,
+                                                     rate=(0.02 / steps, 0.05, 1e-3), hardening=500.0,
+                                                     extension=more)
+    tubes = lambda steps, *more: dg.two_tubes_deck(n=10, nz=1, a=50.0, b=100.0, gap=0.01, c=150.0, p=250.0,
+                                                   steps=steps, contact="active-set", sigma_y=180.0, hardening=500.0,
+                                                   rate=(0.02 / steps, 0.05, 1e-3), extension=more)
+    for name, make in (("tube", tube), ("two tubes", tubes)):
+        fires(f"time error {name} 1e-9", run(f"time_error_{name[:3]}_tight", make(2, "time_tolerance = 1e-9")),
+              "estimated time error")
+        silent(f"time error {name} default", run(f"time_error_{name[:3]}_default", make(20)))
+
+
 def stalled():
     """Newton accepted at round-off: the plastic tube at 3 x its limit pressure in one step with a hardening of
     E / 2e5 (its tangent nearly singular); silent with a hardening of E / 100."""
@@ -132,6 +148,7 @@ def main():
     ill_conditioned()
     out_of_balance()
     seed_residual()
+    time_error()
     stalled()
     finish()
 

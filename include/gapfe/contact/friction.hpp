@@ -33,6 +33,7 @@
 #include <string_view>
 
 #include "gapfe/contact/policies.hpp"
+#include "gapfe/core/combinations.hpp"
 #include "gapfe/core/types.hpp"
 
 namespace gapfe {
@@ -77,7 +78,7 @@ struct NoFriction {
   static TangentialResponse respond(const TangentialInput&) { return {}; }
   template <class P>
   static constexpr bool accepts() {
-    return true;
+    return unsupported({.contact = P::kName, .friction = kName}).empty();  // core/combinations.hpp
   }
 };
 
@@ -94,7 +95,7 @@ struct Proportional {
   }
   template <class P>
   static constexpr bool accepts() {
-    return std::same_as<P, Saac>;
+    return unsupported({.contact = P::kName, .friction = kName}).empty();  // core/combinations.hpp
   }
 };
 
@@ -112,7 +113,7 @@ struct Extended {
   }
   template <class P>
   static constexpr bool accepts() {
-    return std::same_as<P, Saac>;
+    return unsupported({.contact = P::kName, .friction = kName}).empty();  // core/combinations.hpp
   }
 };
 
@@ -150,7 +151,7 @@ struct Coulomb {
   }
   template <class P>
   static constexpr bool accepts() {
-    return std::same_as<P, ActiveSet> || std::same_as<P, AugmentedLagrangian>;
+    return unsupported({.contact = P::kName, .friction = kName}).empty();  // core/combinations.hpp
   }
 };
 

@@ -16,6 +16,13 @@ struct SolveError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// An increment of a rate-dependent law whose estimated time error exceeds the caller's tolerance
+/// (ContactOptions::time_tolerance): not a failure, the caller repeats the piece in halves. Not SolveError,
+/// so that the contact policies, which cut a step on a SolveError, pass it to the caller that sized it.
+struct TimeErrorExceeded : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 /// A file that cannot be read or written (a result file, an output folder): names the path and the
 /// system's reason. Not InputError: the model may be fine.
 struct FileError : std::runtime_error {

@@ -49,6 +49,10 @@ struct ContactOptions {
   int max_multiplier_updates   = 200;   ///< per solve, before the run fails
   double max_soft_share        = 1e-2;  ///< open gap element stiffness / adjacent stiffness allowed
   double friction              = 0;     ///< mu >= 0 (models other than NoFriction)
+  /// Laws that estimate a time error (StepReport::time_error): a solve past the accepted state by more than
+  /// the smallest piece (kSmallestTimePiece of a load step) whose estimate exceeds this throws
+  /// TimeErrorExceeded (run_deck_contact repeats the piece in halves). 0: off.
+  double time_tolerance = 0;
   /// Coulomb: k_t / adjacent stiffness; 0: the normal penalty factor (k_t = k). Proportional and
   /// Extended take theirs from the seed (mu k and k).
   double tangential_penalty_factor = 0;
@@ -71,7 +75,9 @@ template <class M, ContactPolicy Policy, FrictionModel Friction = NoFriction>
 class ContactStatic {
   static_assert(Friction::template accepts<Policy>(),
                 "ContactStatic: this friction model does not run under this contact policy "
-                "(contact/friction.hpp: proportional and extended with Saac, coulomb with the exact ones)");
+                "(core/combinations.hpp: proportional and extended with Saac, coulomb with the exact ones)");
+  static_assert(kSupported<typename M::Material, typename M::Element, Policy, Friction>,
+                "ContactStatic: the library does not run this combination (core/combinations.hpp says why)");
   static constexpr int kNd = M::kDofsPerNode;
   /// A symmetric solver reads the lower triangle: links get the tangent without the slip coupling.
   static constexpr bool kSymmetrize = storage_of<typename M::LinearSolver>() == MatrixStorage::lower;
@@ -266,6 +272,10 @@ class ContactStatic {
                        " x the adjacent stiffness: a penalty this large can make the stiffness numerically "
                        "singular; lower gap_penalty or use the augmented-lagrangian policy)");
     }
+    if constexpr (!M::Material::kLinear)
+      if (opt_.time_tolerance > 0 && fe_.report().time_error > opt_.time_tolerance &&
+          t - t_ > 1.5 * kSmallestTimePiece)  // a piece of the smallest size, whatever the round-off of t
+        throw TimeErrorExceeded("time error " + detail::number_text(fe_.report().time_error));
   }
   /// Uzawa: lambda <- lambda - k g on closed pairs, re-solved with the same factorization, until every
   /// closed pair's |g| <= penetration_tolerance x max |u| (THEORY.md 5.5 item 2). With friction the

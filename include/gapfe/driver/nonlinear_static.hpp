@@ -33,7 +33,9 @@
 #include <vector>
 
 #include "gapfe/assembly/assembler.hpp"
+#include "gapfe/core/combinations.hpp"
 #include "gapfe/core/history.hpp"
+#include "gapfe/driver/newton_options.hpp"
 #include "gapfe/post/balance.hpp"
 #include "gapfe/post/recovery.hpp"
 #include "gapfe/problem/problem.hpp"
@@ -41,28 +43,6 @@
 #include "gapfe/solver/system.hpp"
 
 namespace gapfe {
-
-/// Newton's stopping rule and starting point.
-struct NewtonOptions {
-  double tolerance   = 1e-10;  ///< |R_free| / |F_int| to stop at (|F_int| or the step's loads) [-]
-  int max_iterations = 30;     ///< a SolveError beyond this (the caller may cut the step)
-  /// Laws with kIterate: start a step from the last accepted step's displacement change, scaled by the
-  /// ratio of the steps' dt (context()), instead of from the committed displacements (the prescribed
-  /// values are then set at once). On the plastic tube of BENCHMARKS.md (issue 14) the first residual
-  /// falls from about 1e-1 to 5e-3 and 45 solves become 27; the converged answer is the same to the
-  /// tolerance. No extrapolation before a first accepted step, or when either dt is zero; a step whose
-  /// extrapolated start fails restarts from the committed state (solve()).
-  bool extrapolate = true;
-  /// Laws with kIterate: an evaluation that Newton's quadratic rate says will end the step computes F_int
-  /// without K_t, which no solve would use (NonlinearStatic::converged_next). Same iterates either way.
-  bool predict_convergence = true;
-  /// Accept a step whose residual has stopped falling (no new minimum below half the previous one in
-  /// three iterations) once it is below stall_factor x tolerance: the round-off of a nearly singular
-  /// tangent. Measured on the plastic tube with hardening c = 1 MPa (E / 2e5) at 3 p_L: the residuals
-  /// wander between 1.5e-10 and 2.6e-10 for 30 iterations against 1e-10, and the step fails even when
-  /// cut to 1/64. StepReport::stalled says so. 0 disables it (then only `tolerance` ends a step).
-  double stall_factor = 100;
-};
 
 template <class M>
 class NonlinearStatic {
@@ -72,7 +52,7 @@ class NonlinearStatic {
   using Law                = typename M::Material;
   using State              = typename Law::State;
   static constexpr int kNd = Kin::kDofsPerNode;
-  static_assert(ElementKernel<Kin, Elem>::kInner == 0,
+  static_assert(unsupported({.history = true, .condensed = ElementKernel<Kin, Elem>::kInner > 0}).empty(),
                 "NonlinearStatic: elements with condensed interior nodes (LegacyQuad) are not supported; "
                 "use Quad4BBar, Quad4 or Quad8");
 
@@ -271,12 +251,14 @@ class NonlinearStatic {
       last        = sol_.residual;
     }
     for (const State& s : points_.trial()) report_.plastic_points += s.plastic;
-    report_.drift = drift();
+    report_.drift      = drift();
+    report_.time_error = time_error();
     if (const Subdomain* part = p_.subdomain.get()) {  // a part's points are its own: sum and max over parts
       double points = report_.plastic_points;
       part->sum(&points, 1);
       report_.plastic_points = static_cast<int>(points);
       report_.drift          = part->max(report_.drift);
+      report_.time_error     = part->max(report_.time_error);
     }
     lap(&SolveTimings::reactions);
     return sol_;
@@ -350,22 +332,37 @@ class NonlinearStatic {
                           prescribed_step, predictor_);
     });
   }
+  /// The largest of `value(local, q)` over the stiffness points q (0 without points).
+  template <class Value>
+  double max_over_points(Value&& value) const {
+    double worst = 0;
+    assembler_.reset_cache();
+    for_each_cell<Elem>(p_.mesh,
+                        [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
+                                                      const std::array<int, NPC>& cell, const CellTag& tag) {
+                          const auto& lp          = assembler_.local(p_, tag, cell);
+                          const std::size_t first = assembler_.template first_point<E>(e);
+                          for (std::size_t q = first; q < first + E::kStiffnessPoints; ++q)
+                            worst = std::max(worst, value(lp, q));
+                        });
+    return worst;
+  }
   /// max |sqrt(f) - 1| over the points on the yield surface (laws that expose yield_ratio).
   double drift() const {
-    double worst = 0;
-    if constexpr (requires(const typename Law::Local& p) { Law::yield_ratio(p, Vec6{}, State{}); }) {
-      assembler_.reset_cache();
-      for_each_cell<Elem>(
-          p_.mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
-                                                 const std::array<int, NPC>& cell, const CellTag& tag) {
-            const auto& lp          = assembler_.local(p_, tag, cell);
-            const std::size_t first = assembler_.template first_point<E>(e);
-            for (std::size_t q = first; q < first + E::kStiffnessPoints; ++q)
-              if (points_.trial(q).plastic)
-                worst = std::max(worst, std::abs(Law::yield_ratio(lp, stress_[q], points_.trial(q)) - 1));
-          });
-    }
-    return worst;
+    if constexpr (requires(const typename Law::Local& p) { Law::yield_ratio(p, Vec6{}, State{}); })
+      return max_over_points([&](const typename Law::Local& lp, std::size_t q) {
+        return points_.trial(q).plastic ? std::abs(Law::yield_ratio(lp, stress_[q], points_.trial(q)) - 1)
+                                        : 0.0;
+      });
+    return 0.0;
+  }
+  /// max of the law's time_error over the points (laws that estimate one: rate-dependent ones).
+  double time_error() const {
+    if constexpr (requires(const typename Law::Local& p, const State& s) { Law::time_error(p, s, s, 1.0); })
+      return max_over_points([&](const typename Law::Local& lp, std::size_t q) {
+        return Law::time_error(lp, points_.committed(q), points_.trial(q), context_.dt);
+      });
+    return 0.0;
   }
 
   Problem<M> p_;

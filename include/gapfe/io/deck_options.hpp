@@ -50,9 +50,12 @@ struct DeckOptions {
   /// events = locate | step-end: under the exact contact policies, split each step at every gap status
   /// change (locate: closure loads exact) or let the statuses settle at the step's end without
   /// splitting (step-end: fewer solves; a path-dependent response sees closures late by up to a step).
-  std::string events     = "locate";
-  int gap_direction      = 0;  ///< gap_direction = 0 (IJDIR per block, SAAC2) | 1 | 2 (SAAC's one LGAP)
-  std::string plasticity = "tangent";  ///< plasticity = tangent | return-mapping (plasticity issue)
+  std::string events = "locate";
+  int gap_direction  = 0;  ///< gap_direction = 0 (IJDIR per block, SAAC2) | 1 | 2 (SAAC's one LGAP)
+  /// plasticity = return-mapping (the default: backward Euler onto the yield surface, Newton to
+  /// newton_tolerance in every increment) | tangent (the seed's one solve per increment, SAGAEP's and
+  /// SAAC3's schemes: for reproducing legacy results; docs/plasticity.md).
+  std::string plasticity = "return-mapping";
   /// Which accepted increments the result files get, per kind: output_csv for the tables nodes.csv,
   /// elements.csv and reactions.csv, output_vtu for the VTU files and result.pvd; each all (every
   /// increment, the default) | last (only the run's last: a many-step run read at its end does not spend
@@ -64,6 +67,11 @@ struct DeckOptions {
   /// newton_iterations = the iterations before a step is cut in halves (default 30). NewtonOptions.
   double newton_tolerance = 1e-10;
   int newton_iterations   = 30;
+  /// time_tolerance = the largest estimated local error of a rate-dependent law's time integration an
+  /// increment may keep (DrysdaleZak::time_error: the stress its plastic-strain error stands for, relative
+  /// to yield); a load step is cut into halves until its pieces meet it (plasticity = return-mapping; the
+  /// seed's tangent scheme keeps one increment per step). 0: off. docs/plasticity.md, "Time steps".
+  double time_tolerance = 1e-3;
   /// fields = legacy | wide (issue 16): wide widens the two fields that cap a deck's size, the line
   /// segment cards' grid indices (I3, at most 999) and the edge load cards' node numbers (I5, at most
   /// 99,999); every other card keeps its columns (CardLayout, io/deck_reader.hpp).
@@ -120,7 +128,7 @@ struct DeckOptions {
     } else if (key == "gap_direction") {
       gap_direction = std::stoi(one_of({"0", "1", "2"}));
     } else if (key == "plasticity") {
-      plasticity = one_of({"tangent", "return-mapping"});
+      plasticity = one_of({"return-mapping", "tangent"});
     } else if (key == "output") {
       output_csv = output_vtu = one_of({"all", "last", "none"});
     } else if (key == "output_csv") {
@@ -131,6 +139,8 @@ struct DeckOptions {
       newton_tolerance = number(0.0);
       if (!(newton_tolerance > 0 && newton_tolerance < 1))
         throw InputError("option newton_tolerance = '" + value + "': expected a number in (0, 1)");
+    } else if (key == "time_tolerance") {
+      time_tolerance = number(0.0);
     } else if (key == "fields") {
       wide_fields = one_of({"legacy", "wide"}) == "wide";
     } else if (key == "units") {
@@ -145,7 +155,7 @@ struct DeckOptions {
       throw InputError("unknown option '" + key +
                        "' (known: format, element, solver, bc_loads, contact, friction, slip, gap_penalty, "
                        "events, gap_direction, plasticity, output, output_csv, output_vtu, newton_tolerance, "
-                       "newton_iterations, fields, units)");
+                       "newton_iterations, time_tolerance, fields, units)");
     }
   }
 };

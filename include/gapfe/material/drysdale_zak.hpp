@@ -131,6 +131,23 @@ struct DrysdaleZak {
     return r;
   }
 
+  /// The error of a step's time integration at a point. Both schemes are first order in time: the
+  /// increment's rate r_1 = d eqps / dt is the step's mean, and its plastic strain is off by about half
+  /// the change of the rate over the step, |r_1 - r_0| dt / 2 (r_0 the last accepted increment's mean, 0
+  /// when that did not yield), where the rate law sets the flow. Where the step is long against the
+  /// relaxation time 1 / lambda (THEORY.md 8.2), consistency with the surface sets it instead and the rate's
+  /// error hardly moves it (the rate-independent limit, which needs no small steps), so the strain is
+  /// divided by 1 + lambda dt. Returned as the stress it stands for relative to the yield stress,
+  ///     C_11 |r_1 - r_0| dt / (2 X (1 + lambda dt))
+  /// (C_11: the stiffness of a uniaxial strain, a scale only) [-]; 0 at a point that does not yield now.
+  /// The drivers cut a load step until it meets the deck's time_tolerance (docs/plasticity.md, "Time
+  /// steps").
+  static double time_error(const Local& p, const State& old, const State& now, double dt) {
+    if (!now.plastic || !(dt > 0)) return 0.0;
+    return 0.5 * std::abs(now.plastic_rate - old.plastic_rate) * dt * p.stiffness(0, 0) /
+           (p.reference_yield * (1 + now.relaxation));
+  }
+
   /// lambda dt at a yielding point (THEORY.md 8.2): lambda = H / (m K'), H = a.(C + cH) a, m = 2 s / X
   /// (r = lambda' m), K' = d level^2 / d r. Reported as 0 when b = 0 (lambda is infinite there: the
   /// rate-independent limit).

@@ -83,6 +83,9 @@ struct StepReport {
   bool stalled       = false;     ///< converged by NewtonOptions::stall_factor: at round-off, not tolerance
   int plastic_points = 0;         ///< points on the yield surface at the end of the step
   double drift       = 0.0;       ///< max |sqrt(f) - 1| over those points: off the surface [-]
+  /// Rate-dependent laws: the largest estimated error of the step's time integration over the points (the
+  /// law's time_error: the stress its plastic-strain error stands for, relative to yield) [-].
+  double time_error = 0.0;
 };
 
 }  // namespace gapfe

@@ -124,8 +124,24 @@ void run_deck(const Deck& d, const DeckScene& s, OnStep&& on_step, const DeckPar
 /// Run every load step of a deck with yield cards (law with history, NonlinearStatic). A step whose
 /// Newton iterations fail is rejected and cut in halves, down to 1/64 of a step (the load factor
 /// interpolates the totals as in run_deck_contact); then a SolveError that names the step and the last
-/// accepted load factor goes to the caller (whose files then hold every accepted increment).
-/// `on_increment(step, inc, const NonlinearStatic<M>&)` sees every accepted increment.
+/// accepted load factor goes to the caller (whose files then hold every accepted increment). A rate-
+/// dependent law under an iterating scheme is cut in halves too while an increment's estimated time error
+/// (StepReport::time_error) exceeds the deck's time_tolerance, down to kSmallestTimePiece of a step (then
+/// accepted: the report says how far), and a piece grows back by doubling once its error is below half the
+/// tolerance (the estimate is first order in the piece). `on_increment(step, inc, const
+/// NonlinearStatic<M>&)` sees every accepted increment.
+/// Whether law L's load steps are cut by their time error: it estimates one (a rate-dependent law,
+/// DrysdaleZak::time_error) and its scheme iterates (return-mapping; the seed's scheme keeps its steps).
+template <class L>
+constexpr bool time_controlled() {
+  if constexpr (L::kLinear)
+    return false;
+  else
+    return L::kIterate && requires(const typename L::Local& p, const typename L::State& s) {
+      L::time_error(p, s, s, 1.0);
+    };
+}
+
 template <class M, class OnIncrement>
 void run_deck_plastic(const Deck& d, const DeckScene& s, OnIncrement&& on_increment,
                       const DeckPart* part = nullptr) {
@@ -134,6 +150,8 @@ void run_deck_plastic(const Deck& d, const DeckScene& s, OnIncrement&& on_increm
   newton.max_iterations = d.options.newton_iterations;
   NonlinearStatic<M> fe(deck_problem<M>(d, s, 1, part), {}, newton);
   StepLoads loads(d, s);
+  const bool time_control = time_controlled<typename M::Material>() && d.options.time_tolerance > 0;
+  const double smallest   = time_control ? kSmallestTimePiece : 1.0 / 64;  // Newton's cuts end here
   for (int step = 1; step <= d.steps(); ++step) {
     const StepTotals before = loads.at(step - 1), after = loads.at(step);
     double done = 0, size = 1;
@@ -145,10 +163,10 @@ void run_deck_plastic(const Deck& d, const DeckScene& s, OnIncrement&& on_increm
         fe.solve();
       } catch (const SolveError& e) {
         fe.reject();
-        if (size < 1.0 / 64) {
+        if (size < smallest) {
           std::ostringstream m;
-          m << "load step " << step << " fails even when cut to 1/64, past load factor " << step - 1 + done
-            << " (the last accepted increment): " << e.what();
+          m << "load step " << step << " fails even when cut to 1/" << std::lround(1 / smallest)
+            << ", past load factor " << step - 1 + done << " (the last accepted increment): " << e.what();
           // After accepted increments a singular tangent is rarely a missing constraint: a perfectly
           // plastic part loaded beyond its limit load has no equilibrium (THEORY.md V6's tube: p_L).
           if (step > 1 || done > 0)
@@ -160,10 +178,17 @@ void run_deck_plastic(const Deck& d, const DeckScene& s, OnIncrement&& on_increm
         size /= 2;
         continue;
       }
+      const double time_error = fe.report().time_error;
+      if (time_control && time_error > d.options.time_tolerance && size > kSmallestTimePiece) {
+        fe.reject();
+        size /= 2;
+        continue;
+      }
       fe.commit();
       done = to;
       on_increment(step, step - 1 + done, static_cast<const NonlinearStatic<M>&>(fe));
-      size = std::min(1.0, 2 * size);  // grow again after a cut
+      if (!time_control || time_error < d.options.time_tolerance / 2)
+        size = std::min(1.0, 2 * size);  // grow again after a cut
     }
   }
 }
@@ -178,10 +203,12 @@ void run_deck_contact(const Deck& d, const DeckScene& s, double penalty_factor, 
                       const DeckPart* part = nullptr) {
   using Run = ContactStatic<M, P, F>;
   ContactOptions options;
-  options.penalty_factor = penalty_factor;
-  options.locate_events  = d.options.events != "step-end";
-  options.step_time      = d.step_time();
-  options.friction       = F::kFriction ? d.options.friction : 0.0;
+  options.penalty_factor  = penalty_factor;
+  options.locate_events   = d.options.events != "step-end";
+  options.step_time       = d.step_time();
+  options.friction        = F::kFriction ? d.options.friction : 0.0;
+  const bool time_control = time_controlled<typename M::Material>() && d.options.time_tolerance > 0;
+  if (time_control) options.time_tolerance = d.options.time_tolerance;
   if (s.gap_material >= 0) options.gap_materials.push_back(s.gap_material);
   Run fe(deck_problem<M>(d, s, 1, part), part ? part->pairs : s.gaps.pairs, options);
   StepLoads loads(d, s);
@@ -193,8 +220,31 @@ void run_deck_contact(const Deck& d, const DeckScene& s, double penalty_factor, 
     set_loads(p, interpolate(before, after, t - (step - 1)), s);
   };
   int step                               = 1;
-  const typename Run::OnIncrement report = [&](double t, const Run& c) { on_increment(step, t, c); };
-  for (; step <= d.steps(); ++step) fe.advance(step, loads_at, report);
+  double piece_error                     = 0;  // the largest time error of the accepted increments of a piece
+  const typename Run::OnIncrement report = [&](double t, const Run& c) {
+    if constexpr (!M::Material::kLinear) piece_error = std::max(piece_error, c.fe().report().time_error);
+    on_increment(step, t, c);
+  };
+  // A rate-dependent law under an iterating scheme advances in pieces of a step sized by the time error,
+  // as run_deck_plastic: a solve past the tolerance throws TimeErrorExceeded out of the policy (the
+  // increments it accepted before stay: each met the tolerance), and the rest is repeated in halves.
+  double piece = 1;
+  for (; step <= d.steps(); ++step) {
+    for (double done = 0; done < 1 - 1e-12;) {
+      const double to = time_control ? std::min(1.0, done + piece) : 1.0;
+      piece_error     = 0;
+      try {
+        fe.advance(step - 1 + to, loads_at, report);
+      } catch (const TimeErrorExceeded&) {
+        fe.restart();
+        done  = fe.load_factor() - (step - 1);
+        piece = std::max(piece / 2, kSmallestTimePiece);
+        continue;
+      }
+      done = to;
+      if (piece_error < d.options.time_tolerance / 2) piece = std::min(1.0, 2 * piece);
+    }
+  }
 }
 
 }  // namespace gapfe

@@ -1,0 +1,69 @@
+#pragma once
+// Which combinations of law, element, contact policy and friction model the library runs: one rule, by
+// the names the deck options use, so that the drivers' static_asserts (contact/friction.hpp,
+// driver/nonlinear_static.hpp, driver/contact_static.hpp) and the command's refusals of a deck are the
+// same function, and the command's table of compiled variants is every combination it admits.
+//
+// What is refused, and why:
+//   * a law with history on an element with condensed interior nodes (the legacy quad's centre): those
+//     displacements would have to be history too, and NonlinearStatic does not keep them;
+//   * friction without a contact policy (contact = none: every gap stays open);
+//   * the seed's slip models (proportional, extended) under another policy than the seed's stepping
+//     (saac): they decide stick and slip once per step, as the seed did;
+//   * Coulomb friction under saac: saac freezes the gap at closure, so the normal force the cone needs
+//     never converges;
+//   * Coulomb friction with the seed's one-solve plasticity (tangent): slip converges in the Newton
+//     iterations of the plastic driver, which that scheme does not make.
+#include <string_view>
+
+namespace gapfe {
+
+/// A run's combination in the deck options' words (contact: none | saac | active-set |
+/// augmented-lagrangian; friction: none | proportional | extended | coulomb).
+struct Combination {
+  bool history   = false;  ///< the law has history (plasticity, rate-dependent or not)
+  bool iterates  = false;  ///< its scheme iterates to equilibrium (return-mapping), not the seed's one solve
+  bool condensed = false;  ///< the element condenses interior nodes (the legacy quad's centre)
+  std::string_view contact  = "none";
+  std::string_view friction = "none";
+};
+
+/// Why the library does not run `c`, or empty when it does.
+constexpr std::string_view unsupported(const Combination& c) {
+  const bool seed_slip = c.friction == "proportional" || c.friction == "extended";
+  if (c.history && c.condensed)
+    return "a law with history on the legacy quad: its condensed centre node is not in the plastic driver; "
+           "use element = quad4bbar (the default for plastic decks) or quad4";
+  if (c.friction != "none" && c.contact == "none")
+    return "friction with contact = none: every gap stays open; choose contact = saac, active-set or "
+           "augmented-lagrangian";
+  if (seed_slip && c.contact != "saac")
+    return "the seed's slip models (proportional, extended) run under the seed's stepping, contact = saac; "
+           "under the exact policies use slip = coulomb";
+  if (c.friction == "coulomb" && c.contact == "saac")
+    return "Coulomb friction needs an exact contact policy (contact = active-set or augmented-lagrangian): "
+           "saac freezes the gap at closure, so the normal force of the friction cone never converges";
+  if (c.friction == "coulomb" && c.history && !c.iterates)
+    return "Coulomb friction with plasticity needs plasticity = return-mapping: slip and plastic flow "
+           "converge together in its Newton iterations, and tangent solves once per increment";
+  return {};
+}
+
+/// The combination of a compiled variant: law `Law` (kLinear, and kIterate for laws with history),
+/// element `Elem` (kNodes, kShapeNodes), contact policy `Policy` and friction model `Friction` (kName).
+template <class Law, class Elem, class Policy, class Friction>
+constexpr Combination combination_of() {
+  Combination c;
+  c.history = !Law::kLinear;
+  if constexpr (!Law::kLinear) c.iterates = Law::kIterate;
+  c.condensed = Elem::kShapeNodes > Elem::kNodes;
+  c.contact   = Policy::kName;
+  c.friction  = Friction::kName;
+  return c;
+}
+
+/// Whether the library runs that variant (the drivers assert it; the command compiles every such one).
+template <class Law, class Elem, class Policy, class Friction>
+inline constexpr bool kSupported = unsupported(combination_of<Law, Elem, Policy, Friction>()).empty();
+
+}  // namespace gapfe
