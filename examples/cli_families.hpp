@@ -19,13 +19,16 @@
 
 namespace gapfe::cli {
 
-/// A rate-dependent law's increment for the log: lambda dt, min and max over the points that yielded
-/// in it (how stiff the step was: the relaxation ODE's lambda times the step's dt; THEORY.md 8.2).
+/// A rate-dependent law's load step for the log: lambda dt of its last increment, min and max over the
+/// points that yielded in it (how stiff the step was: the relaxation ODE's lambda times the increment's dt;
+/// THEORY.md 8.2). The pieces time_tolerance cuts a step into are not listed (a step cut in 200 would fill
+/// the log).
 /// A partitioned run's `part` holds its own points only: the extremes and the count are over every part.
 template <class States>
 void note_relaxation(RunTimes& times, const Deck& d, int step, double inc, const States& states,
                      const Subdomain* part) {
   if constexpr (requires { states.front().relaxation; }) {
+    if (inc != std::floor(inc)) return;  // the same on every part: inc is the whole run's
     double lo = std::numeric_limits<double>::infinity(), hi = 0;
     double n = 0;
     for (const auto& s : states)

@@ -150,7 +150,7 @@ void report_time_error(std::ostream& log, std::ostream& err, const RunTimes& tim
     err << "gapfe: warning: an increment kept an estimated time error " << times.time_error
         << " (above time_tolerance " << tol
         << "): load steps cut to 1/1024 did not meet it; more load steps, or a larger time_tolerance to "
-           "accept it\n";
+           "accept it (docs/plasticity.md)\n";
 }
 
 /// The run's global balance (docs/checks.md) in the log, and the warning past its limit: kBalanceWarning, or
@@ -414,10 +414,11 @@ int execute(const Args& a, std::ostream& out, std::ostream& err, bool progress,
   if (!s.needs.plasticity.empty())
     log << "  plasticity: " << s.needs.plasticity.front() << "\n  integration: "
         << (d.options.plasticity == "tangent"
-                ? "tangent (the seed's one solve per increment, for reproducing legacy results: not "
-                  "iterated, "
-                  "the log reports its out-of-balance)"
-                : "return-mapping (the default: backward Euler, Newton to newton_tolerance " +
+                ? std::string(
+                      "tangent (the seed's one solve per increment, for reproducing legacy results: not "
+                      "iterated, the log reports its out-of-balance") +
+                      (d.rate_dependent() ? "; one increment per step, time_tolerance does not apply)" : ")")
+                : "return-mapping (backward Euler, Newton to newton_tolerance " +
                       detail::number_text(d.options.newton_tolerance) + " in every increment" +
                       (d.rate_dependent() && d.options.time_tolerance > 0
                            ? "; steps cut to time_tolerance " + detail::number_text(d.options.time_tolerance)

@@ -1054,4 +1054,33 @@ TEST_CASE("SAAC3 = SAAC2 + the rate law: a rate-dependent tube pressed across a 
   CHECK(highest > 1.05);
 }
 
+TEST_CASE(
+    "DrysdaleZak::time_error: half the rate's change over the step, as stress over yield, damped by "
+    "1 + lambda dt; zero where nothing is rate-controlled") {
+  // docs/plasticity.md, "Time steps": C_11 |r_1 - r_0| dt / (2 X (1 + lambda dt)) at a yielding point.
+  const double E = 200000, nu = 0.3, X = 250, dt = 1e-3;
+  const DrysdaleZak<ReturnMapping> law{Orthotropic::constant(ElasticConstants::isotropic(E, nu)),
+                                       HillYield::mises(X), RateLaw{0.05, 1e-3}};
+  const auto p     = law.localize({}, 0.0, 0.0);
+  const double c11 = E * (1 - nu) / ((1 + nu) * (1 - 2 * nu));
+  const auto state = [](bool plastic, double rate, double relaxation) {
+    RateState s;
+    s.plastic = plastic, s.plastic_rate = rate, s.relaxation = relaxation;
+    return s;
+  };
+  using Law = DrysdaleZak<ReturnMapping>;
+  CHECK(Law::time_error(p, state(true, 2.0, 0.5), state(true, 2.0, 0.5), dt) == 0);   // a steady rate
+  CHECK(Law::time_error(p, state(true, 1.0, 0.5), state(false, 0.0, 0.0), dt) == 0);  // elastic now
+  const double expected = c11 * 1.0 * dt / (2 * X * 1.5);
+  CHECK(Law::time_error(p, state(true, 1.0, 0.0), state(true, 2.0, 0.5), dt) ==
+        doctest::Approx(expected).epsilon(1e-12));
+  CHECK(Law::time_error(p, state(true, 3.0, 0.0), state(true, 2.0, 0.5), dt) ==
+        doctest::Approx(expected).epsilon(1e-12));  // a falling rate counts alike
+  // A step long against the relaxation time (lambda dt = 1e6): consistency sets the flow, no error.
+  CHECK(Law::time_error(p, state(true, 0.0, 0.0), state(true, 2.0, 1e6), dt) < 1e-5 * expected);
+  // b = 0 is the rate-independent law exactly: nothing to estimate (lambda is reported as 0 there).
+  const DrysdaleZak<ReturnMapping> plain{law.elastic, law.yield, RateLaw{0.0, 1e-3}};
+  CHECK(Law::time_error(plain.localize({}, 0.0, 0.0), state(true, 0.0, 0.0), state(true, 2.0, 0.0), dt) == 0);
+}
+
 }  // namespace gapfe::test

@@ -49,6 +49,12 @@ constexpr std::string_view unsupported(const Combination& c) {
   return {};
 }
 
+/// Whether element `Elem` condenses interior nodes (more shape nodes than mesh nodes: the legacy quad).
+template <class Elem>
+constexpr bool condensed() {
+  return Elem::kShapeNodes > Elem::kNodes;
+}
+
 /// The combination of a compiled variant: law `Law` (kLinear, and kIterate for laws with history),
 /// element `Elem` (kNodes, kShapeNodes), contact policy `Policy` and friction model `Friction` (kName).
 template <class Law, class Elem, class Policy, class Friction>
@@ -56,7 +62,7 @@ constexpr Combination combination_of() {
   Combination c;
   c.history = !Law::kLinear;
   if constexpr (!Law::kLinear) c.iterates = Law::kIterate;
-  c.condensed = Elem::kShapeNodes > Elem::kNodes;
+  c.condensed = condensed<Elem>();
   c.contact   = Policy::kName;
   c.friction  = Friction::kName;
   return c;

@@ -49,9 +49,9 @@ struct ContactOptions {
   int max_multiplier_updates   = 200;   ///< per solve, before the run fails
   double max_soft_share        = 1e-2;  ///< open gap element stiffness / adjacent stiffness allowed
   double friction              = 0;     ///< mu >= 0 (models other than NoFriction)
-  /// Laws that estimate a time error (StepReport::time_error): a solve past the accepted state by more than
-  /// the smallest piece (kSmallestTimePiece of a load step) whose estimate exceeds this throws
-  /// TimeErrorExceeded (run_deck_contact repeats the piece in halves). 0: off.
+  /// Laws that estimate a time error (StepReport::time_error): an increment longer than the smallest piece
+  /// (kSmallestTimePiece of a load step) whose estimate exceeds this is not accepted: accept() throws
+  /// TimeErrorExceeded (run_deck_contact restarts and repeats the piece in halves). 0: off.
   double time_tolerance = 0;
   /// Coulomb: k_t / adjacent stiffness; 0: the normal penalty factor (k_t = k). Proportional and
   /// Extended take theirs from the seed (mu k and k).
@@ -73,9 +73,6 @@ struct ContactOptions {
 
 template <class M, ContactPolicy Policy, FrictionModel Friction = NoFriction>
 class ContactStatic {
-  static_assert(Friction::template accepts<Policy>(),
-                "ContactStatic: this friction model does not run under this contact policy "
-                "(core/combinations.hpp: proportional and extended with Saac, coulomb with the exact ones)");
   static_assert(kSupported<typename M::Material, typename M::Element, Policy, Friction>,
                 "ContactStatic: the library does not run this combination (core/combinations.hpp says why)");
   static constexpr int kNd = M::kDofsPerNode;
@@ -183,9 +180,12 @@ class ContactStatic {
   /// Advance to load factor t_end under the policy; `on_increment(t, *this)` sees every accepted
   /// increment (a split step gives more than one).
   void advance(double t_end, const LoadsAt& loads_at, const OnIncrement& on_increment = {}) {
+    struct Forget {  // the caller's callbacks, also when the policy throws (TimeErrorExceeded, SolveError)
+      ContactStatic& c;
+      ~Forget() { c.loads_at_ = nullptr, c.on_increment_ = nullptr; }
+    } forget{*this};
     loads_at_ = &loads_at, on_increment_ = &on_increment, step_end_ = t_end;
     Policy::step(*this, t_end);
-    loads_at_ = nullptr, on_increment_ = nullptr;
   }
 
   const Fe& fe() const { return fe_; }
@@ -272,10 +272,6 @@ class ContactStatic {
                        " x the adjacent stiffness: a penalty this large can make the stiffness numerically "
                        "singular; lower gap_penalty or use the augmented-lagrangian policy)");
     }
-    if constexpr (!M::Material::kLinear)
-      if (opt_.time_tolerance > 0 && fe_.report().time_error > opt_.time_tolerance &&
-          t - t_ > 1.5 * kSmallestTimePiece)  // a piece of the smallest size, whatever the round-off of t
-        throw TimeErrorExceeded("time error " + detail::number_text(fe_.report().time_error));
   }
   /// Uzawa: lambda <- lambda - k g on closed pairs, re-solved with the same factorization, until every
   /// closed pair's |g| <= penetration_tolerance x max |u| (THEORY.md 5.5 item 2). With friction the
@@ -346,6 +342,10 @@ class ContactStatic {
     status_changed_ = true, warm_start_ = false;
   }
   void accept(double t) {
+    if constexpr (!M::Material::kLinear)
+      if (opt_.time_tolerance > 0 && fe_.report().time_error > opt_.time_tolerance &&
+          t - t_ > 1.5 * kSmallestTimePiece)  // a piece of the smallest size, whatever the round-off of t
+        throw TimeErrorExceeded("time error " + detail::number_text(fe_.report().time_error));
     if constexpr (!M::Material::kLinear) fe_.commit();
     t_       = t;
     slip_on_ = t >= step_end_;

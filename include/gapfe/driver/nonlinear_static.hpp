@@ -52,7 +52,7 @@ class NonlinearStatic {
   using Law                = typename M::Material;
   using State              = typename Law::State;
   static constexpr int kNd = Kin::kDofsPerNode;
-  static_assert(unsupported({.history = true, .condensed = ElementKernel<Kin, Elem>::kInner > 0}).empty(),
+  static_assert(unsupported({.history = true, .condensed = condensed<Elem>()}).empty(),
                 "NonlinearStatic: elements with condensed interior nodes (LegacyQuad) are not supported; "
                 "use Quad4BBar, Quad4 or Quad8");
 

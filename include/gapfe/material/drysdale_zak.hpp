@@ -143,7 +143,7 @@ struct DrysdaleZak {
   /// The drivers cut a load step until it meets the deck's time_tolerance (docs/plasticity.md, "Time
   /// steps").
   static double time_error(const Local& p, const State& old, const State& now, double dt) {
-    if (!now.plastic || !(dt > 0)) return 0.0;
+    if (!now.plastic || !(dt > 0) || !(p.b > 0)) return 0.0;  // b = 0: the rate-independent law exactly
     return 0.5 * std::abs(now.plastic_rate - old.plastic_rate) * dt * p.stiffness(0, 0) /
            (p.reference_yield * (1 + now.relaxation));
   }

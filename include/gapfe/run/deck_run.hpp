@@ -121,15 +121,6 @@ void run_deck(const Deck& d, const DeckScene& s, OnStep&& on_step, const DeckPar
   }
 }
 
-/// Run every load step of a deck with yield cards (law with history, NonlinearStatic). A step whose
-/// Newton iterations fail is rejected and cut in halves, down to 1/64 of a step (the load factor
-/// interpolates the totals as in run_deck_contact); then a SolveError that names the step and the last
-/// accepted load factor goes to the caller (whose files then hold every accepted increment). A rate-
-/// dependent law under an iterating scheme is cut in halves too while an increment's estimated time error
-/// (StepReport::time_error) exceeds the deck's time_tolerance, down to kSmallestTimePiece of a step (then
-/// accepted: the report says how far), and a piece grows back by doubling once its error is below half the
-/// tolerance (the estimate is first order in the piece). `on_increment(step, inc, const
-/// NonlinearStatic<M>&)` sees every accepted increment.
 /// Whether law L's load steps are cut by their time error: it estimates one (a rate-dependent law,
 /// DrysdaleZak::time_error) and its scheme iterates (return-mapping; the seed's scheme keeps its steps).
 template <class L>
@@ -142,6 +133,16 @@ constexpr bool time_controlled() {
     };
 }
 
+/// Run every load step of a deck with yield cards (law with history, NonlinearStatic). A step whose
+/// Newton iterations fail is rejected and cut in halves, down to 1/64 of a step (kSmallestTimePiece under
+/// the time control below; the load factor
+/// interpolates the totals as in run_deck_contact); then a SolveError that names the step and the last
+/// accepted load factor goes to the caller (whose files then hold every accepted increment). A rate-
+/// dependent law under an iterating scheme is cut in halves too while an increment's estimated time error
+/// (StepReport::time_error) exceeds the deck's time_tolerance, down to kSmallestTimePiece of a step (then
+/// accepted: the report says how far); a piece grows back by doubling once its error is below half the
+/// tolerance (the estimate is first order in the piece), and the next step starts from the last piece.
+/// `on_increment(step, inc, const NonlinearStatic<M>&)` sees every accepted increment.
 template <class M, class OnIncrement>
 void run_deck_plastic(const Deck& d, const DeckScene& s, OnIncrement&& on_increment,
                       const DeckPart* part = nullptr) {
@@ -152,18 +153,20 @@ void run_deck_plastic(const Deck& d, const DeckScene& s, OnIncrement&& on_increm
   StepLoads loads(d, s);
   const bool time_control = time_controlled<typename M::Material>() && d.options.time_tolerance > 0;
   const double smallest   = time_control ? kSmallestTimePiece : 1.0 / 64;  // Newton's cuts end here
+  double size             = 1;  // the next piece of a step; under the time control kept from step to step
   for (int step = 1; step <= d.steps(); ++step) {
     const StepTotals before = loads.at(step - 1), after = loads.at(step);
-    double done = 0, size = 1;
+    double done = 0;
+    if (!time_control) size = 1;
     while (done < 1 - 1e-12) {
-      const double to = std::min(1.0, done + size);
+      const double to = std::min(1.0, done + size), piece = to - done;
       set_loads(fe.problem(), interpolate(before, after, to), s);
-      fe.context() = {(step - 1 + to) * d.step_time(), (to - done) * d.step_time()};
+      fe.context() = {(step - 1 + to) * d.step_time(), piece * d.step_time()};
       try {
         fe.solve();
       } catch (const SolveError& e) {
         fe.reject();
-        if (size < smallest) {
+        if (piece <= smallest) {
           std::ostringstream m;
           m << "load step " << step << " fails even when cut to 1/" << std::lround(1 / smallest)
             << ", past load factor " << step - 1 + done << " (the last accepted increment): " << e.what();
@@ -175,13 +178,13 @@ void run_deck_plastic(const Deck& d, const DeckScene& s, OnIncrement&& on_increm
                  "a part without hardening, or a residual tolerance below the round-off of the tangent";
           throw SolveError(m.str());
         }
-        size /= 2;
+        size = piece / 2;
         continue;
       }
       const double time_error = fe.report().time_error;
-      if (time_control && time_error > d.options.time_tolerance && size > kSmallestTimePiece) {
+      if (time_control && time_error > d.options.time_tolerance && piece > 1.5 * kSmallestTimePiece) {
         fe.reject();
-        size /= 2;
+        size = std::max(piece / 2, kSmallestTimePiece);
         continue;
       }
       fe.commit();
@@ -226,8 +229,10 @@ void run_deck_contact(const Deck& d, const DeckScene& s, double penalty_factor, 
     on_increment(step, t, c);
   };
   // A rate-dependent law under an iterating scheme advances in pieces of a step sized by the time error,
-  // as run_deck_plastic: a solve past the tolerance throws TimeErrorExceeded out of the policy (the
-  // increments it accepted before stay: each met the tolerance), and the rest is repeated in halves.
+  // as run_deck_plastic: an increment past the tolerance throws TimeErrorExceeded out of the policy where
+  // it would be accepted (those accepted before stay: each met it), and the rest of the piece is repeated
+  // in halves. A policy's one split (saac) and the extended model's stick/slip decision then happen per
+  // piece.
   double piece = 1;
   for (; step <= d.steps(); ++step) {
     for (double done = 0; done < 1 - 1e-12;) {
@@ -238,7 +243,7 @@ void run_deck_contact(const Deck& d, const DeckScene& s, double penalty_factor, 
       } catch (const TimeErrorExceeded&) {
         fe.restart();
         done  = fe.load_factor() - (step - 1);
-        piece = std::max(piece / 2, kSmallestTimePiece);
+        piece = std::max(std::min(piece, to - done) / 2, kSmallestTimePiece);
         continue;
       }
       done = to;
