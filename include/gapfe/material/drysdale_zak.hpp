@@ -135,8 +135,8 @@ struct DrysdaleZak {
   /// increment's rate r_1 = d eqps / dt is the step's mean, and its plastic strain is off by about half
   /// the change of the rate over the step, |r_1 - r_0| dt / 2 (r_0 the last accepted increment's mean, 0
   /// when that did not yield), where the rate law sets the flow. Where the step is long against the
-  /// relaxation time 1 / lambda (THEORY.md 8.2), consistency with the surface sets it instead and the rate's
-  /// error hardly moves it (the rate-independent limit, which needs no small steps), so the strain is
+  /// relaxation time 1 / lambda (docs/plasticity.md), consistency with the surface sets it instead and the
+  /// rate's error hardly moves it (the rate-independent limit, which needs no small steps), so the strain is
   /// divided by 1 + lambda dt. Returned as the stress it stands for relative to the yield stress,
   ///     C_11 |r_1 - r_0| dt / (2 X (1 + lambda dt))
   /// (C_11: the stiffness of a uniaxial strain, a scale only) [-]; 0 at a point that does not yield now.
