@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
-"""Output parity of two `gapfe` builds: every example deck under every option combination the command
-offers (element x variant x solver, contact policy or plasticity integration), run by both binaries; every
-CSV file they write compared cell by cell. For refactors that must not change results.
+"""Output parity of two `gapfe` builds: every example deck and scene as it is, and the small decks under
+every option combination the command offers (element x variant x solver, contact policy or plasticity
+integration), run by both binaries; every CSV file they write compared cell by cell. For refactors that
+must not change results.
 
   python3 bench/output_parity.py --before OLD/gapfe --after NEW/gapfe [--work DIR] [--tolerance 1e-12]
 
@@ -15,12 +16,17 @@ import os
 import subprocess
 import sys
 
-DECKS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "examples", "decks")
+EXAMPLES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "examples")
+DECKS = os.path.join(EXAMPLES, "decks")
 ELEMENTS = ["legacy", "quad4", "quad4bbar"]
 VARIANTS = ["saas", "saga"]
 
 
 def cases():
+    for folder, suffix in (("decks", ".deck"), ("scenes", ".toml")):
+        for f in sorted(os.listdir(os.path.join(EXAMPLES, folder))):
+            if f.endswith(suffix):
+                yield f"as_is_{f[:-len(suffix)]}", os.path.join(EXAMPLES, folder, f), []
     for deck in ["thick_tube", "helical_sleeve"]:
         for e, v, s in itertools.product(ELEMENTS, VARIANTS, ["eigen", "cholmod"]):
             yield f"{deck}_{e}_{v}_{s}", deck, ["--element", e, "--variant", v, "--solver", s]
@@ -34,7 +40,8 @@ def cases():
 
 def run(gapfe, out, deck, options):
     os.makedirs(out, exist_ok=True)
-    p = subprocess.run([gapfe, "run", os.path.join(DECKS, deck + ".deck"), *options, "--out", out, "--quiet"],
+    path = deck if os.path.isabs(deck) else os.path.join(DECKS, deck + ".deck")
+    p = subprocess.run([gapfe, "run", path, *options, "--out", out, "--quiet", "--overwrite"],
                        capture_output=True, text=True)
     return p.returncode, p.stderr.replace(gapfe, "gapfe")
 

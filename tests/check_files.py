@@ -217,7 +217,7 @@ def special_files():
         (d / "s.toml").write_text(f'[mesh]\nfile = "{mesh}"\n[materials.steel]\n{STEEL}')
         refused(["run", d / "s.toml", "--out", d / "x"], 3, f"the mesh '{mesh}' {kind}")
         refused(["run", mesh, "--out", d / "x"], 3, f"the deck '{mesh}' {kind}")
-    # A deck large enough that the command would re-execute itself (examples/gapfe_cli.hpp, kLargeModel),
+    # A deck large enough that the command would re-execute itself (include/gapfe/app/command.hpp, kLargeModel),
     # piped in: read once, never again.
     deck = g.tube_deck(151, 151)
     rc, _, err = gapfe_run("run", "-", "--out", d / "stdin", "--quiet", "--plot", "none", stdin=deck.encode())

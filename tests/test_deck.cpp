@@ -10,13 +10,13 @@
 
 #include <doctest/doctest.h>
 
+#include "gapfe/app/command.hpp"
 #include "gapfe/io/deck.hpp"
 #include "gapfe/io/deck_output.hpp"
 #include "gapfe/io/deck_scene.hpp"
 #include "gapfe/mesh/gmsh_reader.hpp"
 
 #include "deck_support.hpp"
-#include "gapfe_cli.hpp"
 
 using namespace gapfe;
 using gapfe::test::Card;
@@ -204,12 +204,12 @@ TEST_CASE("Deck options: `$ key = value` lines before the title, overridden by t
   std::string text =
       "$ a comment line\n$ element = quad4\n$ bc_loads = per-radian\n" + gapfe::test::tube_deck();
   const Deck d = read_deck(text, {{"solver", "eigen"}});
-  CHECK(d.options.element == "quad4");
-  CHECK(d.options.solver == "eigen");
+  CHECK(d.options.element == gapfe::ElementChoice::quad4);
+  CHECK(d.options.solver == gapfe::SolverChoice::eigen);
   CHECK(d.options.format == DeckFormat::elastic);
   CHECK(d.options.loads_per_radian);
   const Deck o = read_deck(text, {{"element", "legacy"}});
-  CHECK(o.options.element == "legacy");
+  CHECK(o.options.element == gapfe::ElementChoice::legacy);
 }
 
 namespace {
@@ -227,7 +227,7 @@ Outcome run_text(const std::string& text, const std::string& command = "run") {
   const fs::path deck = dir / ("deck" + std::to_string(++serial) + ".deck");
   std::ofstream(deck) << text;
   std::ostringstream out, err;
-  const int code = gapfe::cli::main({command, deck.string(), "--out", (dir / "out").string()}, out, err);
+  const int code = gapfe::app::command({command, deck.string(), "--out", (dir / "out").string()}, out, err);
   return {code, err.str()};
 }
 
@@ -389,24 +389,24 @@ TEST_CASE("Malformed decks: each gives one clear message and a non-zero exit") {
 
 TEST_CASE("The gapfe command: usage errors and unreadable decks") {
   std::ostringstream out, err;
-  CHECK(gapfe::cli::main({}, out, err) == gapfe::cli::usage);
-  CHECK(gapfe::cli::main({"run", "x.deck"}, out, err) == gapfe::cli::usage);  // no --out
-  CHECK(gapfe::cli::main({"explode", "x.deck"}, out, err) == gapfe::cli::usage);
-  CHECK(gapfe::cli::main({"run", "x.deck", "--out", "/tmp", "--variant", "big"}, out, err) ==
-        gapfe::cli::usage);
+  CHECK(gapfe::app::command({}, out, err) == gapfe::app::usage);
+  CHECK(gapfe::app::command({"run", "x.deck"}, out, err) == gapfe::app::usage);  // no --out
+  CHECK(gapfe::app::command({"explode", "x.deck"}, out, err) == gapfe::app::usage);
+  CHECK(gapfe::app::command({"run", "x.deck", "--out", "/tmp", "--variant", "big"}, out, err) ==
+        gapfe::app::usage);
   std::ostringstream e2;
-  CHECK(gapfe::cli::main({"info", "/nonexistent/deck"}, out, e2) == gapfe::cli::system);
+  CHECK(gapfe::app::command({"info", "/nonexistent/deck"}, out, e2) == gapfe::app::system);
   CHECK(e2.str().find("cannot open the deck '/nonexistent/deck'") != std::string::npos);
   for (const char* bad : {"0", "two", "2x", "-1"}) {
     std::ostringstream e3;
-    CHECK(gapfe::cli::main({"run", "x.deck", "--out", "/tmp", "--threads", bad}, out, e3) ==
-          gapfe::cli::usage);
+    CHECK(gapfe::app::command({"run", "x.deck", "--out", "/tmp", "--threads", bad}, out, e3) ==
+          gapfe::app::usage);
     CHECK(e3.str().find("--threads: '" + std::string(bad) + "' is not a thread count") != std::string::npos);
   }
   std::ostringstream e4;
-  CHECK(gapfe::cli::main({"run", "x.deck", "--out", "/tmp", "--threads"}, out, e4) == gapfe::cli::usage);
+  CHECK(gapfe::app::command({"run", "x.deck", "--out", "/tmp", "--threads"}, out, e4) == gapfe::app::usage);
   std::ostringstream help;
-  CHECK(gapfe::cli::main({"--help"}, help, err) == gapfe::cli::ok);
+  CHECK(gapfe::app::command({"--help"}, help, err) == gapfe::app::ok);
   CHECK(help.str().find("gapfe run DECK --out DIR") != std::string::npos);
 }
 

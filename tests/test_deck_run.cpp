@@ -17,11 +17,14 @@
 
 #include <doctest/doctest.h>
 
+#include "gapfe/app/command.hpp"
+#include "gapfe/app/plan.hpp"
+#include "gapfe/app/run.hpp"
 #include "gapfe/gapfe.hpp"
 #include "gapfe/io/deck_scene.hpp"
+#include "gapfe/io/input_file.hpp"
 
 #include "deck_support.hpp"
-#include "gapfe_cli.hpp"
 #include "rate_reference.hpp"
 #include "support.hpp"
 
@@ -70,7 +73,7 @@ fs::path run_deck_file(const fs::path& deck, const std::string& name, std::vecto
   std::vector<std::string> args = {"run", deck.string(), "--out", out.string(), "--quiet"};
   args.insert(args.end(), extra.begin(), extra.end());
   std::ostringstream o, e;
-  const int code = gapfe::cli::main(args, o, e);
+  const int code = gapfe::app::command(args, o, e);
   CAPTURE(e.str());
   REQUIRE(code == 0);
   return out;
@@ -145,6 +148,60 @@ TEST_CASE("Thick-tube example deck: equals the library-API solution to 1e-12 and
   CHECK(fs::exists(out / "step_0001.vtu"));
 }
 
+TEST_CASE("[library] a C++ user's run is the command's: make_plan, check_plan, run; one solver per run") {
+  // The thick tube through the library's three calls, as the command makes them (app/command_impl.hpp).
+  SceneModel model;
+  model.deck           = read_deck(read_input((kExamples / "thick_tube.deck").string(), "deck"));
+  model.scene          = build_scene(model.deck);
+  const app::Plan plan = app::make_plan(model.deck, model.scene);
+  CHECK(plan.key == app::VariantKey{VariantChoice::saas, ElementChoice::legacy, app::LawKind::elastic,
+                                    PlasticityChoice::return_mapping, ContactChoice::none,
+                                    FrictionChoice::none});
+  CHECK(plan.solver != SolverChoice::automatic);
+  const test::Lame lame{100, 200, 100, 200000, 0.3};
+  std::vector<std::map<std::string, double>> by_solver;
+  for (const SolverChoice solver : {SolverChoice::eigen, SolverChoice::cholmod}) {
+    if (solver == SolverChoice::cholmod && !app::kHasCholmod) continue;
+    app::Plan p        = plan;
+    p.solver           = solver;  // two solvers in one process: the choice is the run's, not a global
+    const fs::path out = scratch(std::string("library_") + std::string(name_of(solver)));
+    std::ostringstream err;
+    const app::RunRequest request{model.deck, model.scene, p, out.string(), err, false, {}, {}};
+    const app::RunResult result = app::run(request);
+    CHECK(result.equilibrium < 1e-12);
+    CHECK(result.step_residual.size() == 1);
+    const auto nodes = read_csv(out / "nodes.csv");
+    REQUIRE(nodes.size() == 27);
+    for (const auto& row : nodes) CHECK(test::rel(row.at("u_r"), lame.displacement(row.at("r"))) < 5e-3);
+    by_solver.push_back(nodes.back());
+  }
+  if (by_solver.size() == 2)
+    CHECK(by_solver[0].at("u_r") == doctest::Approx(by_solver[1].at("u_r")).epsilon(1e-10));
+  // The command's answer is the library's.
+  const auto command_nodes =
+      read_csv(run_deck_file(kExamples / "thick_tube.deck", "library_command") / "nodes.csv");
+  CHECK(command_nodes.back().at("u_r") == doctest::Approx(by_solver[0].at("u_r")).epsilon(1e-12));
+
+  // A refusal is the same from either side: the plastic tube on the legacy quad.
+  SceneModel plastic;
+  plastic.deck =
+      read_deck(read_input((kExamples / "plastic_tube.deck").string(), "deck"), {{"element", "legacy"}});
+  plastic.scene           = build_scene(plastic.deck);
+  const app::Plan refused = app::make_plan(plastic.deck, plastic.scene);
+  CHECK(refused.key.law == app::LawKind::plastic);
+  CHECK_THROWS_WITH_AS(app::check_plan(refused, plastic.deck),
+                       doctest::Contains("a law with history on the legacy quad"), InputError);
+  std::ostringstream err;
+  const app::RunRequest request{plastic.deck, plastic.scene, refused, scratch("library_refused").string(),
+                                err,          false,         {},      {}};
+  CHECK_THROWS_AS(app::run(request), InputError);
+  std::ostringstream o, e;
+  CHECK(app::command({"run", (kExamples / "plastic_tube.deck").string(), "--element", "legacy", "--out",
+                      scratch("library_refused_command").string()},
+                     o, e) == app::input);
+  CHECK(e.str().find("a law with history on the legacy quad") != std::string::npos);
+}
+
 TEST_CASE(
     "gapfe run warns when element = quad4 meets a Poisson's ratio above 0.49 (locking), and only then") {
   const fs::path nearly_incompressible =
@@ -154,16 +211,16 @@ TEST_CASE(
       "warning: element = quad4 with Poisson's ratio 0.4999 (material 1): the bilinear quad locks";
   for (const std::string element : {"quad4", "quad4bbar", "legacy"}) {
     std::ostringstream o, e;
-    REQUIRE(gapfe::cli::main({"run", nearly_incompressible.string(), "--out",
-                              scratch("locking_" + element).string(), "--quiet", "--element", element},
-                             o, e) == 0);
+    REQUIRE(gapfe::app::command({"run", nearly_incompressible.string(), "--out",
+                                 scratch("locking_" + element).string(), "--quiet", "--element", element},
+                                o, e) == 0);
     CAPTURE(e.str());
     CHECK((e.str().find(warning) != std::string::npos) == (element == "quad4"));
   }
   std::ostringstream o, e;  // the example as it is (nu = 0.3): no warning
-  REQUIRE(gapfe::cli::main({"run", (kExamples / "thick_tube.deck").string(), "--out",
-                            scratch("locking_none").string(), "--quiet", "--element", "quad4"},
-                           o, e) == 0);
+  REQUIRE(gapfe::app::command({"run", (kExamples / "thick_tube.deck").string(), "--out",
+                               scratch("locking_none").string(), "--quiet", "--element", "quad4"},
+                              o, e) == 0);
   CHECK(e.str().find("warning") == std::string::npos);
 }
 
@@ -172,9 +229,10 @@ TEST_CASE("gapfe run reports each step's relative residual and warns of ill-cond
   // penalty (tests/test_contact.cpp); at 1e11 x the adjacent stiffness it is about 4e-3.
   const auto run = [](const std::string& penalty, const std::string& name) {
     std::ostringstream o, e;
-    REQUIRE(gapfe::cli::main({"run", (kExamples / "two_tubes.deck").string(), "--out", scratch(name).string(),
-                              "--contact", "active-set", "--set", "gap_penalty=" + penalty},
-                             o, e) == 0);
+    REQUIRE(
+        gapfe::app::command({"run", (kExamples / "two_tubes.deck").string(), "--out", scratch(name).string(),
+                             "--contact", "active-set", "--set", "gap_penalty=" + penalty},
+                            o, e) == 0);
     const std::string log = o.str(), key = "equilibrium: largest relative residual |K u - f| / |f| ";
     const auto at = log.find(key);
     REQUIRE(at != std::string::npos);
@@ -224,19 +282,19 @@ TEST_CASE("A deck in the smallest (saas) and a richer (saga) variant gives the s
 
 TEST_CASE("The runner picks the smallest variant and says why; a forced smaller variant is refused") {
   std::ostringstream out, err;
-  REQUIRE(gapfe::cli::main({"info", (kExamples / "helical_sleeve.deck").string()}, out, err) == 0);
+  REQUIRE(gapfe::app::command({"info", (kExamples / "helical_sleeve.deck").string()}, out, err) == 0);
   CHECK(out.str().find("variant: saga (3 DOF per node: ALPHA") != std::string::npos);
   std::ostringstream out2, err2;
-  REQUIRE(gapfe::cli::main({"info", (kExamples / "thick_tube.deck").string()}, out2, err2) == 0);
+  REQUIRE(gapfe::app::command({"info", (kExamples / "thick_tube.deck").string()}, out2, err2) == 0);
   CHECK(out2.str().find("variant: saas") != std::string::npos);
   std::ostringstream out3, err3;
-  CHECK(gapfe::cli::main({"run", (kExamples / "helical_sleeve.deck").string(), "--out",
-                          scratch("refuse").string(), "--variant", "saas"},
-                         out3, err3) == gapfe::cli::input);
+  CHECK(gapfe::app::command({"run", (kExamples / "helical_sleeve.deck").string(), "--out",
+                             scratch("refuse").string(), "--variant", "saas"},
+                            out3, err3) == gapfe::app::input);
   CHECK(err3.str().find("--variant saas cannot represent this deck") != std::string::npos);
   // Gap decks say what they need: pairs, the soft corner, the policy.
   std::ostringstream out4, err4;
-  CHECK(gapfe::cli::main(
+  CHECK(gapfe::app::command(
             {"mesh", (kExamples / "projectile.deck").string(), "--out", scratch("gap_mesh").string()}, out4,
             err4) == 0);
   CHECK(fs::exists(scratch("gap_mesh") / "mesh.svg"));
@@ -495,9 +553,9 @@ TEST_CASE("Plastic tube deck: yield cards run Hill plasticity; eqps in elements.
   }
 
   std::ostringstream o, e;
-  CHECK(gapfe::cli::main({"run", (kExamples / "plastic_tube.deck").string(), "--out",
-                          scratch("plastic_legacy").string(), "--element", "legacy"},
-                         o, e) == gapfe::cli::input);
+  CHECK(gapfe::app::command({"run", (kExamples / "plastic_tube.deck").string(), "--out",
+                             scratch("plastic_legacy").string(), "--element", "legacy"},
+                            o, e) == gapfe::app::input);
   CHECK(e.str().find("element = legacy") != std::string::npos);
   CHECK(e.str().find("condensed centre node is not in the plastic driver") != std::string::npos);
 }
@@ -513,9 +571,9 @@ TEST_CASE(
       edited_example("plastic_tube.deck", "   42    1      20.0", "   42    1      30.0", "past_the_limit");
   const fs::path out = scratch("past_the_limit");
   std::ostringstream o, e;
-  const int code = gapfe::cli::main({"run", deck.string(), "--out", out.string(), "--quiet"}, o, e);
+  const int code = gapfe::app::command({"run", deck.string(), "--out", out.string(), "--quiet"}, o, e);
   CAPTURE(e.str());
-  CHECK(code == gapfe::cli::Exit::solve);
+  CHECK(code == gapfe::app::Exit::solve);
   CHECK(e.str().find("load step 11 fails even when cut to 1/64, past load factor 10") != std::string::npos);
   CHECK(e.str().find("limit (collapse) load") != std::string::npos);
   // The accepted increments: all 10 whole steps, then pieces of step 11 below the limit.
@@ -553,9 +611,9 @@ TEST_CASE("SAAC3X deck: card 0's STRSTEP then STRRATE drive a thin tube to THEOR
     CAPTURE(integration);
     std::ostringstream o, e;
     const fs::path out = scratch(std::string("saac3x_") + integration);
-    REQUIRE(gapfe::cli::main({"run", (kExamples / "saac3x_tube.deck").string(), "--out", out.string(),
-                              "--plasticity", integration},
-                             o, e) == 0);
+    REQUIRE(gapfe::app::command({"run", (kExamples / "saac3x_tube.deck").string(), "--out", out.string(),
+                                 "--plasticity", integration},
+                                o, e) == 0);
     CHECK(o.str().find("saac3x: constant strain rate 1 over L = 1: u_z = rate L (t - delta t) on the 2 nodes "
                        "at z = 1 from step 2 on") != std::string::npos);
     const auto elements = read_csv(out / "elements.csv");
@@ -605,7 +663,8 @@ TEST_CASE("SAAC3X deck: card 0's STRSTEP then STRRATE drive a thin tube to THEOR
   REQUIRE(lines[2].size() >= 60);
   lines[2].replace(36, 24, std::string(24, ' '));
   std::ostringstream o, e;
-  CHECK(gapfe::cli::main({"info", write_deck(gapfe::test::join(lines), "saac3x_blank").string()}, o, e) == 0);
+  CHECK(gapfe::app::command({"info", write_deck(gapfe::test::join(lines), "saac3x_blank").string()}, o, e) ==
+        0);
   CHECK(o.str().find("saac3x:") == std::string::npos);
   CHECK(o.str().find("variant: saas") != std::string::npos);
 }
@@ -626,9 +685,9 @@ TEST_CASE("Rate-dependent tube deck (SAAC3): card 0 with b != 0 runs Drysdale-Za
     CAPTURE(integration);
     std::ostringstream o, e;
     const fs::path out = scratch(std::string("rate_tube_") + integration);
-    REQUIRE(gapfe::cli::main({"run", (kExamples / "rate_tube.deck").string(), "--out", out.string(),
-                              "--plasticity", integration},
-                             o, e) == 0);
+    REQUIRE(gapfe::app::command({"run", (kExamples / "rate_tube.deck").string(), "--out", out.string(),
+                                 "--plasticity", integration},
+                                o, e) == 0);
     const std::string log = o.str();
     CHECK(log.find("rate: rate-dependent " + std::string(integration)) != std::string::npos);
     CHECK(log.find("card 0 has b = 0.05 != 0") != std::string::npos);
@@ -665,9 +724,9 @@ TEST_CASE("Rate-dependent tube deck (SAAC3): card 0 with b != 0 runs Drysdale-Za
   std::vector<std::string> bad = lines;
   bad[2].replace(0, 12, " 0.00000E+00");
   std::ostringstream o, e;
-  CHECK(gapfe::cli::main({"run", write_deck(gapfe::test::join(bad), "rate_bad").string(), "--out",
-                          scratch("rate_bad").string()},
-                         o, e) == gapfe::cli::input);
+  CHECK(gapfe::app::command({"run", write_deck(gapfe::test::join(bad), "rate_bad").string(), "--out",
+                             scratch("rate_bad").string()},
+                            o, e) == gapfe::app::input);
   CHECK(e.str().find("DATA NO. 0 (rate property card), line 3, columns 1-12") != std::string::npos);
 }
 
@@ -740,7 +799,7 @@ TEST_CASE("Friction input errors: one line naming the key, a non-zero exit, no r
     std::vector<std::string> args = {"run", deck.string(), "--out", out.string(), "--quiet"};
     for (const auto& s : set) args.push_back("--set"), args.push_back(s);
     std::ostringstream o, e;
-    const int code            = gapfe::cli::main(args, o, e);
+    const int code            = gapfe::app::command(args, o, e);
     const std::string message = e.str();
     CAPTURE(message);
     CHECK(code == 1);
@@ -783,7 +842,7 @@ TEST_CASE(
   text = replaced(text, "230.94011       0.0", "230.94011       1.0");  // c = 1 MPa
   const fs::path deck = write_deck(text, "round_off"), out = scratch("round_off");
   std::ostringstream o, e;
-  const int code = gapfe::cli::main({"run", deck.string(), "--out", out.string(), "--quiet"}, o, e);
+  const int code = gapfe::app::command({"run", deck.string(), "--out", out.string(), "--quiet"}, o, e);
   CAPTURE(e.str());
   REQUIRE(code == 0);
   CHECK(e.str().find("stopped where the residual stopped falling") != std::string::npos);
@@ -814,9 +873,9 @@ TEST_CASE(
   {
     std::ostringstream o, e;
     const fs::path out = scratch("cut_fails");
-    CHECK(gapfe::cli::main(
+    CHECK(gapfe::app::command(
               {"run", whole.string(), "--out", out.string(), "--quiet", "--set", "newton_iterations=1"}, o,
-              e) == gapfe::cli::Exit::solve);
+              e) == gapfe::app::Exit::solve);
     CHECK(e.str().find("fails even when cut to 1/64") != std::string::npos);
   }
   const auto record = read_csv(cut / "plasticity.csv");
@@ -836,8 +895,8 @@ TEST_CASE(
   for (const std::string bad :
        {"newton_iterations=0", "newton_iterations=2.5", "newton_tolerance=0", "newton_tolerance=2"}) {
     std::ostringstream o, e;
-    CHECK(gapfe::cli::main({"run", whole.string(), "--out", scratch("bad_newton").string(), "--set", bad}, o,
-                           e) != 0);
+    CHECK(gapfe::app::command({"run", whole.string(), "--out", scratch("bad_newton").string(), "--set", bad},
+                              o, e) != 0);
     CHECK(e.str().find(bad.substr(0, bad.find('='))) != std::string::npos);
   }
 }
@@ -889,10 +948,10 @@ TEST_CASE(
       CAPTURE(example);
       CAPTURE(solver);
       std::ostringstream o, e;
-      const int code = gapfe::cli::main(
+      const int code = gapfe::app::command(
           {"run", deck.string(), "--out", scratch("free").string(), "--quiet", "--solver", solver}, o, e);
       CAPTURE(e.str());
-      CHECK(code == gapfe::cli::Exit::solve);
+      CHECK(code == gapfe::app::Exit::solve);
       CHECK(e.str().find("singular") != std::string::npos);
       // "near node N u_z" (or u_theta in SAGA: the spin about the axis), N a node of the deck.
       const auto at = e.str().find("near node ");
@@ -965,7 +1024,7 @@ TEST_CASE("fields = wide: a 1000 x 500 grid with its bore pressure meshes; the l
   };
   const auto info = [](const std::string& text, const std::string& name) {
     std::ostringstream o, e;
-    const int code = gapfe::cli::main({"info", write_deck(text, name).string()}, o, e);
+    const int code = gapfe::app::command({"info", write_deck(text, name).string()}, o, e);
     return Info{code, o.str(), e.str()};
   };
   // The issue's report: index 1000 in I3 reads as 100, so the grid's corners go missing.
@@ -1319,7 +1378,7 @@ TEST_CASE("[scene] Malformed scene and mesh files: a clear error naming the key 
     const fs::path file = scratch("scene_bad") / "scene.toml";
     std::ofstream(file) << c.scene;
     std::ostringstream out, err;
-    const int code = gapfe::cli::main({"info", file.string()}, out, err);
+    const int code = gapfe::app::command({"info", file.string()}, out, err);
     CAPTURE(err.str());
     CHECK(code != 0);
     CHECK(err.str().find(c.expected) != std::string::npos);
@@ -1375,8 +1434,8 @@ TEST_CASE("[history] the plastic tube past its limit: history.csv's load climbs 
       edited_example("plastic_tube.deck", "   42    1      20.0", "   42    1      30.0", "history_limit");
   const fs::path out = scratch("history_limit");
   std::ostringstream o, e;
-  CHECK(gapfe::cli::main({"run", deck.string(), "--out", out.string(), "--quiet"}, o, e) ==
-        gapfe::cli::solve);
+  CHECK(gapfe::app::command({"run", deck.string(), "--out", out.string(), "--quiet"}, o, e) ==
+        gapfe::app::solve);
   const auto history = read_csv(out / "history.csv");
   REQUIRE(history.size() > 10);
   const double p_limit = 2 / std::sqrt(3.0) * 400 * std::log(2.0);
@@ -1427,8 +1486,8 @@ TEST_CASE(
     gapfe::RunFolder::record(dir.string(), "a hand-made run", "complete");  // plot reads a run's folder only
     std::ofstream(dir / "history.csv") << "step,u_max,load_factor\n1,0.5\n";
     std::ostringstream o, e;
-    CHECK(gapfe::cli::main({"plot", dir.string(), "--x", "u_max", "--y", "load_factor"}, o, e) ==
-          gapfe::cli::system);  // a malformed result file: a file problem
+    CHECK(gapfe::app::command({"plot", dir.string(), "--x", "u_max", "--y", "load_factor"}, o, e) ==
+          gapfe::app::system);  // a malformed result file: a file problem
     CHECK(e.str().find("history.csv, line 2: fewer values than the header's columns") != std::string::npos);
     std::string scene = read_text(kScenes / "thick_tube_grid.toml");
     const auto swap   = [&](const std::string& from, const std::string& to) {
@@ -1553,18 +1612,18 @@ TEST_CASE("[cli] --help on every command, --version, suggestions for misspelt co
     CAPTURE(command);
     for (const char* flag : {"--help", "-h"}) {
       std::ostringstream out, err;
-      CHECK(gapfe::cli::main({command, flag}, out, err) == gapfe::cli::ok);
+      CHECK(gapfe::app::command({command, flag}, out, err) == gapfe::app::ok);
       CHECK(out.str().find(std::string("usage: gapfe ") + command) != std::string::npos);
       CHECK(out.str().find("--quiet") != std::string::npos);
       CHECK(err.str().empty());
     }
   }
   std::ostringstream run_help, e0;
-  gapfe::cli::main({"run", "--help"}, run_help, e0);
+  gapfe::app::command({"run", "--help"}, run_help, e0);
   CHECK(run_help.str().find("--plot FIELD") != std::string::npos);
   CHECK(run_help.str().find("--field") == std::string::npos);  // plot's option, not run's
   std::ostringstream version, e1;
-  CHECK(gapfe::cli::main({"run", "--version"}, version, e1) == gapfe::cli::ok);
+  CHECK(gapfe::app::command({"run", "--version"}, version, e1) == gapfe::app::ok);
   CHECK(version.str().rfind("gapfe ", 0) == 0);
   struct Case {
     std::vector<std::string> args;
@@ -1580,7 +1639,7 @@ TEST_CASE("[cli] --help on every command, --version, suggestions for misspelt co
         Case{{"plot", "d", "--step", "0"}, "--step: '0' is not a load step"}}) {
     CAPTURE(c.expected);
     std::ostringstream out, err;
-    CHECK(gapfe::cli::main(c.args, out, err) == gapfe::cli::usage);
+    CHECK(gapfe::app::command(c.args, out, err) == gapfe::app::usage);
     CHECK(err.str().find(c.expected) != std::string::npos);
   }
 }
@@ -1590,14 +1649,14 @@ TEST_CASE("[plot] gapfe plot: any field of any step, a history curve, and clear 
   CHECK(fs::exists(out / "plot_mises.svg"));  // gapfe run's default picture
   CHECK(fs::exists(out / "curve_load_factor_u_max.svg"));
   std::ostringstream o, e;
-  CHECK(gapfe::cli::main(
+  CHECK(gapfe::app::command(
             {"plot", out.string(), "--field", "s_tt", "--step", "5", "--no-png", "--units", "mm,N,MPa"}, o,
-            e) == gapfe::cli::ok);
+            e) == gapfe::app::ok);
   const std::string svg = read_text(out / "plot_s_tt_step_0005.svg");
   CHECK(svg.find("s_tt [MPa]") != std::string::npos);
   CHECK(svg.find("r [mm]") != std::string::npos);
-  CHECK(gapfe::cli::main({"plot", out.string(), "--x", "u_max", "--y", "R_z_bc1", "--no-png", "--quiet"}, o,
-                         e) == gapfe::cli::ok);
+  CHECK(gapfe::app::command({"plot", out.string(), "--x", "u_max", "--y", "R_z_bc1", "--no-png", "--quiet"},
+                            o, e) == gapfe::app::ok);
   CHECK(fs::exists(out / "curve_R_z_bc1_u_max.svg"));
   struct Case {
     std::vector<std::string> args;
@@ -1610,24 +1669,24 @@ TEST_CASE("[plot] gapfe plot: any field of any step, a history curve, and clear 
         Case{{"plot", out.string(), "--units", "mm"}, "units 'mm': expected LENGTH,FORCE,STRESS"}}) {
     CAPTURE(c.expected);
     std::ostringstream out2, err;
-    CHECK(gapfe::cli::main(c.args, out2, err) == gapfe::cli::input);
+    CHECK(gapfe::app::command(c.args, out2, err) == gapfe::app::input);
     CHECK(err.str().find(c.expected) != std::string::npos);
   }
   {  // a folder no run wrote: a file problem (exit 3), not a model one
     std::ostringstream out2, err;
-    CHECK(gapfe::cli::main({"plot", (out / "missing").string()}, out2, err) == gapfe::cli::system);
+    CHECK(gapfe::app::command({"plot", (out / "missing").string()}, out2, err) == gapfe::app::system);
     CHECK(err.str().find("holds no gapfe-run.txt") != std::string::npos);
   }
   // A deck asking for units, and a field the run cannot draw: the run goes on and says why.
   std::ostringstream o2, e2;
-  CHECK(gapfe::cli::main({"run", (kExamples / "thick_tube.deck").string(), "--out",
-                          scratch("plot_gaps").string(), "--plot", "gap_state", "--set", "units=mm,N,MPa"},
-                         o2, e2) == gapfe::cli::ok);
+  CHECK(gapfe::app::command({"run", (kExamples / "thick_tube.deck").string(), "--out",
+                             scratch("plot_gaps").string(), "--plot", "gap_state", "--set", "units=mm,N,MPa"},
+                            o2, e2) == gapfe::app::ok);
   CHECK(o2.str().find("pictures not drawn: field gap_state: the file has no cell array 'gap_state'") !=
         std::string::npos);
   std::ostringstream o3, e3;
-  CHECK(gapfe::cli::main({"info", (kExamples / "thick_tube.deck").string(), "--set", "units=mm;N;MPa"}, o3,
-                         e3) == gapfe::cli::input);
+  CHECK(gapfe::app::command({"info", (kExamples / "thick_tube.deck").string(), "--set", "units=mm;N;MPa"}, o3,
+                            e3) == gapfe::app::input);
   CHECK(e3.str().find("units 'mm;N;MPa': expected LENGTH,FORCE,STRESS") != std::string::npos);
 }
 
@@ -1635,12 +1694,12 @@ TEST_CASE("solver = petsc and PETSc's options: clear refusals where the run cann
   const std::string deck = (kExamples / "thick_tube.deck").string(), out = scratch("petsc_refused").string();
   const auto run = [&](std::vector<std::string> args) {
     std::ostringstream o, e;
-    const int code = gapfe::cli::main(args, o, e);
+    const int code = gapfe::app::command(args, o, e);
     return std::make_pair(code, e.str());
   };
   // In-process, no program started MPI (gapfe.cpp's main does, given StartMpi): said, not crashed.
   auto [code, err] = run({"run", deck, "--out", out, "--solver", "petsc"});
-  CHECK(code == gapfe::cli::input);
+  CHECK(code == gapfe::app::input);
 #ifdef GAPFE_HAS_PETSC
   CHECK(err.find("MPI and PETSc are started by the program") != std::string::npos);
 #else
@@ -1648,20 +1707,20 @@ TEST_CASE("solver = petsc and PETSc's options: clear refusals where the run cann
 #endif
   // A PETSc option without solver = petsc, and one given to another command.
   std::tie(code, err) = run({"run", deck, "--out", out, "-ksp_type", "cg"});
-  CHECK(code == gapfe::cli::input);
+  CHECK(code == gapfe::app::input);
   CHECK(err.find("the PETSc option -ksp_type needs solver = petsc") != std::string::npos);
   std::tie(code, err) = run({"mesh", deck, "--out", out, "-ksp_type", "cg"});
-  CHECK(code == gapfe::cli::usage);
+  CHECK(code == gapfe::app::usage);
   CHECK(err.find("PETSc options belong to gapfe run") != std::string::npos);
   // Launched as 2 processes (mpirun's variables) with a one-process solver: refused, by rank 0 only.
   ::setenv("OMPI_COMM_WORLD_SIZE", "2", 1);
   ::setenv("OMPI_COMM_WORLD_RANK", "0", 1);
   std::tie(code, err) = run({"run", deck, "--out", out, "--solver", "eigen"});
-  CHECK(code == gapfe::cli::input);
+  CHECK(code == gapfe::app::input);
   CHECK(err.find("started as 2 processes") != std::string::npos);
   ::setenv("OMPI_COMM_WORLD_RANK", "1", 1);  // the other rank says nothing (rank 0 speaks for both)
   std::tie(code, err) = run({"run", deck, "--out", out, "--solver", "eigen"});
-  CHECK(code == gapfe::cli::input);
+  CHECK(code == gapfe::app::input);
   CHECK(err.empty());
   ::unsetenv("OMPI_COMM_WORLD_SIZE");
   ::unsetenv("OMPI_COMM_WORLD_RANK");

@@ -1,5 +1,5 @@
 #pragma once
-// The run half of fuzz_deck.cpp: a small deck or scene run as `gapfe run` runs it (examples/cli_families.hpp:
+// The run half of fuzz_deck.cpp: a small deck or scene run as `gapfe run` runs it (app/run_loops.hpp:
 // the step loop, the files, the pictures) into `dir`, on the 3-DOF quad4bbar, without gaps or with SAAC's.
 // The elastic and the plastic model are instantiated in a translation unit each (fuzz_run_elastic.cpp,
 // fuzz_run_plastic.cpp) so that the sanitizer build compiles them side by side, and this header stays light.

@@ -1,16 +1,19 @@
 // fuzz_run.hpp: the plastic model's runs.
 #include <sstream>
 
+#include "gapfe/app/run_loops.hpp"
 #include "gapfe/material/hill.hpp"
 #include "gapfe/model.hpp"
 
-#include "cli_families.hpp"
 #include "fuzz_run.hpp"
 
 void gapfe::fuzz::run_plastic(const Deck& deck, const DeckScene& scene, const std::string& dir, bool gaps) {
   using M = Model<Axisym3, Quad4BBar, Hill<ReturnMapping>, EigenLdlt>;
   std::ostringstream err;  // the warnings a run would print
-  const cli::RunRequest r{deck, scene, dir, "saga", "quad4bbar", "eigen", err, false, {"mises"}, {}};
-  cli::RunTimes times;
-  gaps ? cli::run_contact<M, Saac>(r, times) : cli::run_plastic<M>(r, times);
+  app::Plan plan;
+  plan.key.kinematics = VariantChoice::saga, plan.key.element = ElementChoice::quad4bbar;
+  plan.solver = SolverChoice::eigen;
+  const app::RunRequest r{deck, scene, plan, dir, err, false, {"mises"}, {}};
+  app::RunResult times;
+  gaps ? app::run_contact<M, Saac>(r, times) : app::run_plastic<M>(r, times);
 }

@@ -125,14 +125,16 @@ class Assembler {
   /// solver that takes one and, for a part of a partitioned problem, the equation layout (collective). A
   /// distributed solver that takes no order gets the layout on a whole problem too (for its near-null
   /// space); a RuntimeSolver offering both kinds gets it only for a part.
+  /// `solver`: the solver object (empty: a default-constructed one).
   template <class Solver>
-  System<Solver> make_system(const Problem<M>& p) {
+  System<Solver> make_system(const Problem<M>& p, std::unique_ptr<Solver> solver = nullptr) {
     if (p.subdomain || (DistributedSolver<Solver> && !OrderedSolver<Solver>)) {
       const EquationLayout layout = equation_layout(dofs_, p.mesh, p.subdomain.get());
-      return System<Solver>(take_pattern(), {}, &layout);
+      return System<Solver>(take_pattern(), {}, &layout, std::move(solver));
     }
-    if constexpr (OrderedSolver<Solver>) return System<Solver>(take_pattern(), fill_reducing_order(p));
-    return System<Solver>(take_pattern());
+    if constexpr (OrderedSolver<Solver>)
+      return System<Solver>(take_pattern(), fill_reducing_order(p), nullptr, std::move(solver));
+    return System<Solver>(take_pattern(), {}, nullptr, std::move(solver));
   }
   const Connectivity<2>& links() const { return links_; }
   /// Whether link l adds anything here: it is not zero and this part assembles it.

@@ -16,34 +16,35 @@
 //     iterations of the plastic driver, which that scheme does not make.
 #include <string_view>
 
+#include "gapfe/core/choices.hpp"
+
 namespace gapfe {
 
-/// A run's combination in the deck options' words (contact: none | saac | active-set |
-/// augmented-lagrangian; friction: none | proportional | extended | coulomb).
+/// A run's combination: the law's kind, the element's, the contact policy and the friction model.
 struct Combination {
   bool history   = false;  ///< the law has history (plasticity, rate-dependent or not)
   bool iterates  = false;  ///< its scheme iterates to equilibrium (return-mapping), not the seed's one solve
   bool condensed = false;  ///< the element condenses interior nodes (the legacy quad's centre)
-  std::string_view contact  = "none";
-  std::string_view friction = "none";
+  ContactChoice contact   = ContactChoice::none;
+  FrictionChoice friction = FrictionChoice::none;
 };
 
 /// Why the library does not run `c`, or empty when it does.
 constexpr std::string_view unsupported(const Combination& c) {
-  const bool seed_slip = c.friction == "proportional" || c.friction == "extended";
+  const bool seed_slip = c.friction == FrictionChoice::proportional || c.friction == FrictionChoice::extended;
   if (c.history && c.condensed)
     return "a law with history on the legacy quad: its condensed centre node is not in the plastic driver; "
            "use element = quad4bbar (the default for plastic decks) or quad4";
-  if (c.friction != "none" && c.contact == "none")
+  if (c.friction != FrictionChoice::none && c.contact == ContactChoice::none)
     return "friction with contact = none: every gap stays open; choose contact = saac, active-set or "
            "augmented-lagrangian";
-  if (seed_slip && c.contact != "saac")
+  if (seed_slip && c.contact != ContactChoice::saac)
     return "the seed's slip models (proportional, extended) run under the seed's stepping, contact = saac; "
            "under the exact policies use slip = coulomb";
-  if (c.friction == "coulomb" && c.contact == "saac")
+  if (c.friction == FrictionChoice::coulomb && c.contact == ContactChoice::saac)
     return "Coulomb friction needs an exact contact policy (contact = active-set or augmented-lagrangian): "
            "saac freezes the gap at closure, so the normal force of the friction cone never converges";
-  if (c.friction == "coulomb" && c.history && !c.iterates)
+  if (c.friction == FrictionChoice::coulomb && c.history && !c.iterates)
     return "Coulomb friction with plasticity needs plasticity = return-mapping: slip and plastic flow "
            "converge together in its Newton iterations, and tangent solves once per increment";
   return {};
@@ -56,15 +57,16 @@ constexpr bool condensed() {
 }
 
 /// The combination of a compiled variant: law `Law` (kLinear, and kIterate for laws with history),
-/// element `Elem` (kNodes, kShapeNodes), contact policy `Policy` and friction model `Friction` (kName).
+/// element `Elem` (kNodes, kShapeNodes), contact policy `Policy` and friction model `Friction` (their kName
+/// is their option's word).
 template <class Law, class Elem, class Policy, class Friction>
 constexpr Combination combination_of() {
   Combination c;
   c.history = !Law::kLinear;
   if constexpr (!Law::kLinear) c.iterates = Law::kIterate;
   c.condensed = condensed<Elem>();
-  c.contact   = Policy::kName;
-  c.friction  = Friction::kName;
+  c.contact   = *choice_named<ContactChoice>(Policy::kName);
+  c.friction  = *choice_named<FrictionChoice>(Friction::kName);
   return c;
 }
 

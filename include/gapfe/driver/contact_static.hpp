@@ -27,6 +27,7 @@
 #include <cstdio>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <type_traits>
@@ -90,10 +91,12 @@ class ContactStatic {
   ContactStatic(const ContactStatic&)            = delete;
   ContactStatic& operator=(const ContactStatic&) = delete;
 
-  ContactStatic(Problem<M> problem, std::vector<GapPair> pairs, ContactOptions options = {})
+  /// `solver`: the linear solver of the driver underneath (empty: a default-constructed M::LinearSolver).
+  ContactStatic(Problem<M> problem, std::vector<GapPair> pairs, ContactOptions options = {},
+                std::unique_ptr<typename M::LinearSolver> solver = nullptr)
       : pairs_(std::move(pairs)),
         opt_(std::move(options)),
-        fe_(std::move(problem), links_of(pairs_)),
+        fe_(make_fe(std::move(problem), links_of(pairs_), std::move(solver))),
         history_(pairs_.size()) {
     fe_.defer_reactions(true);  // trial solves need displacements only; reactions when an increment is read
     const double kappa = std::min(opt_.penalty_factor > 0 ? opt_.penalty_factor : Policy::kDefaultPenalty,
@@ -384,6 +387,13 @@ class ContactStatic {
   }
 
  private:
+  static Fe make_fe(Problem<M> problem, Connectivity<2> links,
+                    std::unique_ptr<typename M::LinearSolver> solver) {
+    if constexpr (M::Material::kLinear)
+      return Fe(std::move(problem), std::move(links), std::move(solver));
+    else
+      return Fe(std::move(problem), std::move(links), NewtonOptions{}, std::move(solver));
+  }
   static Connectivity<2> links_of(const std::vector<GapPair>& pairs) {
     Connectivity<2> l;
     if constexpr (Policy::kContact)

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <chrono>
 #include <concepts>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -35,10 +36,12 @@ class LinearStatic {
   static constexpr int kNd = M::kDofsPerNode;
 
   /// `links`: node pairs (a, b) that may carry node links; their values start at zero (link_values()).
-  explicit LinearStatic(Problem<M> problem, Connectivity<2> links = {})
+  /// `solver`: the linear solver (empty: a default-constructed M::LinearSolver).
+  explicit LinearStatic(Problem<M> problem, Connectivity<2> links = {},
+                        std::unique_ptr<typename M::LinearSolver> solver = nullptr)
       : p_(std::move(problem)),
         assembler_(p_, std::move(links)),
-        system_(assembler_.template make_system<typename M::LinearSolver>(p_)) {}
+        system_(assembler_.template make_system<typename M::LinearSolver>(p_, std::move(solver))) {}
 
   /// Loads, temperatures and materials may be changed here between solves.
   Problem<M>& problem() { return p_; }

@@ -29,6 +29,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <vector>
 
@@ -56,10 +57,12 @@ class NonlinearStatic {
                 "NonlinearStatic: elements with condensed interior nodes (LegacyQuad) are not supported; "
                 "use Quad4BBar, Quad4 or Quad8");
 
-  explicit NonlinearStatic(Problem<M> scene, Connectivity<2> link_pairs = {}, NewtonOptions options = {})
+  /// `solver`: the linear solver (empty: a default-constructed M::LinearSolver).
+  explicit NonlinearStatic(Problem<M> scene, Connectivity<2> link_pairs = {}, NewtonOptions options = {},
+                           std::unique_ptr<typename M::LinearSolver> solver = nullptr)
       : p_(std::move(scene)),
         assembler_(p_, std::move(link_pairs)),
-        system_(assembler_.template make_system<typename M::LinearSolver>(p_)),
+        system_(assembler_.template make_system<typename M::LinearSolver>(p_, std::move(solver))),
         options_(options),
         points_(assembler_.point_count()),
         stress_(assembler_.point_count(), Vec6::Zero()),

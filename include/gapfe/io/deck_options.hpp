@@ -8,6 +8,7 @@
 #include <initializer_list>
 #include <string>
 
+#include "gapfe/core/choices.hpp"
 #include "gapfe/core/error.hpp"
 
 namespace gapfe {
@@ -36,33 +37,33 @@ struct DeckOptions {
   /// legacy for elastic and gap decks, quad4bbar for decks with yield cards (plain Quad4 locks in
   /// plastic flow, tests/test_plasticity.cpp; the legacy quad's condensed centre is not in the plastic
   /// driver yet).
-  std::string element   = "auto";
-  std::string solver    = "auto";  ///< solver = auto (fastest built) | eigen | cholmod | petsc
-  bool loads_per_radian = false;   ///< bc_loads = total (default) | per-radian (legacy decks)
-  std::string contact   = "saac";  ///< contact = saac | active-set | augmented-lagrangian | none
+  ElementChoice element = ElementChoice::automatic;
+  SolverChoice solver = SolverChoice::automatic;  ///< solver = auto (fastest built) | eigen | cholmod | petsc
+  bool loads_per_radian = false;                  ///< bc_loads = total (default) | per-radian (legacy decks)
+  ContactChoice contact = ContactChoice::saac;  ///< contact = saac | active-set | augmented-lagrangian | none
   /// friction = mu >= 0 at closed gap pairs (0: frictionless, no friction model compiled in).
   double friction = 0.0;
   /// slip = auto | proportional | extended | coulomb: the friction model (contact/friction.hpp). auto:
   /// extended (the seed's section 3.2) under contact = saac, coulomb under the exact policies.
   /// proportional and extended run under saac only, coulomb under active-set and augmented-lagrangian.
-  std::string slip   = "auto";
+  SlipChoice slip    = SlipChoice::automatic;
   double gap_penalty = 0.0;  ///< gap_penalty = closed-gap / adjacent stiffness (0: the policy's default)
   /// events = locate | step-end: under the exact contact policies, split each step at every gap status
   /// change (locate: closure loads exact) or let the statuses settle at the step's end without
   /// splitting (step-end: fewer solves; a path-dependent response sees closures late by up to a step).
-  std::string events = "locate";
+  EventChoice events = EventChoice::locate;
   int gap_direction  = 0;  ///< gap_direction = 0 (IJDIR per block, SAAC2) | 1 | 2 (SAAC's one LGAP)
   /// plasticity = return-mapping (the default: backward Euler onto the yield surface, Newton to
   /// newton_tolerance in every increment) | tangent (the seed's one solve per increment, SAGAEP's and
   /// SAAC3's schemes: for reproducing legacy results; docs/plasticity.md).
-  std::string plasticity = "return-mapping";
+  PlasticityChoice plasticity = PlasticityChoice::return_mapping;
   /// Which accepted increments the result files get, per kind: output_csv for the tables nodes.csv,
   /// elements.csv and reactions.csv, output_vtu for the VTU files and result.pvd; each all (every
   /// increment, the default) | last (only the run's last: a many-step run read at its end does not spend
   /// its time writing text) | none. `output = X` sets both. plasticity.csv and gaps.csv, the run's
   /// record, and deformed.svg (the last increment) are always written.
-  std::string output_csv = "all";
-  std::string output_vtu = "all";
+  Increments output_csv = Increments::all;
+  Increments output_vtu = Increments::all;
   /// newton_tolerance = |R_free| / |F_int| that ends a plastic step's Newton iterations (default 1e-10);
   /// newton_iterations = the iterations before a step is cut in halves (default 30). NewtonOptions.
   double newton_tolerance = 1e-10;
@@ -80,15 +81,28 @@ struct DeckOptions {
   /// converts units, so this only says which consistent set the deck uses. Empty: generic names.
   std::string units;
 
-  /// The friction model a run uses: "none" without friction, else the slip option with auto resolved.
-  std::string friction_model() const {
-    if (!(friction > 0)) return "none";
-    if (slip != "auto") return slip;
-    return contact == "saac" ? "extended" : "coulomb";
+  /// The friction model a run uses: none without friction, else the slip option with auto resolved.
+  FrictionChoice friction_model() const {
+    if (!(friction > 0)) return FrictionChoice::none;
+    switch (slip) {
+      case SlipChoice::proportional:
+        return FrictionChoice::proportional;
+      case SlipChoice::extended:
+        return FrictionChoice::extended;
+      case SlipChoice::coulomb:
+        return FrictionChoice::coulomb;
+      case SlipChoice::automatic:
+        break;
+    }
+    return contact == ContactChoice::saac ? FrictionChoice::extended : FrictionChoice::coulomb;
   }
 
   /// Set one option from its text form; throws InputError naming the key and the accepted values.
   void set(const std::string& key, const std::string& value) {
+    const auto choice = [&]<class E>(E) {
+      if (const auto c = choice_named<E>(value)) return *c;
+      throw InputError("option " + key + " = '" + value + "': expected one of " + choice_list<E>());
+    };
     const auto one_of = [&](std::initializer_list<const char*> allowed) {
       std::string list;
       for (const char* a : allowed) {
@@ -110,31 +124,31 @@ struct DeckOptions {
                             : (f == "elastic" || f == "saas" || f == "saga") ? DeckFormat::elastic
                                                                              : DeckFormat::saac;
     } else if (key == "element") {
-      element = one_of({"auto", "legacy", "quad4", "quad4bbar"});
+      element = choice(ElementChoice{});
     } else if (key == "solver") {
-      solver = one_of({"auto", "eigen", "cholmod", "petsc"});
+      solver = choice(SolverChoice{});
     } else if (key == "bc_loads") {
       loads_per_radian = one_of({"total", "per-radian"}) == "per-radian";
     } else if (key == "contact") {
-      contact = one_of({"saac", "active-set", "augmented-lagrangian", "none"});
+      contact = choice(ContactChoice{});
     } else if (key == "friction") {
       friction = number(0.0);
     } else if (key == "slip") {
-      slip = one_of({"auto", "proportional", "extended", "coulomb"});
+      slip = choice(SlipChoice{});
     } else if (key == "events") {
-      events = one_of({"locate", "step-end"});
+      events = choice(EventChoice{});
     } else if (key == "gap_penalty") {
       gap_penalty = number(0.0);
     } else if (key == "gap_direction") {
       gap_direction = std::stoi(one_of({"0", "1", "2"}));
     } else if (key == "plasticity") {
-      plasticity = one_of({"return-mapping", "tangent"});
+      plasticity = choice(PlasticityChoice{});
     } else if (key == "output") {
-      output_csv = output_vtu = one_of({"all", "last", "none"});
+      output_csv = output_vtu = choice(Increments{});
     } else if (key == "output_csv") {
-      output_csv = one_of({"all", "last", "none"});
+      output_csv = choice(Increments{});
     } else if (key == "output_vtu") {
-      output_vtu = one_of({"all", "last", "none"});
+      output_vtu = choice(Increments{});
     } else if (key == "newton_tolerance") {
       newton_tolerance = number(0.0);
       if (!(newton_tolerance > 0 && newton_tolerance < 1))

@@ -81,12 +81,6 @@ inline constexpr const char* kMaterialFill[] = {"#dbe8f6", "#f6e3c9", "#d8f0d2",
 
 }  // namespace detail
 
-/// Which accepted increments a kind of result file gets (DeckOptions::output_csv and output_vtu).
-enum class Increments { all, last, none };
-inline Increments increments(const std::string& option) {
-  return option == "last" ? Increments::last : option == "none" ? Increments::none : Increments::all;
-}
-
 /// Writes the per-step result files of a run into `dir` (which must exist).
 class StepFiles {
  public:

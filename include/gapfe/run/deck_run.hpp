@@ -12,6 +12,7 @@
 // totals, in the whole mesh's numbering, go to the part the same way. The drivers do the rest.
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <sstream>
 #include <string>
 
@@ -111,8 +112,9 @@ Problem<M> deck_problem(const Deck& d, const DeckScene& s, int step, const DeckP
 /// Run every load step; `on_step(step, inc, const LinearStatic<M>&)` sees each solved step (inc = the
 /// load increments applied so far; whole numbers in a linear run, which never splits a step).
 template <class M, class OnStep>
-void run_deck(const Deck& d, const DeckScene& s, OnStep&& on_step, const DeckPart* part = nullptr) {
-  LinearStatic<M> fe(deck_problem<M>(d, s, 1, part));
+void run_deck(const Deck& d, const DeckScene& s, OnStep&& on_step, const DeckPart* part = nullptr,
+              std::unique_ptr<typename M::LinearSolver> solver = nullptr) {
+  LinearStatic<M> fe(deck_problem<M>(d, s, 1, part), {}, std::move(solver));
   StepLoads loads(d, s);
   for (int step = 1; step <= d.steps(); ++step) {
     if (step > 1) set_loads(fe.problem(), loads.at(step), s);
@@ -145,11 +147,12 @@ constexpr bool time_controlled() {
 /// `on_increment(step, inc, const NonlinearStatic<M>&)` sees every accepted increment.
 template <class M, class OnIncrement>
 void run_deck_plastic(const Deck& d, const DeckScene& s, OnIncrement&& on_increment,
-                      const DeckPart* part = nullptr) {
+                      const DeckPart* part                             = nullptr,
+                      std::unique_ptr<typename M::LinearSolver> solver = nullptr) {
   NewtonOptions newton;
   newton.tolerance      = d.options.newton_tolerance;
   newton.max_iterations = d.options.newton_iterations;
-  NonlinearStatic<M> fe(deck_problem<M>(d, s, 1, part), {}, newton);
+  NonlinearStatic<M> fe(deck_problem<M>(d, s, 1, part), {}, newton, std::move(solver));
   StepLoads loads(d, s);
   const bool time_control = time_controlled<typename M::Material>() && d.options.time_tolerance > 0;
   const double smallest   = time_control ? kSmallestTimePiece : 1.0 / 64;  // Newton's cuts end here
@@ -203,17 +206,18 @@ void run_deck_plastic(const Deck& d, const DeckScene& s, OnIncrement&& on_increm
 /// (fractional where a step was split).
 template <class M, ContactPolicy P, FrictionModel F = NoFriction, class OnIncrement>
 void run_deck_contact(const Deck& d, const DeckScene& s, double penalty_factor, OnIncrement&& on_increment,
-                      const DeckPart* part = nullptr) {
+                      const DeckPart* part                             = nullptr,
+                      std::unique_ptr<typename M::LinearSolver> solver = nullptr) {
   using Run = ContactStatic<M, P, F>;
   ContactOptions options;
   options.penalty_factor  = penalty_factor;
-  options.locate_events   = d.options.events != "step-end";
+  options.locate_events   = d.options.events == EventChoice::locate;
   options.step_time       = d.step_time();
   options.friction        = F::kFriction ? d.options.friction : 0.0;
   const bool time_control = time_controlled<typename M::Material>() && d.options.time_tolerance > 0;
   if (time_control) options.time_tolerance = d.options.time_tolerance;
   if (s.gap_material >= 0) options.gap_materials.push_back(s.gap_material);
-  Run fe(deck_problem<M>(d, s, 1, part), part ? part->pairs : s.gaps.pairs, options);
+  Run fe(deck_problem<M>(d, s, 1, part), part ? part->pairs : s.gaps.pairs, options, std::move(solver));
   StepLoads loads(d, s);
   StepTotals before, after;
   int cached                           = -1;  // the step whose end totals are in `after`

@@ -5,8 +5,9 @@
 // two solvers. The calls are per matrix (analyze, factorize, solve), so the one virtual call each costs
 // nothing measurable; element and point code never sees it.
 //
-// The choice is a process-wide setting read when a solver is constructed (models default-construct
-// their solver): call select() before building the analysis. It is not meant to change concurrently.
+// The choice is the solver object's own, made when it is constructed (RuntimeSolver(index)): a driver is
+// given its solver (LinearStatic, NonlinearStatic, ContactStatic take one), so two runs in one process may
+// use different solvers.
 #include <array>
 #include <memory>
 #include <string>
@@ -28,31 +29,28 @@ class RuntimeSolver {
   static_assert(((storage_of<Solvers>() == kStorage) && ...),
                 "RuntimeSolver: every solver must read the same storage (lower triangle or full)");
 
-  /// Pick the solver whose kName is `name` for every RuntimeSolver constructed from now on.
-  static void select(const std::string& name) {
+  /// The position in Solvers... of the solver whose kName is `name`.
+  static std::size_t index_named(const std::string& name) {
     for (std::size_t k = 0; k < sizeof...(Solvers); ++k)
-      if (name == kNames[k]) {
-        chosen_ = k;
-        return;
-      }
+      if (name == kNames[k]) return k;
     throw InputError("RuntimeSolver: no solver named '" + name + "'");
   }
-  /// Pick by position in Solvers....
-  static void select(std::size_t index) {
+  /// The position of solver type S in Solvers....
+  template <class S>
+  static constexpr std::size_t index_of() {
+    static_assert((std::is_same_v<S, Solvers> || ...),
+                  "RuntimeSolver::index_of<S>: S is not one of its solvers");
+    return position<S, Solvers...>();
+  }
+
+  /// The solver at position `index` of Solvers... (the first by default).
+  explicit RuntimeSolver(std::size_t index = 0) : index_(index) {
     if (index >= sizeof...(Solvers))
       throw InputError("RuntimeSolver: no solver number " + std::to_string(index));
-    chosen_ = index;
+    impl_ = make<0>(index);
   }
-  /// Pick solver type S, one of Solvers....
-  template <class S>
-  static void select() {
-    static_assert((std::is_same_v<S, Solvers> || ...),
-                  "RuntimeSolver::select<S>: S is not one of its solvers");
-    chosen_ = index_of<S, Solvers...>();
-  }
-  static const char* selected_name() { return kNames[chosen_]; }
-
-  RuntimeSolver() : impl_(make<0>(chosen_)) {}
+  /// The chosen solver's kName.
+  const char* name() const { return kNames[index_]; }
 
   void analyze(const SpMat& k) { impl_->analyze(k); }
   /// The caller's elimination order, for the chosen solver if it takes one (OrderedSolver).
@@ -129,15 +127,15 @@ class RuntimeSolver {
   }
 
   template <class S, class First, class... Rest>
-  static constexpr std::size_t index_of() {
+  static constexpr std::size_t position() {
     if constexpr (std::is_same_v<S, First>)
       return 0;
     else
-      return 1 + index_of<S, Rest...>();
+      return 1 + position<S, Rest...>();
   }
 
   static constexpr std::array<const char*, sizeof...(Solvers)> kNames{Solvers::kName...};
-  static inline std::size_t chosen_ = 0;
+  std::size_t index_ = 0;
   std::unique_ptr<Interface> impl_;
 };
 

@@ -26,8 +26,11 @@ class System {
   /// one (OrderedSolver); others, or an empty order, order the pattern themselves.
   /// `layout`: where the equations sit in a partitioned system (a part of a partitioned problem, or a
   /// distributed solver's near-null space); only a DistributedSolver takes one.
-  explicit System(SpMat pattern, const std::vector<int>& order = {}, const EquationLayout* layout = nullptr)
-      : k_(std::move(pattern)) {
+  /// `solver`: the solver object (one a caller chose and set up, e.g. a RuntimeSolver); empty: a
+  /// default-constructed one.
+  explicit System(SpMat pattern, const std::vector<int>& order = {}, const EquationLayout* layout = nullptr,
+                  std::unique_ptr<Solver> solver = nullptr)
+      : k_(std::move(pattern)), solver_(solver ? std::move(solver) : std::make_unique<Solver>()) {
     if (layout) {
       if constexpr (DistributedSolver<Solver>) {
         solver_->distribute(*layout);
@@ -136,12 +139,12 @@ class System {
 
   SpMat k_;
   VecX rhs_;
-  std::unique_ptr<Solver> solver_ = std::make_unique<Solver>();  // solvers are not movable
-  int factorizations_             = 0;
-  int reuses_                     = 0;
-  bool factorized_                = false;
-  bool skip_unchanged_            = false;
-  bool distributed_               = false;
+  std::unique_ptr<Solver> solver_;  // solvers are not movable
+  int factorizations_  = 0;
+  int reuses_          = 0;
+  bool factorized_     = false;
+  bool skip_unchanged_ = false;
+  bool distributed_    = false;
   std::vector<double> factorized_values_;  ///< skip_unchanged: the values of the last factorization
   std::vector<double> saved_values_;
   VecX saved_rhs_;

@@ -1,10 +1,10 @@
 #pragma once
-// The three ways `gapfe run` steps a deck on one compiled model M, with the files each writes:
+// The three ways a run steps a model on one compiled variant M, with the files each writes:
 //   run_linear   no gaps, linear law: LinearStatic, one factorization (run_deck);
 //   run_plastic  no gaps, law with history: NonlinearStatic with step cutting, plus plasticity.csv;
 //   run_contact  gap elements under contact policy P and friction model F: ContactStatic (over
 //                NonlinearStatic for laws with history: SAAC = SAGAEP + gaps), plus gaps.csv.
-// Internal to the command; cli_variants.hpp says which (M, P) exist.
+// app/variant_table.hpp says which (M, P, F) exist.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -13,19 +13,19 @@
 #include <optional>
 #include <sstream>
 
+#include "gapfe/app/run_output.hpp"
+#include "gapfe/app/run_solver.hpp"
 #include "gapfe/run/deck_run.hpp"
 
-#include "cli_run.hpp"
-
-namespace gapfe::cli {
+namespace gapfe::app {
 
 /// A rate-dependent law's load step for the log: lambda dt of its last increment, min and max over the
 /// points that yielded in it (how stiff the step was: the relaxation ODE's lambda times the increment's dt;
-/// THEORY.md 8.2). The pieces time_tolerance cuts a step into are not listed (a step cut in 200 would fill
-/// the log).
-/// A partitioned run's `part` holds its own points only: the extremes and the count are over every part.
+/// docs/plasticity.md). The pieces time_tolerance cuts a step into are not listed (a step cut in 200 would
+/// fill the log). A partitioned run's `part` holds its own points only: the extremes and the count are over
+/// every part.
 template <class States>
-void note_relaxation(RunTimes& times, const Deck& d, int step, double inc, const States& states,
+void note_relaxation(RunResult& times, const Deck& d, int step, double inc, const States& states,
                      const Subdomain* part) {
   if constexpr (requires { states.front().relaxation; }) {
     if (inc != std::floor(inc)) return;  // the same on every part: inc is the whole run's
@@ -48,7 +48,7 @@ void note_relaxation(RunTimes& times, const Deck& d, int step, double inc, const
 }
 
 template <class M>
-void run_linear(const RunRequest& r, RunTimes& times) {
+void run_linear(const RunRequest& r, RunResult& times) {
   RunFiles files = step_files(r);
   FinishFiles finish{r, times, files};
   run_deck<M>(
@@ -58,12 +58,12 @@ void run_linear(const RunRequest& r, RunTimes& times) {
         times.assemble += t.assemble, times.factorize += t.factorize, times.solve += t.solve + t.reactions;
         write_increment(r, times, files, step, inc, fe);
       },
-      r.part);
+      r.part, make_run_solver<typename M::LinearSolver>(r.plan.solver));
   finish.now();
 }
 
 template <class M>
-void run_plastic(const RunRequest& r, RunTimes& times) {
+void run_plastic(const RunRequest& r, RunResult& times) {
   RunFiles files = step_files(r);
   FinishFiles finish{r, times, files};
   // plasticity.csv: the Newton record of every accepted increment (residuals: |R| / |F_int| after each
@@ -106,14 +106,14 @@ void run_plastic(const RunRequest& r, RunTimes& times) {
         last_step = step;
         write_increment(r, times, files, step, inc, fe, {}, {rep.iterations, rep.plastic_points, 0, 0});
       },
-      r.part);
+      r.part, make_run_solver<typename M::LinearSolver>(r.plan.solver));
   record.close();
   finish.now();
 }
 
-/// A run with friction: the increment's ConeExcess into its history row and the run's record (RunTimes).
+/// A run with friction: the increment's ConeExcess into its history row and the run's record (RunResult).
 /// `outline`: per node of the scene, whether it lies on the mesh's outline.
-inline void note_cone(RunTimes& times, IncrementSummary& summary, int step, double inc,
+inline void note_cone(RunResult& times, IncrementSummary& summary, int step, double inc,
                       const std::vector<GapPair>& pairs, const std::vector<PairState>& states, double mu,
                       const std::vector<char>& outline) {
   const ConeExcess x = cone_excess(states, mu);
@@ -135,7 +135,7 @@ inline void note_cone(RunTimes& times, IncrementSummary& summary, int step, doub
 }
 
 template <class M, ContactPolicy P, FrictionModel F = NoFriction>
-void run_contact(const RunRequest& r, RunTimes& times) {
+void run_contact(const RunRequest& r, RunResult& times) {
   RunFiles files = step_files(r);
   FinishFiles finish{r, times, files};
   std::optional<GapFile> gaps;
@@ -173,9 +173,9 @@ void run_contact(const RunRequest& r, RunTimes& times) {
             r, times, files, step, inc, c.fe(),
             gaps ? gaps->write(step, inc, r.scene.gaps.pairs, c.states()) : std::vector<VtuField>{}, summary);
       },
-      r.part);
+      r.part, make_run_solver<typename M::LinearSolver>(r.plan.solver));
   if (gaps) gaps->close();
   finish.now();
 }
 
-}  // namespace gapfe::cli
+}  // namespace gapfe::app

@@ -1,16 +1,21 @@
 #pragma once
-// The body of run_shard (cli_variants.hpp), included only by the generated shard translation units.
+// The body of run_shard (app/variant_table.hpp). Included only by the translation units that instantiate
+// the shards (cmake/app.cmake generates GAPFE_APP_SHARDS of them): a file that calls run_shard<K> and sees
+// this definition would instantiate every row.
 #include <array>
 #include <type_traits>
 
-#include "cli_families.hpp"
-#include "cli_variants.hpp"
+#include "gapfe/app/run_loops.hpp"
+#include "gapfe/app/variant_table.hpp"
 
-namespace gapfe::cli {
+namespace gapfe::app {
 
+/// Run the request on one variant: the NoContact rows run models without gap elements (LinearStatic, or
+/// NonlinearStatic for laws with history) and models whose gap elements stay soft (contact = none, through
+/// ContactStatic's NoContact stepping); the other rows run ContactStatic under their policy.
 template <class Kin, class Elem, class Law, class Policy, class Friction>
-void run_variant(const RunRequest& r, RunTimes& times) {
-  using Solver = std::conditional_t<std::is_same_v<Friction, Coulomb>, CliLuSolver, CliSolver>;
+void run_variant(const RunRequest& r, RunResult& times) {
+  using Solver = std::conditional_t<std::is_same_v<Friction, Coulomb>, RunLuSolver, RunSolver>;
   using M      = Model<Kin, Elem, Law, Solver>;
   if constexpr (std::is_same_v<Policy, NoContact>) {
     if (r.scene.needs.gaps.empty()) {
@@ -24,12 +29,9 @@ void run_variant(const RunRequest& r, RunTimes& times) {
   run_contact<M, Policy, Friction>(r, times);
 }
 
-template <std::size_t Row, class Kin, class Elem, class Law, class Policy, class Friction>
-bool try_row(Variant<Kin, Elem, Law, Policy, Friction>, const VariantKey& k, const RunRequest& r,
-             RunTimes& times) {
-  if (k.kinematics != kinematics_name<Kin>() || k.element != CliName<Elem>::value ||
-      k.law != law_name<Law>() || k.contact != Policy::kName || k.friction != Friction::kName)
-    return false;
+template <class Kin, class Elem, class Law, class Policy, class Friction>
+bool try_row(Variant<Kin, Elem, Law, Policy, Friction> row, const RunRequest& r, RunResult& times) {
+  if (!(key_of(row) == r.plan.key)) return false;
   run_variant<Kin, Elem, Law, Policy, Friction>(r, times);
   return true;
 }
@@ -65,7 +67,7 @@ inline constexpr auto kShardOfRow = [] {
 
   std::array<std::size_t, kVariantCount> size{}, shard{};
   for (std::size_t i = 0; i < kVariantCount; ++i) ++size[first[i]];
-  std::array<std::size_t, GAPFE_CLI_SHARDS> load{};
+  std::array<std::size_t, GAPFE_APP_SHARDS> load{};
   std::array<bool, kVariantCount> placed{};
   for (;;) {  // the largest model not yet placed, then the least loaded shard
     std::size_t model = kVariantCount;
@@ -82,12 +84,12 @@ inline constexpr auto kShardOfRow = [] {
 }();
 
 template <std::size_t Shard>
-bool run_shard(const VariantKey& key, const RunRequest& r, RunTimes& times) {
+bool run_shard(const RunRequest& r, RunResult& times) {
   return [&]<std::size_t... Row>(std::index_sequence<Row...>) {
     bool done      = false;
     const auto row = [&]<std::size_t I>(std::integral_constant<std::size_t, I>) {
       if constexpr (kShardOfRow[I] == Shard)
-        done = done || try_row<I>(std::tuple_element_t<I, VariantTable>{}, key, r, times);
+        done = done || try_row(std::tuple_element_t<I, VariantTable>{}, r, times);
     };
     (row(std::integral_constant<std::size_t, Row>{}), ...);
     return done;
@@ -95,4 +97,4 @@ bool run_shard(const VariantKey& key, const RunRequest& r, RunTimes& times) {
   (std::make_index_sequence<kVariantCount>{});
 }
 
-}  // namespace gapfe::cli
+}  // namespace gapfe::app

@@ -3,7 +3,8 @@
 // --help text are made, so a new option is one row. Hand-written rather than CLI11 (Debian's libcli11-dev):
 // this is shorter than the CLI11 set-up it would replace (the table is the whole specification), keeps the
 // exit codes and messages the tests pin down, and suggests the nearest option for a misspelt one, which
-// CLI11 does not. Internal to the command.
+// CLI11 does not. A deck option given here (--set, --element, ...) goes through DeckOptions::set, the typed
+// setter the deck's `$ key = value` lines use.
 #include <algorithm>
 #include <cctype>
 #include <cstddef>
@@ -14,7 +15,9 @@
 #include <utility>
 #include <vector>
 
-namespace gapfe::cli {
+#include "gapfe/core/choices.hpp"
+
+namespace gapfe::app {
 
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -87,7 +90,8 @@ inline constexpr OptionSpec kOptions[] = {
 };
 
 struct Args {
-  std::string command, deck, out, variant;  ///< deck: the operand (DECK, or DIR for plot)
+  std::string command, deck, out;        ///< deck: the operand (DECK, or DIR for plot)
+  std::optional<VariantChoice> variant;  ///< --variant: forced kinematics
   std::vector<std::pair<std::string, std::string>> options;
   bool quiet = false, help = false, version = false, png = false, no_png = false, overwrite = false;
   int threads = 1;
@@ -208,9 +212,8 @@ inline Args parse(const std::vector<std::string>& a) {
     if (s == "--out") {
       r.out = value;
     } else if (s == "--variant") {
-      if (value != "saas" && value != "saga")
-        throw UsageError("--variant: '" + value + "' is not a compiled variant (saas, saga)");
-      r.variant = value;
+      r.variant = choice_named<VariantChoice>(value);
+      if (!r.variant) throw UsageError("--variant: '" + value + "' is not a compiled variant (saas, saga)");
     } else if (s == "--set") {
       const auto eq = value.find('=');
       if (eq == std::string::npos) throw UsageError("--set needs KEY=VALUE, got '" + value + "'");
@@ -257,4 +260,4 @@ inline Args parse(const std::vector<std::string>& a) {
   return r;
 }
 
-}  // namespace gapfe::cli
+}  // namespace gapfe::app

@@ -1,0 +1,295 @@
+#pragma once
+// The definitions of app/command.hpp, for exactly one translation unit of a program (the gapfe::app
+// target's, cmake/app.cmake): run, mesh and info on a card deck (BRL-CR-670 Appendix A) or a scene file,
+// and plot on a finished run. A run is read -> plan -> explain -> check -> run -> report; each step is a
+// library call a C++ user makes alike (app/plan.hpp, app/explain.hpp, app/run.hpp, app/report.hpp).
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <iomanip>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <vector>
+
+#include "gapfe/app/command.hpp"
+#include "gapfe/app/command_line.hpp"
+#include "gapfe/app/explain.hpp"
+#include "gapfe/app/pictures.hpp"
+#include "gapfe/app/plan.hpp"
+#include "gapfe/app/plot_command.hpp"
+#include "gapfe/app/report.hpp"
+#include "gapfe/app/run.hpp"
+#include "gapfe/core/text.hpp"
+#include "gapfe/io/deck_output.hpp"
+#include "gapfe/io/input_file.hpp"
+#include "gapfe/io/run_folder.hpp"
+#ifdef GAPFE_HAS_SCENE
+#include "gapfe/io/scene_file.hpp"
+#endif
+#include "gapfe/mesh/partition.hpp"
+#include "gapfe/solver/threads.hpp"
+#include "gapfe/version.hpp"
+#ifdef GAPFE_HAS_PETSC
+#include "gapfe/solver/petsc_subdomain.hpp"
+#endif
+
+namespace gapfe::app {
+
+namespace command_steps {
+
+using Clock = std::chrono::steady_clock;
+inline double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+/// Scene files are TOML (README "Scene files"); anything else is read as a card deck.
+inline bool is_scene_file(const std::string& path) {
+  return std::filesystem::path(path).extension() == ".toml";
+}
+
+/// The model of a deck or a scene file, with the command line's --set options: one Deck and DeckScene
+/// either way. The scene (mesh, loads, gaps) of a deck is built later (build_scene), after large_model.
+inline SceneModel read_model(const Args& a) {
+  SceneModel model;
+  if (is_scene_file(a.deck)) {
+#ifdef GAPFE_HAS_SCENE
+    model = read_scene_file(a.deck, a.options);
+#else
+    throw InputError("this gapfe was built without toml++ (libtomlplusplus-dev), so it reads decks only");
+#endif
+  } else {
+    model.deck = read_deck(read_input(a.deck, "deck"), a.options);
+  }
+  return model;
+}
+
+/// The process checks of a run: a launch of several processes needs solver = petsc, PETSc's options too,
+/// and solver = petsc a program that starts MPI.
+inline void check_process(const Args& a, const Plan& p, int launch_size, const StartMpi& start_mpi) {
+  check_solver_built(p.solver);
+  if (p.solver != SolverChoice::petsc) {
+    if (launch_size > 1)
+      throw InputError(
+          "gapfe run started as " + std::to_string(launch_size) +
+          " processes (mpirun) with solver = " + std::string(name_of(p.solver)) +
+          ", which solves on one process (each would write the same files): give --solver petsc");
+    if (!a.petsc_options.empty())
+      throw InputError("the PETSc option " + a.petsc_options.front() +
+                       " needs solver = petsc (--solver petsc)");
+  } else if (!start_mpi) {
+    throw InputError(
+        "solver = petsc: MPI and PETSc are started by the program, and this one does not (the gapfe "
+        "command does)");
+  }
+}
+
+/// A partitioned run: MPI and PETSc start here (the deck was read and checked on every process, so bad
+/// input fails alike everywhere before any collective call); this process keeps its part of the scene,
+/// and the log lists every rank's share. Returns this process's rank.
+inline int partition(const Args& a, const DeckScene& s, const StartMpi& start_mpi,
+                     std::optional<DeckPart>& part, std::ostream& log) {
+#ifdef GAPFE_HAS_PETSC
+  const auto [rank, ranks] = start_mpi(a.petsc_options);
+  auto piece = mesh_part(s.mesh, partition_cells(s.mesh, ranks), ranks, rank, pair_nodes(s.gaps.pairs));
+  std::vector<double> counts(3 * static_cast<std::size_t>(ranks), 0.0);  // cells, owned nodes, ghosts
+  counts[static_cast<std::size_t>(3 * rank)] =
+      static_cast<double>(piece.mesh.cells.size() + piece.mesh.triangles.size());
+  counts[static_cast<std::size_t>(3 * rank + 1)] = piece.layout.owned_nodes;
+  counts[static_cast<std::size_t>(3 * rank + 2)] = static_cast<double>(piece.layout.ghost_part.size());
+  auto pairs                                     = part_pairs(piece.layout, s.gaps.pairs);
+  auto domain = std::make_shared<const PetscSubdomain>(std::move(piece.layout));
+  domain->sum(counts.data(), static_cast<int>(counts.size()));
+  log << "partition: " << ranks
+      << " rank(s), recursive coordinate bisection of the cells; cells / nodes owned / "
+      << "ghost nodes per rank:";
+  for (int k = 0; k < ranks; ++k)
+    log << (k ? "," : "") << " " << static_cast<long long>(counts[static_cast<std::size_t>(3 * k)]) << " / "
+        << static_cast<long long>(counts[static_cast<std::size_t>(3 * k + 1)]) << " / "
+        << static_cast<long long>(counts[static_cast<std::size_t>(3 * k + 2)]);
+  log << "\n";
+  part.emplace(DeckPart{std::move(piece.mesh), std::move(pairs), std::move(domain)});
+  return rank;
+#else
+  (void)a, (void)s, (void)start_mpi, (void)part, (void)log;
+  throw InputError("solver = petsc: this gapfe was built without PETSc");
+#endif
+}
+
+/// The files a run wrote, in the log (the pictures rasterized with --png), and the load-displacement curve
+/// of history.csv for a run of several steps.
+inline void list_files(const Args& a, const Plan& p, const Deck& d, const RunResult& r, std::ostream& log) {
+  const bool tables = d.options.output_csv != Increments::none,
+             fields = d.options.output_vtu != Increments::none;
+  log << "wrote " << a.out << "/" << (tables ? "nodes.csv, elements.csv, reactions.csv, " : "")
+      << (p.gaps ? "gaps.csv, " : "") << (p.plastic && !p.gaps ? "plasticity.csv, " : "")
+      << (fields ? "result.pvd, " : "") << "deformed.svg\n";
+  std::vector<std::string> pictures = r.pictures;
+  if (d.steps() > 1 && !pictures.empty())  // the load-displacement curve of history.csv
+    pictures.push_back(draw_curve(a.out, "u_max", "load_factor", d.title));
+  for (const std::string& picture : pictures)
+    log << "wrote " << picture << (a.png && rasterize(picture) ? " and its .png" : "") << "\n";
+  if (!r.pictures_skipped.empty()) log << "pictures not drawn: " << r.pictures_skipped << "\n";
+}
+
+/// `gapfe run`, after the plan was explained: the process checks, the partition, the run folder, the run,
+/// the report and the record of the folder's run.
+inline int run_command(const Args& a, const SceneModel& model, const Plan& plan, std::ostream& log,
+                       std::ostream& err, const Process& process, double t_read, double t_mesh) {
+  const Deck& d                         = model.deck;
+  const DeckScene& s                    = model.scene;
+  const auto [launch_rank, launch_size] = launcher_ranks();
+  check_process(a, plan, launch_size, process.start_mpi);
+  check_plan(plan, d);
+  // The bilinear quad locks near incompressibility (its volumetric strain is enforced at every Gauss point):
+  // said on the error stream so that --quiet keeps it. B-bar (the mean dilatation) relieves it.
+  if (plan.key.element == ElementChoice::quad4)
+    if (const auto [material, nu] = largest_poisson(d); nu > kLockingPoisson)
+      err << "gapfe: warning: element = quad4 with Poisson's ratio " << nu << " (material " << material
+          << "): the bilinear quad locks near incompressibility and its displacements come out too "
+             "small; use element = quad4bbar or legacy\n";
+  std::optional<DeckPart> part;
+  const int rank = plan.solver == SolverChoice::petsc ? partition(a, s, process.start_mpi, part, log) : 0;
+  log << "solver: " << solver_text(plan) << "; element " << name_of(plan.key.element) << "\n";
+  set_solver_threads(a.threads);  // CHOLMOD's OpenMP and OpenBLAS; one thread unless asked (threads.hpp)
+  log << "threads: " << a.threads << (a.threads == 1 ? " (--threads N for more)" : "") << "\n";
+  const RunRequest request{d,
+                           s,
+                           plan,
+                           a.out,
+                           err,
+                           process.progress,
+                           a.plots.value_or(std::vector<std::string>{"mises"}),
+                           plot_units(d.options.units),
+                           part ? &*part : nullptr,
+                           rank == 0};
+  // Rank 0 of a launch writes the files; a run's folder holds one run (run_folder.hpp). Made ready only
+  // now, after every check of the request: a run refused before it starts leaves the last run's files.
+  const std::string run_what = "gapfe run " + a.deck;
+  const bool writes          = launch_rank == 0;
+  if (writes) RunFolder::prepare(a.out, a.overwrite, run_what);
+  const auto t0 = Clock::now();
+  try {
+    const RunResult result = run(request);
+    // setup: the Problem, DOF map, sparsity pattern, symbolic analysis and stress recovery.
+    const double setup = since(t0) - result.assemble - result.factorize - result.solve - result.write;
+    log << "time [s]: read " << t_read << ", mesh " << t_mesh << ", setup " << setup << ", assemble "
+        << result.assemble << ", factorize " << result.factorize << ", solve " << result.solve << ", write "
+        << result.write << "\n";
+    report_run(log, err, plan, d, result);
+    list_files(a, plan, d, result, log);
+  } catch (const std::exception& e) {  // the manifest says the files stop short, and why
+    if (writes) RunFolder::record_stopped(a.out, run_what, e.what());
+    throw;
+  }
+  if (writes) RunFolder::record(a.out, run_what, "complete");
+  return ok;
+}
+
+/// run, mesh and info: read the model, plan and explain it; info stops there, mesh writes the mesh files.
+inline int execute(const Args& a, std::ostream& out, std::ostream& err, const Process& process) {
+  std::ostringstream null_stream;
+  std::ostream& log = a.quiet ? null_stream : out;
+  log << std::setprecision(3);
+  auto t0          = Clock::now();
+  SceneModel model = read_model(a);
+  const Deck& d    = model.deck;
+  const bool scene = is_scene_file(a.deck);
+  const long steps = a.command == "run" ? std::max(1, d.steps()) : 1;
+  const long grid  = scene ? static_cast<long>(model.scene.grid.node_count())
+                           : static_cast<long>(d.mesh.max_i) * static_cast<long>(d.mesh.max_j);
+  // (Not for standard input: the re-executed process would find it read already.)
+  if (process.large_model && a.command != "info" && !is_standard_input(a.deck) && grid * steps >= kLargeModel)
+    process.large_model();
+  const double t_read = since(t0);
+  t0                  = Clock::now();
+  if (!scene) model.scene = build_scene(d);
+  const DeckScene& s  = model.scene;
+  const double t_mesh = since(t0);
+  if (scene)
+    describe_scene(log, model);
+  else
+    describe_deck(log, d, s);
+  const Plan plan = make_plan(d, s, a.variant);
+  explain_plan(log, plan, d, s);
+  if (a.command == "info") return ok;
+  if (a.command == "mesh") {
+    if (launcher_ranks().first != 0) return ok;
+    std::filesystem::create_directories(a.out);
+    write_mesh_files(a.out, d, s);
+    log << "wrote " << a.out << "/mesh.svg, mesh_nodes.csv, mesh_elements.csv, mesh.vtu\n";
+    return ok;
+  }
+  return run_command(a, model, plan, log, err, process, t_read, t_mesh);
+}
+
+}  // namespace command_steps
+
+std::pair<int, int> launcher_ranks() {
+  // OpenMPI's mpirun, MPICH's and Intel MPI's mpiexec (PMI), and Slurm's srun.
+  const auto number = [](const char* name) {
+    const char* value = std::getenv(name);
+    return value ? std::atoi(value) : -1;
+  };
+  // Slurm: a step's variables (srun), not the allocation's (sbatch's SLURM_NTASKS, which a serial run inside
+  // a batch script also sees).
+  for (const auto& [rank, size] :
+       {std::pair{"OMPI_COMM_WORLD_RANK", "OMPI_COMM_WORLD_SIZE"}, std::pair{"PMI_RANK", "PMI_SIZE"},
+        std::pair{"SLURM_PROCID", "SLURM_STEP_NUM_TASKS"}})
+    if (number(size) > 0) return {std::max(0, number(rank)), number(size)};
+  return {0, 1};
+}
+
+int command(const std::vector<std::string>& args, std::ostream& out_stream, std::ostream& err_stream,
+            const Process& process_in) {
+  // Several processes of one launch: rank 0 speaks for all (they read, check and decide alike).
+  std::ostringstream unheard;
+  const bool speaks = launcher_ranks().first == 0;
+  std::ostream& out = speaks ? out_stream : unheard;
+  std::ostream& err = speaks ? err_stream : unheard;
+  Process process   = process_in;
+  process.progress  = process.progress && speaks;
+  Args a;
+  try {
+    a = parse(args);
+  } catch (const UsageError& e) {
+    err << "gapfe: " << detail::visible_text(e.what()) << "\n"
+        << (args.empty() ? help_text("")
+                         : "(gapfe --help lists the commands, gapfe COMMAND --help the options)\n");
+    return usage;
+  }
+  if (a.help) {
+    out << help_text(a.command);
+    return ok;
+  }
+  if (a.version) {
+    out << "gapfe " << GAPFE_VERSION_STRING << "\n";
+    return ok;
+  }
+  // Messages quote the input (names, paths, titles): shown with detail::visible_text, never raw.
+  const std::string input_name = detail::visible_text(is_standard_input(a.deck) ? "standard input" : a.deck);
+  const auto say               = [&](const std::string& head, const char* what) {
+    err << "gapfe: " << head << detail::visible_text(what, /*lines=*/true) << "\n";
+  };
+  try {
+    return a.command == "plot" ? plot(a, out, err) : command_steps::execute(a, out, err, process);
+  } catch (const InputError& e) {
+    say("error in " + input_name + ": ", e.what());
+    return input;
+  } catch (const SolveError& e) {
+    say("cannot solve " + input_name + ": ", e.what());
+    return solve;
+  } catch (const FileError& e) {
+    say("", e.what());
+    return system;
+  } catch (const std::bad_alloc&) {
+    say("out of memory while processing " + input_name, "");
+    return system;
+  } catch (const std::exception& e) {
+    say("", e.what());
+    return system;
+  }
+}
+
+}  // namespace gapfe::app

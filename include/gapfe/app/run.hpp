@@ -1,0 +1,36 @@
+#pragma once
+// A plan run on its compiled variant: the call the command and a C++ user make after make_plan
+// (app/plan.hpp). The rows are compiled elsewhere: link the gapfe::app target (cmake/app.cmake), or
+// include app/variant_shards.hpp in one translation unit and instantiate run_shard<0>.
+#include <cstddef>
+#include <utility>
+
+#include "gapfe/app/plan.hpp"
+#include "gapfe/app/run_output.hpp"
+#include "gapfe/app/run_result.hpp"
+#include "gapfe/app/variant_table.hpp"
+
+namespace gapfe::app {
+
+/// Run the request on the variant its plan's key names, after the plan's checks (check_plan). Writes the
+/// files into r.dir (which must exist) and returns what the run did; InputError when the plan fails its
+/// checks, SolveError when a step cannot be solved (the files then hold the increments accepted).
+inline RunResult run(const RunRequest& r) {
+  check_plan(r.plan, r.deck);
+  RunResult result;
+  const bool done = [&]<std::size_t... Shard>(std::index_sequence<Shard...>) {
+    return (run_shard<Shard>(r, result) || ...);
+  }
+  (std::make_index_sequence<GAPFE_APP_SHARDS>{});
+  if (!done) {
+    const VariantKey& k = r.plan.key;
+    throw InputError("no compiled variant for " + std::string(name_of(k.kinematics)) +
+                     ", element = " + std::string(name_of(k.element)) +
+                     ", plasticity = " + std::string(name_of(k.integration)) + ", contact " +
+                     std::string(name_of(k.contact)) + ", friction " + std::string(name_of(k.friction)) +
+                     " (app/variant_table.hpp lists them)");
+  }
+  return result;
+}
+
+}  // namespace gapfe::app

@@ -1,0 +1,129 @@
+#pragma once
+// What a run's loops share (app/run_loops.hpp): the request, and the write of one increment with its
+// record in the RunResult.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "gapfe/app/plan.hpp"
+#include "gapfe/app/run_result.hpp"
+#include "gapfe/io/deck.hpp"
+#include "gapfe/io/deck_output.hpp"
+#include "gapfe/io/deck_scene.hpp"
+#include "gapfe/post/gather.hpp"
+#include "gapfe/run/deck_run.hpp"
+
+namespace gapfe::app {
+
+/// What a run needs: the model, its plan, where to write and how to speak.
+struct RunRequest {
+  const Deck& deck;
+  const DeckScene& scene;
+  const Plan& plan;
+  std::string dir;
+  std::ostream& err;
+  bool progress;
+  std::vector<std::string> pictures;  ///< fields drawn for the last increment (StepFiles::draw_fields)
+  PlotUnits units;
+  /// A partitioned run (solver = petsc): this process's part of the scene; nullptr: the whole scene here.
+  const DeckPart* part = nullptr;
+  /// Whether this process writes the files (rank 0 of a partitioned run, which gathers the results).
+  bool writes = true;
+};
+
+/// The log's progress line.
+inline void progress_line(const RunRequest& r, int step) {
+  if (r.progress) r.err << "\rstep " << step << "/" << r.deck.steps() << std::flush;
+}
+inline void progress_done(const RunRequest& r) {
+  if (r.progress) r.err << "\r" << std::string(32, ' ') << "\r" << std::flush;
+}
+
+/// The result files of a run: on the process that writes them (every process of a whole run; rank 0 of a
+/// partitioned one), empty elsewhere.
+using RunFiles = std::optional<StepFiles>;
+
+/// `per_step[step - 1]` becomes the largest of it and `value` (a figure per load step: its worst increment).
+inline void keep_largest(std::vector<double>& per_step, int step, double value) {
+  if (per_step.size() < static_cast<std::size_t>(step)) per_step.resize(static_cast<std::size_t>(step), 0.0);
+  double& worst = per_step[static_cast<std::size_t>(step - 1)];
+  worst         = std::max(worst, value);
+}
+
+/// One accepted increment: refuse a non-finite solution, write the files (timed; a partitioned run gathers
+/// the whole mesh's results to the writing rank first), show progress.
+template <class Fe>
+void write_increment(const RunRequest& r, RunResult& times, RunFiles& files, int step, double inc,
+                     const Fe& fe, std::vector<VtuField> extra_cells = {},
+                     const IncrementSummary& summary = {}) {
+  const Solution& solution = fe.solution();
+  if (!std::isfinite(solution.residual) || !solution.displacement.allFinite() ||
+      !solution.reaction.allFinite() || !std::isfinite(solution.balance.relative()))
+    throw SolveError("load step " + std::to_string(step) + ": the solution is not finite");
+  // A law with history reports Newton's out-of-balance here instead (the tangent integration leaves
+  // one by design), so only a linear law's residual measures the solve.
+  const double residual = fe.solution().residual;
+  if constexpr (Fe::Law::kLinear)
+    if (residual > times.equilibrium) times.equilibrium = residual, times.equilibrium_step = step;
+  keep_largest(times.step_residual, step, residual);
+  const Balance& balance = fe.solution().balance;
+  keep_largest(times.step_balance, step, balance.relative());
+  if (balance.relative() > times.balance) times.balance = balance.relative(), times.balance_step = step;
+  times.last_balance = balance;
+  const auto start   = std::chrono::steady_clock::now();
+  if (const Subdomain* part = fe.problem().subdomain.get()) {
+    const Solution whole = gather_solution(*part, fe.solution());
+    auto values          = gather_cells(*part, fe.centroid_values(Recovered::stress), Recovered::stress);
+    if (files) files->write(step, inc, whole, values, std::move(extra_cells), summary);
+  } else if (files) {
+    files->write(step, inc, fe.solution(), fe.centroid_values(Recovered::stress), std::move(extra_cells),
+                 summary);
+  }
+  times.write += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  progress_line(r, step);
+}
+
+/// The result files of a run (the deck's output options and the pictures it asks for), on the process that
+/// writes them.
+inline RunFiles step_files(const RunRequest& r) {
+  RunFiles files;
+  if (!r.writes) return files;
+  files.emplace(r.dir, r.scene, r.deck.step_time(), r.deck.options.output_csv, r.deck.options.output_vtu);
+  files->draw_fields(r.pictures, r.units);
+  files->keep_history(r.deck.steps(), {r.plan.key.friction != FrictionChoice::none,
+                                       r.plan.key.kinematics == VariantChoice::saga});
+  return files;
+}
+
+/// The end of a run, however it ends: the held increment (output = last), deformed.svg and the pictures,
+/// timed as writing. A run that fails (a step Newton cannot take) still leaves them for the increments it
+/// accepted; an error while writing them then gives way to the run's own.
+struct FinishFiles {
+  const RunRequest& r;
+  RunResult& times;
+  RunFiles& files;
+  bool done = false;
+
+  void now() {
+    done = true;
+    progress_done(r);
+    if (!files) return;
+    const auto start = std::chrono::steady_clock::now();
+    files->finish(r.deck.title);
+    times.pictures = files->pictures_written(), times.pictures_skipped = files->pictures_skipped();
+    times.write += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  ~FinishFiles() {
+    if (done) return;
+    try {
+      now();
+    } catch (...) {
+    }
+  }
+};
+
+}  // namespace gapfe::app

@@ -1,0 +1,109 @@
+#pragma once
+// The compiled variants a run chooses from: one table, one row per (kinematics, element, law, contact
+// policy, friction model) that the library runs (core/combinations.hpp), keyed by the plan's VariantKey.
+// Every row is instantiated exactly once, explicitly, in one of GAPFE_APP_SHARDS translation units
+// (app/variant_shards.hpp; the gapfe::app target generates them, cmake/app.cmake; a model's rows share one
+// shard, kShardOfRow), so the compile time is the table's size spread over the cores, and offering a new
+// law, element or contact policy is one more entry on an axis. The solver is not a column: RunSolver picks
+// it at run time, except that the Coulomb rows use RunLuSolver (their tangent is unsymmetric).
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+#include <type_traits>
+#include <utility>
+
+#include "gapfe/app/plan.hpp"
+#include "gapfe/app/run_output.hpp"
+#include "gapfe/contact/friction.hpp"
+#include "gapfe/contact/policies.hpp"
+#include "gapfe/core/combinations.hpp"
+#include "gapfe/material/drysdale_zak.hpp"
+#include "gapfe/material/elastic.hpp"
+#include "gapfe/material/hill.hpp"
+#include "gapfe/model.hpp"
+
+/// The number of translation units the table's rows are instantiated in (the gapfe::app target defines it;
+/// one by default, for a program that includes app/variant_shards.hpp in one file itself).
+#ifndef GAPFE_APP_SHARDS
+#define GAPFE_APP_SHARDS 1
+#endif
+
+namespace gapfe::app {
+
+template <class Kin, class Elem, class Law, class Policy, class Friction = NoFriction>
+struct Variant {};
+
+/// The table's axes: every kinematics, element, law, contact policy and friction model the command knows.
+template <class... T>
+struct Axis {};
+using Kinematics = Axis<Axisym2, Axisym3>;
+using Elements   = Axis<LegacyQuad, Quad4, Quad4BBar>;
+using Laws =
+    Axis<Orthotropic, Hill<Tangent>, Hill<ReturnMapping>, DrysdaleZak<Tangent>, DrysdaleZak<ReturnMapping>>;
+using Policies  = Axis<NoContact, Saac, ActiveSet, AugmentedLagrangian>;
+using Frictions = Axis<NoFriction, Proportional, Extended, Coulomb>;
+
+/// The rows: every point of the axes' product the library runs (kSupported, core/combinations.hpp), so the
+/// command offers every combination the library supports and refuses the rest with the library's reason.
+template <class Kin, class Elem, class Law, class Policy, class Friction>
+using RowIf = std::conditional_t<kSupported<Law, Elem, Policy, Friction>,
+                                 std::tuple<Variant<Kin, Elem, Law, Policy, Friction>>, std::tuple<>>;
+template <class... T>
+using Joined = decltype(std::tuple_cat(std::declval<T>()...));
+template <class Kin, class Elem, class Law, class Policy, class... F>
+auto friction_rows(Axis<F...>) -> Joined<RowIf<Kin, Elem, Law, Policy, F>...>;
+template <class Kin, class Elem, class Law, class... P>
+auto policy_rows(Axis<P...>) -> Joined<decltype(friction_rows<Kin, Elem, Law, P>(Frictions{}))...>;
+template <class Kin, class Elem, class... L>
+auto law_rows(Axis<L...>) -> Joined<decltype(policy_rows<Kin, Elem, L>(Policies{}))...>;
+template <class Kin, class... E>
+auto element_rows(Axis<E...>) -> Joined<decltype(law_rows<Kin, E>(Laws{}))...>;
+template <class... K>
+auto all_rows(Axis<K...>) -> Joined<decltype(element_rows<K>(Elements{}))...>;
+using VariantTable = decltype(all_rows(Kinematics{}));
+
+inline constexpr std::size_t kVariantCount = std::tuple_size_v<VariantTable>;
+
+/// A row's key: what each of its types is in the plan's words.
+template <class Elem>
+constexpr ElementChoice element_choice() {
+  if constexpr (std::is_same_v<Elem, LegacyQuad>)
+    return ElementChoice::legacy;
+  else if constexpr (std::is_same_v<Elem, Quad4>)
+    return ElementChoice::quad4;
+  else
+    return ElementChoice::quad4bbar;
+}
+template <class Law>
+constexpr LawKind law_kind() {
+  if constexpr (Law::kLinear)
+    return LawKind::elastic;
+  else if constexpr (std::is_same_v<typename Law::Local, RatePoint>)
+    return LawKind::rate_dependent;
+  else
+    return LawKind::plastic;
+}
+template <class Law>
+constexpr PlasticityChoice integration_of() {
+  if constexpr (Law::kLinear)
+    return PlasticityChoice::return_mapping;
+  else
+    return Law::kIterate ? PlasticityChoice::return_mapping : PlasticityChoice::tangent;
+}
+template <class Kin, class Elem, class Law, class Policy, class Friction>
+constexpr VariantKey key_of(Variant<Kin, Elem, Law, Policy, Friction>) {
+  return {Kin::kDofsPerNode == 2 ? VariantChoice::saas : VariantChoice::saga,
+          element_choice<Elem>(),
+          law_kind<Law>(),
+          integration_of<Law>(),
+          *choice_named<ContactChoice>(Policy::kName),
+          *choice_named<FrictionChoice>(Friction::kName)};
+}
+
+/// Runs the request when this shard holds the row of its plan's key; false otherwise. Defined in
+/// app/variant_shards.hpp, instantiated for Shard in [0, GAPFE_APP_SHARDS) once each (cmake/app.cmake).
+template <std::size_t Shard>
+bool run_shard(const RunRequest& r, RunResult& result);
+
+}  // namespace gapfe::app
