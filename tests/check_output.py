@@ -2,7 +2,7 @@
 """The command's output read back by real readers (issue 17, items 1 and 4; ctest `output`):
 
   * every VTU file through meshio (Debian's python3-meshio, a reader independent of gapfe's writer and of its
-    io/vtu_reader.hpp): points, cells and every array equal to the CSV tables of the same run, bit for bit;
+    input/vtu_reader.hpp): points, cells and every array equal to the CSV tables of the same run, bit for bit;
     result.pvd through Python's XML parser: every file it names exists, the time steps are the tables' t;
   * every SVG picture through Python's XML parser: the colour bar's range equals the field's least and
     greatest value (computed here from the VTU file read by meshio), every cell is drawn once, every title line
@@ -87,7 +87,7 @@ def check_run(out, dofs, gaps=False):
         check(np.array_equal(mesh.point_data["displacement"], u), f"{where}: displacement = nodes.csv")
         if dofs == 2:
             check(not mesh.point_data["displacement"][:, 2].any(), f"{where}: u_t = 0 in 2 DOF")
-        # reactions.csv lists the prescribed nodes, their free components written as 0 (io/deck_output.hpp)
+        # reactions.csv lists the prescribed nodes, their free components written as 0 (output/step_files.hpp)
         reaction = mesh.point_data["reaction"]
         for x in reactions.get(t, []):
             n = int(x["node"]) - 1
@@ -120,7 +120,7 @@ def check_run(out, dofs, gaps=False):
 
 
 def field_values(mesh, field):
-    """A field as plot_FIELD.svg colours it, computed here from meshio's arrays (io/field_plot.hpp's list)."""
+    """A field as plot_FIELD.svg colours it, computed here from meshio's arrays (output/field_plot.hpp's list)."""
     u = mesh.point_data["displacement"]
     if field in ("u", "u_r", "u_z", "u_t"):
         return np.linalg.norm(u, axis=1) if field == "u" else u[:, ("u_r", "u_z", "u_t").index(field)]
@@ -138,7 +138,7 @@ def check_titles(svg, where):
     width = float(svg.get("width"))
     for t in svg.iter(SVG + "text"):
         if t.get("class") == "title":
-            # io/svg_canvas.hpp wraps at 0.6 x the font size per character, a generous sans-serif width
+            # output/svg_canvas.hpp wraps at 0.6 x the font size per character, a generous sans-serif width
             check(float(t.get("x")) + 0.6 * float(t.get("font-size")) * len(t.text) <= width,
                   f"{where}: title line '{t.text[:30]}...' fits")
 

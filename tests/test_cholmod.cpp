@@ -40,8 +40,8 @@ TEST_CASE("[solver] CHOLMOD and Eigen LDLT agree on the Lame tube and reuse the 
 }
 
 TEST_CASE("[solver] CHOLMOD in the mesh's coordinate dissection order: the solution AMD gives") {
-  // The drivers hand CHOLMOD Assembler::fill_reducing_order; here the same on a 120 x 60 cell tube, against
-  // CHOLMOD's own AMD on the same matrix.
+  // The drivers hand CHOLMOD fill_reducing_order (driver/system_setup.hpp); here the same on a 120 x 60 cell
+  // tube, against CHOLMOD's own AMD on the same matrix.
   using M            = Model<Axisym2, Quad4, Isotropic, CholmodLlt>;
   const Problem<M> p = lame_tube<M>(120, 60);
   LinearStatic<M> fe(p);
@@ -49,7 +49,7 @@ TEST_CASE("[solver] CHOLMOD in the mesh's coordinate dissection order: the solut
   const SpMat& k = fe.stiffness();
   const VecX& b  = fe.rhs();
   Assembler<M> assembler(p, {});
-  const std::vector<int> order = assembler.fill_reducing_order(p);
+  const std::vector<int> order = fill_reducing_order(assembler, p);
   REQUIRE(order.size() == static_cast<std::size_t>(k.rows()));
   CholmodLlt given, amd;
   given.analyze(k, order), amd.analyze(k);

@@ -11,10 +11,10 @@
 #include <doctest/doctest.h>
 
 #include "gapfe/app/command.hpp"
-#include "gapfe/io/deck.hpp"
-#include "gapfe/io/deck_output.hpp"
-#include "gapfe/io/deck_scene.hpp"
-#include "gapfe/mesh/gmsh_reader.hpp"
+#include "gapfe/input/deck.hpp"
+#include "gapfe/input/deck_scene.hpp"
+#include "gapfe/input/gmsh_reader.hpp"
+#include "gapfe/output/step_files.hpp"
 
 #include "deck_support.hpp"
 
@@ -423,7 +423,7 @@ TEST_CASE("deformed.svg of a large mesh: the outline keeps the boundary and the 
   for (const auto& [a, b] : edges) CHECK(a < b);
 }
 
-// ---- Gmsh meshes (issue 16, item 2; mesh/gmsh_reader.hpp). The files in tests/data were written by meshio
+// ---- Gmsh meshes (issue 16, item 2; input/gmsh_reader.hpp). The files in tests/data were written by meshio
 // (a writer independent of the reader) or, for MSH 4.1 with curve groups, by tests/data/make_meshes.py and
 // read back there with meshio; each holds the tube 100 <= r <= 200, 0 <= z <= 25.
 namespace {

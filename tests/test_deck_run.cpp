@@ -21,8 +21,8 @@
 #include "gapfe/app/plan.hpp"
 #include "gapfe/app/run.hpp"
 #include "gapfe/gapfe.hpp"
-#include "gapfe/io/deck_scene.hpp"
-#include "gapfe/io/input_file.hpp"
+#include "gapfe/input/deck_scene.hpp"
+#include "gapfe/input/input_file.hpp"
 
 #include "deck_support.hpp"
 #include "rate_reference.hpp"

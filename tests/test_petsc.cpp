@@ -11,7 +11,7 @@
 
 #include <doctest/doctest.h>
 
-#include "gapfe/assembly/partition.hpp"
+#include "gapfe/assembly/problem_part.hpp"
 #include "gapfe/solver/eigen_lu.hpp"
 #include "gapfe/solver/petsc.hpp"
 #include "gapfe/solver/petsc_subdomain.hpp"

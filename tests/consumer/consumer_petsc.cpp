@@ -6,7 +6,7 @@
 #include <iostream>
 #include <memory>
 
-#include "gapfe/assembly/partition.hpp"
+#include "gapfe/assembly/problem_part.hpp"
 #include "gapfe/gapfe.hpp"
 #include "gapfe/solver/petsc.hpp"
 

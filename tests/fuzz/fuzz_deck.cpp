@@ -1,12 +1,12 @@
 // libFuzzer target for the input readers: read any bytes as a card deck and build its mesh, scene and
-// load steps, as a Gmsh MSH file (mesh/gmsh_reader.hpp), as a VTU file drawn as gapfe plot would
-// (io/vtu_reader.hpp), and as a scene file (io/scene_file.hpp) on the test meshes of tests/data/scenes (its
-// [mesh] file names one of them). A deck or scene that reads and is small is then run as `gapfe run` runs
-// it (fuzz_run.hpp) with tiny limits (two load steps, eight Newton iterations) into a scratch folder made
-// ready by RunFolder.
-// The only acceptable outcomes are a result or an InputError / SolveError; anything else (a crash, another
-// exception, a FileError in the scratch folder, a sanitizer or _GLIBCXX_ASSERTIONS report, a hang) is a bug.
-// CI runs it for a bounded time over examples/decks, tests/data/*.msh and tests/data/scenes/*.toml.
+// load steps, as a Gmsh MSH file (input/gmsh_reader.hpp), as a VTU file drawn as gapfe plot would
+// (input/vtu_reader.hpp), and as a scene file (input/scene_file.hpp) on the test meshes of tests/data/scenes
+// (its [mesh] file names one of them). A deck or scene that reads and is small is then run as `gapfe run`
+// runs it (fuzz_run.hpp) with tiny limits (two load steps, eight Newton iterations) into a scratch folder
+// made ready by RunFolder. The only acceptable outcomes are a result or an InputError / SolveError; anything
+// else (a crash, another exception, a FileError in the scratch folder, a sanitizer or _GLIBCXX_ASSERTIONS
+// report, a hang) is a bug. CI runs it for a bounded time over examples/decks, tests/data/*.msh and
+// tests/data/scenes/*.toml.
 //   cmake -S . -B build/fuzz -DCMAKE_CXX_COMPILER=clang++ -DGAPFE_FUZZ=ON ...;
 //   build/fuzz/tests/fuzz/fuzz_deck
 #include <algorithm>
@@ -18,18 +18,18 @@
 #include <string>
 #include <string_view>
 
-#include "gapfe/io/deck.hpp"
-#include "gapfe/io/deck_scene.hpp"
-#include "gapfe/io/field_plot.hpp"
-#include "gapfe/io/run_folder.hpp"
-#include "gapfe/io/step_loads.hpp"
-#include "gapfe/io/vtu_reader.hpp"
-#include "gapfe/mesh/gmsh_reader.hpp"
+#include "gapfe/input/deck.hpp"
+#include "gapfe/input/deck_scene.hpp"
+#include "gapfe/input/gmsh_reader.hpp"
+#include "gapfe/input/vtu_reader.hpp"
+#include "gapfe/output/field_plot.hpp"
+#include "gapfe/output/run_folder.hpp"
+#include "gapfe/run/step_loads.hpp"
 
 #include "fuzz_run.hpp"
 
 #ifdef GAPFE_HAS_SCENE
-#include "gapfe/io/scene_file.hpp"
+#include "gapfe/input/scene_file.hpp"
 
 #include "fuzz_meshes.hpp"
 #endif

@@ -5,8 +5,8 @@
 // fuzz_run_plastic.cpp) so that the sanitizer build compiles them side by side, and this header stays light.
 #include <string>
 
-#include "gapfe/io/deck.hpp"
-#include "gapfe/io/deck_scene.hpp"
+#include "gapfe/input/deck.hpp"
+#include "gapfe/input/deck_scene.hpp"
 
 namespace gapfe::fuzz {
 

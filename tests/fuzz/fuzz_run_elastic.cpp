@@ -3,7 +3,7 @@
 
 #include "gapfe/app/run_loops.hpp"
 #include "gapfe/material/elastic.hpp"
-#include "gapfe/model.hpp"
+#include "gapfe/problem/model.hpp"
 
 #include "fuzz_run.hpp"
 

@@ -22,13 +22,14 @@
 #include "gapfe/app/report.hpp"
 #include "gapfe/app/run.hpp"
 #include "gapfe/core/text.hpp"
-#include "gapfe/io/deck_output.hpp"
-#include "gapfe/io/input_file.hpp"
-#include "gapfe/io/run_folder.hpp"
+#include "gapfe/input/input_file.hpp"
+#include "gapfe/output/mesh_files.hpp"
+#include "gapfe/output/run_folder.hpp"
+#include "gapfe/output/step_files.hpp"
 #ifdef GAPFE_HAS_SCENE
-#include "gapfe/io/scene_file.hpp"
+#include "gapfe/input/scene_file.hpp"
 #endif
-#include "gapfe/mesh/partition.hpp"
+#include "gapfe/mesh/cell_partition.hpp"
 #include "gapfe/solver/threads.hpp"
 #include "gapfe/version.hpp"
 #ifdef GAPFE_HAS_PETSC

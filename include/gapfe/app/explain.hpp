@@ -6,7 +6,7 @@
 
 #include "gapfe/app/plan.hpp"
 #include "gapfe/core/text.hpp"
-#include "gapfe/io/deck_scene.hpp"
+#include "gapfe/input/deck_scene.hpp"
 #include "gapfe/solver/eigen_ldlt.hpp"
 #ifdef GAPFE_HAS_PETSC
 #include <petscsys.h>

@@ -15,9 +15,9 @@
 
 #include "gapfe/app/command_line.hpp"
 #include "gapfe/core/error.hpp"
-#include "gapfe/io/deck_options.hpp"
-#include "gapfe/io/field_plot.hpp"
-#include "gapfe/io/input_file.hpp"
+#include "gapfe/input/deck_options.hpp"
+#include "gapfe/input/input_file.hpp"
+#include "gapfe/output/field_plot.hpp"
 
 namespace gapfe::app {
 
@@ -81,7 +81,7 @@ inline std::map<std::string, std::vector<double>> read_columns(const std::string
       const std::size_t end = std::min(line.find(',', at), line.size());
       char* stop            = nullptr;
       std::string word      = line.substr(at, end - at);
-      word.erase(word.find_last_not_of(' ') + 1);  // a row's padding (io/output_file.hpp)
+      word.erase(word.find_last_not_of(' ') + 1);  // a row's padding (output/output_file.hpp)
       const double v = std::strtod(word.c_str(), &stop);
       if (word.empty() || *stop != '\0')
         throw InputError(path + ", line " + std::to_string(row) + ", column " + name + ": '" + word +

@@ -12,7 +12,7 @@
 #include "gapfe/core/choices.hpp"
 #include "gapfe/core/combinations.hpp"
 #include "gapfe/core/error.hpp"
-#include "gapfe/io/deck_scene.hpp"
+#include "gapfe/input/deck_scene.hpp"
 
 namespace gapfe::app {
 

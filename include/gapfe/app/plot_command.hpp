@@ -13,10 +13,10 @@
 #include "gapfe/app/command_line.hpp"
 #include "gapfe/app/pictures.hpp"
 #include "gapfe/core/text.hpp"
-#include "gapfe/io/field_plot.hpp"
-#include "gapfe/io/input_file.hpp"
-#include "gapfe/io/run_folder.hpp"
-#include "gapfe/io/vtu_reader.hpp"
+#include "gapfe/input/input_file.hpp"
+#include "gapfe/input/vtu_reader.hpp"
+#include "gapfe/output/field_plot.hpp"
+#include "gapfe/output/run_folder.hpp"
 
 namespace gapfe::app {
 

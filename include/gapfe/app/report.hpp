@@ -14,7 +14,7 @@
 #include "gapfe/app/plan.hpp"
 #include "gapfe/app/run_result.hpp"
 #include "gapfe/driver/newton_options.hpp"
-#include "gapfe/io/deck.hpp"
+#include "gapfe/input/deck.hpp"
 
 namespace gapfe::app {
 

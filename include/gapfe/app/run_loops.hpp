@@ -15,6 +15,9 @@
 
 #include "gapfe/app/run_output.hpp"
 #include "gapfe/app/run_solver.hpp"
+#include "gapfe/output/gap_file.hpp"
+#include "gapfe/output/grid_arrays.hpp"
+#include "gapfe/output/plasticity_file.hpp"
 #include "gapfe/run/deck_run.hpp"
 
 namespace gapfe::app {
@@ -66,12 +69,7 @@ template <class M>
 void run_plastic(const RunRequest& r, RunResult& times) {
   RunFiles files = step_files(r);
   FinishFiles finish{r, times, files};
-  // plasticity.csv: the Newton record of every accepted increment (residuals: |R| / |F_int| after each
-  // linear solve, separated by spaces; drift: max |sqrt f - 1| over the plastic points; time_error: a
-  // rate-dependent law's estimated time-integration error, StepReport::time_error).
-  OutputFile record;  // left closed where this process writes no files: its rows go nowhere
-  if (r.writes) record = OutputFile(r.dir + "/plasticity.csv");
-  record.append("step,inc,t,iterations,plastic_points,drift,time_error,residuals\n");
+  PlasticityFile record(r.writes ? &r.dir : nullptr, r.deck.step_time());  // plasticity.csv
   int last_step = 0;
   run_deck_plastic<M>(
       r.deck, r.scene,
@@ -91,18 +89,7 @@ void run_plastic(const RunRequest& r, RunResult& times) {
         times.stalled += rep.stalled;
         ++times.increments;
         note_relaxation(times, r.deck, step, inc, fe.states(), fe.problem().subdomain.get());
-        std::string row;
-        detail::csv_increment(row, step, inc, r.deck.step_time());
-        detail::append_number(row, static_cast<long long>(rep.iterations)), row += ',';
-        detail::append_number(row, static_cast<long long>(rep.plastic_points)), row += ',';
-        detail::csv_number(row, rep.drift);
-        detail::csv_number(row, rep.time_error);
-        for (std::size_t k = 0; k < rep.residuals.size(); ++k) {
-          if (k > 0) row += ' ';
-          detail::append_number(row, rep.residuals[k]);
-        }
-        row += '\n';
-        record.append(row);
+        record.write(step, inc, rep);
         last_step = step;
         write_increment(r, times, files, step, inc, fe, {}, {rep.iterations, rep.plastic_points, 0, 0});
       },

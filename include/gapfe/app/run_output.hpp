@@ -11,9 +11,9 @@
 
 #include "gapfe/app/plan.hpp"
 #include "gapfe/app/run_result.hpp"
-#include "gapfe/io/deck.hpp"
-#include "gapfe/io/deck_output.hpp"
-#include "gapfe/io/deck_scene.hpp"
+#include "gapfe/input/deck.hpp"
+#include "gapfe/input/deck_scene.hpp"
+#include "gapfe/output/step_files.hpp"
 #include "gapfe/post/gather.hpp"
 #include "gapfe/run/deck_run.hpp"
 

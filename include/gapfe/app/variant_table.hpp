@@ -21,7 +21,7 @@
 #include "gapfe/material/drysdale_zak.hpp"
 #include "gapfe/material/elastic.hpp"
 #include "gapfe/material/hill.hpp"
-#include "gapfe/model.hpp"
+#include "gapfe/problem/model.hpp"
 
 /// The number of translation units the table's rows are instantiated in (the gapfe::app target defines it;
 /// one by default, for a program that includes app/variant_shards.hpp in one file itself).

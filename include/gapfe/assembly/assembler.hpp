@@ -1,17 +1,18 @@
 #pragma once
-// Assembler<M>: the discrete operator of a Problem, nothing else. Built once per analysis: the DOF map,
-// the stiffness pattern (element and node-link couplings over the free DOFs, in the storage the model's
-// solver reads), the scatter
-// offsets of every element and link into its value array, and the history layout of the points. Then,
-// for a given state, it returns what a driver asks for:
+// Assembler<M>: the discrete operator of a Problem, nothing else. Built once per analysis: the DOF map, the
+// stiffness pattern (element and node-link couplings over the free DOFs, in the storage the model's solver
+// reads), the scatter offsets of every element and link into its value array, and the history layout of
+// the points. Then, for a given state, it returns what a driver asks for:
 //   * linear_system       K and the right-hand side of a linear law (element loads, prescribed columns);
 //   * linear_internal     K u - f of the elements and links (reactions, equilibrium check);
-//   * evaluate            F_int(u), trial history and, on request, the tangent K_t of a law with history;
+//   * residual, tangent   F_int(u) and the trial history of a law with history, and with tangent() K_t;
 //   * external_forces     card forces and edge tractions (add_body_forces: for laws with history);
-//   * add_links           node-link springs into values and right-hand side (contact, next friction);
+//   * add_links           node-link springs into values and right-hand side (contact, friction);
 //   * nodal_stiffness     each node's diagonal block, what a contact penalty is scaled by.
-// It owns no matrix values and no solver (solver/system.hpp) and keeps no displacement or history: the
-// driver passes them in, so one assembler serves the linear, Newton and contact drivers alike.
+// The passes over the cells are defined in assembly/linear_pass.hpp and assembly/history_pass.hpp. It owns
+// no matrix values and no solver: the driver builds the System from its pattern (driver/system_setup.hpp,
+// with the fill-reducing order of solver/equation_order.hpp), and keeps the displacement and history, so
+// one assembler serves the linear, Newton and contact drivers alike.
 //
 // Conventions: full ring (core/types.hpp); element DOFs node-major; stiffness values are scattered from
 // each element matrix's upper triangle, or all of it when the solver reads full storage
@@ -33,7 +34,6 @@
 #include "gapfe/assembly/sparsity.hpp"
 #include "gapfe/core/history.hpp"
 #include "gapfe/problem/problem.hpp"
-#include "gapfe/solver/coordinate_dissection.hpp"
 #include "gapfe/solver/system.hpp"
 
 namespace gapfe {
@@ -88,54 +88,6 @@ class Assembler {
   /// The free DOFs' pattern in kStorage, values zero, handed over once to the System that will hold the
   /// values (a second copy of the matrix was 113 MB at 1e6 equations); the assembler keeps its size.
   SpMat take_pattern() { return std::move(pattern_); }
-  /// A fill-reducing elimination order of the free equations (order[k] = the equation eliminated k-th):
-  /// nested dissection of the nodes by their coordinates (solver/coordinate_dissection.hpp), each node's
-  /// free components together. Node links count as edges. Empty when there is no free equation.
-  std::vector<int> fill_reducing_order(const Problem<M>& p) const {
-    const int nn = p.mesh.node_count();
-    if (dofs_.free_count == 0) return {};
-    std::vector<std::vector<int>> near(static_cast<std::size_t>(nn));
-    const auto connect = [&](const auto& cells) {
-      for (const auto& c : cells)
-        for (const int a : c)
-          for (const int b : c)
-            if (a != b) near[static_cast<std::size_t>(a)].push_back(b);
-    };
-    connect(p.mesh.cells);
-    connect(p.mesh.triangles);
-    connect(links_);
-    std::vector<int> ptr(static_cast<std::size_t>(nn) + 1, 0), adj;
-    for (int n = 0; n < nn; ++n) {
-      auto& list = near[static_cast<std::size_t>(n)];
-      std::sort(list.begin(), list.end());
-      list.erase(std::unique(list.begin(), list.end()), list.end());
-      adj.insert(adj.end(), list.begin(), list.end());
-      ptr[static_cast<std::size_t>(n) + 1] = static_cast<int>(adj.size());
-      std::vector<int>().swap(list);
-    }
-    std::vector<int> order;
-    order.reserve(static_cast<std::size_t>(dofs_.free_count));
-    for (const int n : coordinate_dissection(p.mesh.nodes, ptr, adj))
-      for (int c = 0; c < kNd; ++c)
-        if (const int eq = dofs_.equation[static_cast<std::size_t>(dofs_.dof(n, c))]; eq >= 0)
-          order.push_back(eq);
-    return order;
-  }
-  /// The System of the analysis, given the pattern (take_pattern()): with the fill-reducing order for a
-  /// solver that takes one and, for a part of a partitioned problem, the equation layout (collective). A
-  /// distributed solver that takes no order gets the layout on a whole problem too (for its near-null
-  /// space); a RuntimeSolver offering both kinds gets it only for a part.
-  /// `solver`: the solver object (empty: a default-constructed one).
-  template <class Solver>
-  System<Solver> make_system(const Problem<M>& p, std::unique_ptr<Solver> solver = nullptr) {
-    if (p.subdomain || (DistributedSolver<Solver> && !OrderedSolver<Solver>)) {
-      const EquationLayout layout = equation_layout(dofs_, p.mesh, p.subdomain.get());
-      return System<Solver>(take_pattern(), {}, &layout, std::move(solver));
-    }
-    if constexpr (OrderedSolver<Solver>)
-      return System<Solver>(take_pattern(), fill_reducing_order(p), nullptr, std::move(solver));
-    return System<Solver>(take_pattern(), {}, nullptr, std::move(solver));
-  }
   const Connectivity<2>& links() const { return links_; }
   /// Whether link l adds anything here: it is not zero and this part assembles it.
   bool assembles_link(std::size_t l) const { return link_owned_[l] && !link_values_[l].zero(); }
@@ -205,26 +157,7 @@ class Assembler {
 
   /// A linear law's system: element stiffness into `values` (zeroed first, no links), and
   /// rhs = F_ext (free rows) + element loads (body, thermal) - K_fp u_p.
-  void linear_system(const Problem<M>& p, const VecX& external, double* values, VecX& rhs) const {
-    Eigen::Map<VecX>(values, nonzeros_).setZero();
-    rhs = VecX::Zero(dofs_.free_count);
-    cache_.reset();
-    for (std::size_t d = 0; d < dofs_.equation.size(); ++d)
-      if (dofs_.equation[d] >= 0) rhs(dofs_.equation[d]) += external(static_cast<Eigen::Index>(d));
-    for_each_cell<Elem>(p.mesh,
-                        [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
-                                                      const std::array<int, NPC>& cell, const CellTag& tag) {
-                          if constexpr (kBatchedQuad4 && std::is_same_v<E, Elem>)
-                            return;  // done in batches below
-                          typename ElementKernel<Kin, E>::Matrix k;
-                          typename ElementKernel<Kin, E>::Vector f;
-                          element_system<E>(p, cell, tag, k, f);
-                          scatter<kStorage>(values, offsets<E>(e), k);
-                          add_element_rhs(
-                              cell, f, [&](int i, int j) { return k(i, j); }, rhs);
-                        });
-    if constexpr (kBatchedQuad4) quad4_batched(p, values, rhs);
-  }
+  void linear_system(const Problem<M>& p, const VecX& external, double* values, VecX& rhs) const;
 
   /// linear_system's right-hand side alone, for a stiffness assembled from the same mesh, materials and
   /// temperatures (the element loads may differ: body forces, and the part of the thermal strain in
@@ -232,23 +165,7 @@ class Assembler {
   /// K_fp u_p. Only cells with a body or thermal load or a non-zero prescribed value compute their element
   /// system; for pressures and card forces alone this is a scan of the cells (issue 14: a contact run's
   /// increments and a linear deck's later steps re-assembled the whole stiffness for their loads).
-  void linear_rhs(const Problem<M>& p, const VecX& external, VecX& rhs) const {
-    rhs = VecX::Zero(dofs_.free_count);
-    cache_.reset();
-    for (std::size_t d = 0; d < dofs_.equation.size(); ++d)
-      if (dofs_.equation[d] >= 0) rhs(dofs_.equation[d]) += external(static_cast<Eigen::Index>(d));
-    for_each_cell<Elem>(p.mesh,
-                        [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t,
-                                                      const std::array<int, NPC>& cell, const CellTag& tag) {
-                          using Kernel = ElementKernel<Kin, E>;
-                          if (!has_element_load<E>(p, local(p, tag, cell)) && !moves_prescribed(cell)) return;
-                          typename Kernel::Matrix k;
-                          typename Kernel::Vector f;
-                          element_system<E>(p, cell, tag, k, f);
-                          add_element_rhs(
-                              cell, f, [&](int i, int j) { return k(i, j); }, rhs);
-                        });
-  }
+  void linear_rhs(const Problem<M>& p, const VecX& external, VecX& rhs) const;
 
   /// K u - f of a linear law's elements and of the node links at `u` (all DOFs). `prescribed_only`: only
   /// the cells with a prescribed DOF, so the entries at prescribed DOFs are complete (reactions) and those
@@ -256,108 +173,37 @@ class Assembler {
   /// are kept from the first such pass (when they fit in kKeptBytes) and reused until
   /// forget_kept_stiffness(): a contact run reads reactions every increment, and with u_z prescribed at
   /// every node its "boundary" is the whole mesh (issue 14: 11 element passes of the two-tube run).
-  VecX linear_internal(const Problem<M>& p, const VecX& u, bool prescribed_only = false) const {
-    VecX internal = VecX::Zero(u.size());
-    cache_.reset();
-    const bool reuse        = prescribed_only && kept_.valid;
-    const std::size_t bytes = prescribed_only && !reuse ? kept_bytes(p) : 0;
-    const bool keep         = prescribed_only && !reuse && bytes <= kKeptBytes;
-    if (keep) kept_.values.clear(), kept_.values.reserve(bytes / sizeof(double));
-    std::size_t at = 0;  // the cell's first entry in kept_.values
-    for_each_cell<Elem>(p.mesh,
-                        [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t,
-                                                      const std::array<int, NPC>& cell, const CellTag& tag) {
-                          if (prescribed_only && !has_prescribed(cell)) return;
-                          using Kernel         = ElementKernel<Kin, E>;
-                          constexpr auto count = static_cast<std::size_t>(Kernel::kDofs * Kernel::kDofs);
-                          typename Kernel::Matrix k;
-                          typename Kernel::Vector f;
-                          if (reuse && !has_element_load<E>(p, local(p, tag, cell))) {
-                            k = Eigen::Map<const typename Kernel::Matrix>(kept_.values.data() + at);
-                            f.setZero();
-                          } else {
-                            element_system<E>(p, cell, tag, k, f);
-                            if (keep) kept_.values.insert(kept_.values.end(), k.data(), k.data() + count);
-                          }
-                          at += count;
-                          const typename Kernel::Vector fe = k * gather(cell, u) - f;
-                          add_to(cell, fe, internal);
-                        });
-    if (keep) kept_.valid = true;
-    add_link_forces(u, internal);
-    return internal;
-  }
+  VecX linear_internal(const Problem<M>& p, const VecX& u, bool prescribed_only = false) const;
   /// The element stiffness changed (a new assembly): linear_internal's kept matrices no longer hold.
   void forget_kept_stiffness() { kept_.valid = false, kept_.values = {}; }
   /// At most this much memory for linear_internal's kept element stiffnesses [bytes].
   static constexpr std::size_t kKeptBytes = std::size_t(64) << 20;
 
   /// Node links into the stiffness values and the right-hand side (after the elements).
-  void add_links(double* values, VecX& rhs) const {
-    constexpr int n = 2 * kNd;
-    for (std::size_t l = 0; l < links_.size(); ++l) {
-      const NodeLink& link = link_values_[l];
-      if (!assembles_link(l)) continue;
-      const Mat<n, n> k = link.template element_stiffness<kNd>();
-      scatter<kStorage>(values, link_offsets_.data() + l * offset_count(n, kStorage), k);
-      add_element_rhs(
-          links_[l], link.template element_load<kNd>(), [&](int i, int j) { return k(i, j); }, rhs);
-    }
-  }
+  void add_links(double* values, VecX& rhs) const;
 
   /// A law with history at displacements `u` (all DOFs), from the committed states of `points`:
   /// F_int = sum_e int B^T sigma dV + node links into `internal` (all DOFs), sigma into `stress`, the new
-  /// states into points' trial records. With `values`, K_t = sum_e int B^T D B dV + links (zeroed first);
-  /// with `prescribed_step` too, predictor = -K_fp du_p on the free rows (Newton's iteration 0).
+  /// states into points' trial records. The laws may skip their tangents (StepContext::tangent).
   template <class State>
-  void evaluate(const Problem<M>& p, const VecX& u, History<State>& points, std::vector<Vec6>& stress,
-                const StepContext& ctx, double* values, VecX& internal, const VecX* prescribed_step,
-                VecX& predictor) const {
-    static_assert(ElementKernel<Kin, Elem>::kInner == 0,
-                  "laws with history need elements without condensed interior nodes (not LegacyQuad)");
-    if (values) Eigen::Map<VecX>(values, nonzeros_).setZero();
-    internal.setZero(u.size());
-    predictor.setZero(dofs_.free_count);
-    cache_.reset();
-    StepContext point_ctx = ctx;  // a residual pass: the laws may skip their tangents
-    point_ctx.tangent     = values != nullptr;
-    for_each_cell<Elem>(
-        p.mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
-                                              const std::array<int, NPC>& cell, const CellTag& tag) {
-          using Kernel                           = ElementKernel<Kin, E>;
-          const typename Kernel::Points geometry = Kernel::stiffness_points(cell_coords<E>(p.mesh, cell));
-          const auto& lp                         = local(p, tag, cell);
-          const auto mean                        = Kernel::mean_volumetric(geometry);
-          const auto ue                          = gather(cell, u);
-          const std::size_t first                = first_point<E>(e);
-          typename Kernel::Matrix k              = Kernel::Matrix::Zero();
-          typename Kernel::Vector f              = Kernel::Vector::Zero();
-          for (int q = 0; q < E::kStiffnessPoints; ++q) {
-            const auto& g   = geometry[q];
-            const auto b    = Kernel::point_B(g, mean);
-            const auto resp = Law::update(lp, Kernel::extend(b * ue), points.committed(first + q), point_ctx);
-            f.noalias() += g.weight * (b.transpose() * Kernel::restrict(resp.stress));
-            if (values) {  // lazyProduct: see ElementKernel::shape_stiffness
-              const typename Kernel::StrainDisplacement d_b = Kernel::restrict(resp.tangent) * b;
-              k.noalias() += g.weight * b.transpose().lazyProduct(d_b);
-            }
-            points.trial(first + q) = resp.state;
-            stress[first + q]       = resp.stress;
-          }
-          add_to(cell, f, internal);
-          if (!values) return;
-          scatter<kStorage>(values, offsets<E>(e), k);
-          if (prescribed_step) add_predictor(cell, k, *prescribed_step, predictor);
-        });
-    add_link_forces(u, internal);
-    if (!values) return;
-    constexpr int n = 2 * kNd;
-    for (std::size_t l = 0; l < links_.size(); ++l) {
-      if (!assembles_link(l)) continue;
-      const Mat<n, n> k = link_values_[l].template element_stiffness<kNd>();
-      scatter<kStorage>(values, link_offsets_.data() + l * offset_count(n, kStorage), k);
-      if (prescribed_step) add_predictor(links_[l], k, *prescribed_step, predictor);
-    }
+  void residual(const Problem<M>& p, const VecX& u, History<State>& points, std::vector<Vec6>& stress,
+                const StepContext& ctx, VecX& internal) const {
+    history_pass(p, u, points, stress, ctx, nullptr, internal, nullptr, nullptr);
+  }
+  /// The residual's F_int with K_t = sum_e int B^T D B dV + links into the pattern's `values` (zeroed
+  /// first).
+  template <class State>
+  void tangent(const Problem<M>& p, const VecX& u, History<State>& points, std::vector<Vec6>& stress,
+               const StepContext& ctx, double* values, VecX& internal) const {
+    history_pass(p, u, points, stress, ctx, values, internal, nullptr, nullptr);
+  }
+  /// The same, and Newton's iteration-0 predictor = -K_fp du_p on the free rows for the step
+  /// `prescribed_step` of the prescribed DOFs (all DOFs).
+  template <class State>
+  void tangent(const Problem<M>& p, const VecX& u, History<State>& points, std::vector<Vec6>& stress,
+               const StepContext& ctx, double* values, VecX& internal, const VecX& prescribed_step,
+               VecX& predictor) const {
+    history_pass(p, u, points, stress, ctx, values, internal, &prescribed_step, &predictor);
   }
 
   /// The kNd x kNd diagonal block of every node (zero-padded to 3 x 3), summed over the cells whose tag
@@ -406,6 +252,11 @@ class Assembler {
   }
 
  private:
+  /// One pass over the cells of a law with history: residual(), and tangent() when `values` is given.
+  template <class State>
+  void history_pass(const Problem<M>& p, const VecX& u, History<State>& points, std::vector<Vec6>& stress,
+                    const StepContext& ctx, double* values, VecX& internal, const VecX* prescribed_step,
+                    VecX* predictor) const;
   /// out(dof) += v over the element's (or link's) DOFs.
   template <std::size_t NPC, class Vector>
   void add_to(const std::array<int, NPC>& nodes, const Vector& v, VecX& out) const {
@@ -421,40 +272,12 @@ class Assembler {
   template <class E, std::size_t NPC>
   void element_system(const Problem<M>& p, const std::array<int, NPC>& cell, const CellTag& tag,
                       typename ElementKernel<Kin, E>::Matrix& k,
-                      typename ElementKernel<Kin, E>::Vector& f) const {
-    using Kernel                          = ElementKernel<Kin, E>;
-    const auto x                          = cell_coords<E>(p.mesh, cell);
-    const auto& lp                        = local(p, tag, cell);
-    const typename Kernel::StrainMatrix d = Kernel::restrict(lp.stiffness);
-    if (!has_element_load<E>(p, lp)) {
-      k = Kernel::stiffness(x, d);
-      f.setZero();
-    } else {
-      const typename Kernel::ShapeVector fs =
-          Kernel::shape_load(x, d, Kernel::restrict(lp.thermal_strain), body_force(p.inertia, lp.density));
-      Kernel::condense(Kernel::shape_stiffness(x, d), fs, k, f);
-    }
-  }
+                      typename ElementKernel<Kin, E>::Vector& f) const;
 
   /// Element load into the right-hand side, and the prescribed-displacement columns moved there:
   /// rhs_i += f_i - sum_j K_ij u_j over prescribed j. `k(i, j)` gives the element stiffness.
   template <std::size_t NPC, class Vector, class Stiffness>
-  void add_element_rhs(const std::array<int, NPC>& cell, const Vector& f, Stiffness&& k, VecX& rhs) const {
-    constexpr int n = kNd * static_cast<int>(NPC);
-    std::array<int, n> dof;
-    for (int a = 0; a < static_cast<int>(NPC); ++a)
-      for (int c = 0; c < kNd; ++c) dof[a * kNd + c] = dofs_.dof(cell[a], c);
-    const bool moved = moves_prescribed(cell);
-    for (int i = 0; i < n; ++i) {
-      const int eq = dofs_.equation[dof[i]];
-      if (eq < 0) continue;
-      double r = f(i);
-      if (moved)
-        for (int j = 0; j < n; ++j)
-          if (dofs_.equation[dof[j]] < 0) r -= k(i, j) * dofs_.prescribed(dof[j]);
-      rhs(eq) += r;
-    }
-  }
+  void add_element_rhs(const std::array<int, NPC>& cell, const Vector& f, Stiffness&& k, VecX& rhs) const;
   /// Whether a cell has a prescribed DOF.
   template <std::size_t NPC>
   bool has_prescribed(const std::array<int, NPC>& cell) const {
@@ -491,60 +314,11 @@ class Assembler {
   /// predictor -= K_fp du_p over one element's free rows and prescribed columns.
   template <std::size_t NPC, class Matrix>
   void add_predictor(const std::array<int, NPC>& nodes, const Matrix& k, const VecX& du_p,
-                     VecX& predictor) const {
-    const auto step = gather(nodes, du_p);
-    if (step.isZero(0.0)) return;
-    for (int i = 0; i < k.rows(); ++i) {
-      const int eq = dofs_.equation[dofs_.dof(nodes[i / kNd], i % kNd)];
-      if (eq >= 0) predictor(eq) -= k.row(i).dot(step);
-    }
-  }
+                     VecX& predictor) const;
 
   /// Quad4 cells with 2 DOF: stiffness from the vectorized batch kernel (assembly/quad4_batch.hpp), W
   /// cells at a time; loads, when there are any, from the generic kernel.
-  void quad4_batched(const Problem<M>& p, double* values, VecX& rhs) const {
-    using Kernel                 = ElementKernel<Kin, Elem>;
-    using Batch                  = Quad4Axisym2Batch<8>;
-    const auto& m                = p.mesh;
-    const std::size_t count      = m.cells.size();
-    static constexpr auto kUpper = [] {  // (i, j) -> index in the upper-triangle row-major list
-      std::array<std::array<int, 8>, 8> t{};
-      for (int i = 0, c = 0; i < 8; ++i)
-        for (int j = i; j < 8; ++j, ++c) t[i][j] = t[j][i] = c;
-      return t;
-    }();
-    Batch batch;
-    for (std::size_t e0 = 0; e0 < count; e0 += Batch::kLanes) {
-      const int lanes = static_cast<int>(std::min<std::size_t>(Batch::kLanes, count - e0));
-      for (int l = 0; l < Batch::kLanes; ++l) {
-        const std::size_t e =
-            e0 + static_cast<std::size_t>(std::min(l, lanes - 1));  // pad with the last cell
-        for (int a = 0; a < 4; ++a)
-          batch.r[a][l] = m.nodes[m.cells[e][a]](0), batch.z[a][l] = m.nodes[m.cells[e][a]](1);
-        batch.set_material(l, local(p, m.cell_tag(e), m.cells[e]).stiffness.template topLeftCorner<4, 4>());
-      }
-      batch.compute();
-      for (int l = 0; l < lanes; ++l) {
-        const std::size_t e = e0 + static_cast<std::size_t>(l);
-        const int* off      = cell_offsets_.data() + e * offset_count(8, kStorage);
-        if constexpr (kStorage == MatrixStorage::lower) {  // the batch's upper-triangle order is the offsets'
-          for (int c = 0; c < 36; ++c)
-            if (off[c] >= 0) values[off[c]] += batch.k[c][l];
-        } else {
-          for (int i = 0, c = 0; i < 8; ++i)
-            for (int j = 0; j < 8; ++j, ++c)
-              if (off[c] >= 0) values[off[c]] += batch.k[kUpper[i][j]][l];
-        }
-        const auto& lp            = local(p, m.cell_tag(e), m.cells[e]);
-        typename Kernel::Vector f = Kernel::Vector::Zero();
-        if (has_element_load<Elem>(p, lp))
-          f = Kernel::shape_load(cell_coords<Elem>(m, m.cells[e]), Kernel::restrict(lp.stiffness),
-                                 Kernel::restrict(lp.thermal_strain), body_force(p.inertia, lp.density));
-        add_element_rhs(
-            m.cells[e], f, [&](int i, int j) { return batch.k[kUpper[i][j]][l]; }, rhs);
-      }
-    }
-  }
+  void quad4_batched(const Problem<M>& p, double* values, VecX& rhs) const;
 
   DofMap<kNd> dofs_;
   SpMat pattern_;              ///< until take_pattern()
@@ -564,3 +338,7 @@ class Assembler {
 };
 
 }  // namespace gapfe
+
+// Out-of-class members, one file per job.
+#include "gapfe/assembly/history_pass.hpp"  // IWYU pragma: export
+#include "gapfe/assembly/linear_pass.hpp"   // IWYU pragma: export

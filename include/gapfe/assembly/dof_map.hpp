@@ -34,7 +34,7 @@ struct DofMap {
 
   /// The errors build() gives for a card (seed Data 5) on a mesh of `nodes` nodes; `on_axis(node)` says
   /// whether a node lies on the axis (asked only for a node in range). A partitioned problem checks the
-  /// whole problem's cards with it before each part keeps its own (assembly/partition.hpp).
+  /// whole problem's cards with it before each part keeps its own (assembly/problem_part.hpp).
   template <class OnAxis>
   static void check(const NodalCondition& c, int nodes, OnAxis&& on_axis) {
     const std::string where = "boundary condition at node " + std::to_string(c.node + 1);

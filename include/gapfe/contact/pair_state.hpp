@@ -1,6 +1,6 @@
 #pragma once
 // The record of one gap pair that a contact run keeps in its History (core/history.hpp) and writes out
-// (gaps.csv, io/deck_output.hpp), and the work counters of a run. Forces are total ring forces,
+// (gaps.csv, output/step_files.hpp), and the work counters of a run. Forces are total ring forces,
 // compressive positive; gaps are positive open (core/types.hpp). Tangential quantities are in the pair's
 // tangent plane (T, S = theta) of contact/friction.hpp.
 #include <limits>

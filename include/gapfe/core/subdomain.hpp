@@ -4,7 +4,7 @@
 // locally; the drivers then assemble, evaluate and recover over those cells only, and a distributed solver
 // (DistributedSolver, core/concepts.hpp) sums the parts' systems. What the drivers still need from the other
 // parts is a handful of collective operations, the virtual functions below (one call per solve or per
-// Newton iteration, never per element). mesh/partition.hpp makes the layout; solver/petsc_subdomain.hpp
+// Newton iteration, never per element). mesh/cell_partition.hpp makes the layout; solver/petsc_subdomain.hpp
 // implements the operations over MPI. Without a subdomain a problem is whole and none of this runs.
 //
 // Local numbering: nodes [0, owned_nodes) are the part's own; the rest are ghosts, nodes of its cells (or of

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "gapfe/assembly/assembler.hpp"
+#include "gapfe/driver/system_setup.hpp"
 #include "gapfe/post/balance.hpp"
 #include "gapfe/post/recovery.hpp"
 #include "gapfe/problem/problem.hpp"
@@ -41,7 +42,7 @@ class LinearStatic {
                         std::unique_ptr<typename M::LinearSolver> solver = nullptr)
       : p_(std::move(problem)),
         assembler_(p_, std::move(links)),
-        system_(assembler_.template make_system<typename M::LinearSolver>(p_, std::move(solver))) {}
+        system_(make_system<typename M::LinearSolver>(assembler_, p_, std::move(solver))) {}
 
   /// Loads, temperatures and materials may be changed here between solves.
   Problem<M>& problem() { return p_; }

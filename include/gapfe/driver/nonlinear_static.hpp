@@ -37,6 +37,7 @@
 #include "gapfe/core/combinations.hpp"
 #include "gapfe/core/history.hpp"
 #include "gapfe/driver/newton_options.hpp"
+#include "gapfe/driver/system_setup.hpp"
 #include "gapfe/post/balance.hpp"
 #include "gapfe/post/recovery.hpp"
 #include "gapfe/problem/problem.hpp"
@@ -62,7 +63,7 @@ class NonlinearStatic {
                            std::unique_ptr<typename M::LinearSolver> solver = nullptr)
       : p_(std::move(scene)),
         assembler_(p_, std::move(link_pairs)),
-        system_(assembler_.template make_system<typename M::LinearSolver>(p_, std::move(solver))),
+        system_(make_system<typename M::LinearSolver>(assembler_, p_, std::move(solver))),
         options_(options),
         points_(assembler_.point_count()),
         stress_(assembler_.point_count(), Vec6::Zero()),
@@ -331,8 +332,15 @@ class NonlinearStatic {
     if (link_update_) link_update_(u_, prescribed_step != nullptr);
     // A point's return map that fails (a SolveError: the caller cuts the step) fails every part's step.
     on_every_part(p_.subdomain.get(), [&] {
-      assembler_.evaluate(p_, u_, points_, stress_, context_, tangent ? system_.values() : nullptr, internal_,
-                          prescribed_step, predictor_);
+      // The predictor -K_fp du_p exists at iteration 0 with a tangent; every other evaluation clears it.
+      if (!tangent || !prescribed_step) predictor_.setZero(assembler_.dofs().free_count);
+      if (!tangent)
+        assembler_.residual(p_, u_, points_, stress_, context_, internal_);
+      else if (prescribed_step)
+        assembler_.tangent(p_, u_, points_, stress_, context_, system_.values(), internal_, *prescribed_step,
+                           predictor_);
+      else
+        assembler_.tangent(p_, u_, points_, stress_, context_, system_.values(), internal_);
     });
   }
   /// The largest of `value(local, q)` over the stiffness points q (0 without points).

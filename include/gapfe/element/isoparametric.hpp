@@ -2,7 +2,7 @@
 // Isoparametric<Shape, NN, NQ>: the point evaluations every Gauss-integrated isoparametric element
 // shares, given its shape functions Shape::N, Shape::dN and rule Shape::kRule (NQ points). Quad4 and
 // Quad8 derive from it; stiffness and load points use the same rule, the centroid is (0, 0).
-#include "gapfe/element/point_geometry.hpp"
+#include "gapfe/element/point_maps.hpp"
 
 namespace gapfe {
 

@@ -9,7 +9,7 @@
 //   0 ------- 1      element kernel (K* = Kcc - Kci Kii^-1 Kic; seed's "12 degrees of freedom").
 //
 // The seed's COMMON /ARG/ RRR(5), ZZZ(5), S(15,15), BB(6,9) and TRISTF are this element [S].
-#include "gapfe/element/point_geometry.hpp"
+#include "gapfe/element/point_maps.hpp"
 #include "gapfe/element/quadrature.hpp"
 #include "gapfe/element/tri3.hpp"
 

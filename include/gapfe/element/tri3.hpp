@@ -7,7 +7,7 @@
 //   2            local 0-based nodes 0, 1, 2, counterclockwise
 //   |  .
 //   0 -- 1
-#include "gapfe/element/point_geometry.hpp"
+#include "gapfe/element/point_maps.hpp"
 #include "gapfe/element/quadrature.hpp"
 
 namespace gapfe {

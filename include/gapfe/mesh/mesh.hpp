@@ -29,7 +29,7 @@ struct Mesh {
   std::vector<CellTag> cell_tags;                    ///< parallel to cells (empty: all default)
   std::vector<std::array<int, 3>> triangles;         ///< 3-corner cells (CST)
   std::vector<CellTag> triangle_tags;                ///< parallel to triangles (empty: all default)
-  /// A part of a partitioned mesh (mesh/partition.hpp) keeps the whole mesh's size() here, so that the
+  /// A part of a partitioned mesh (mesh/cell_partition.hpp) keeps the whole mesh's size() here, so that the
   /// tolerances relative to it (nodes on the axis, gap overlaps) are the same on every part; 0: whole.
   double whole_size = 0;
 

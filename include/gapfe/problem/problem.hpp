@@ -27,7 +27,7 @@ struct Problem {
   /// so that a step split at a gap's closure splits the thermal load too. The material properties stay
   /// those of the full temperature field (the seed's thermal load vector, scaled with the step).
   double thermal_fraction = 1.0;
-  /// Set when this is one part of a problem partitioned over several processes (assembly/partition.hpp
+  /// Set when this is one part of a problem partitioned over several processes (assembly/problem_part.hpp
   /// makes it): the mesh, conditions, loads and temperatures above are then the part's, in its local
   /// numbering, and the drivers sum what the parts share through it. Empty: the problem is whole.
   std::shared_ptr<const Subdomain> subdomain;

@@ -1,5 +1,5 @@
 #pragma once
-// The deck layer, above the drivers and io: a deck's scene (io/deck_scene.hpp) becomes a Problem of one
+// The deck layer, above the drivers and io: a deck's scene (input/deck_scene.hpp) becomes a Problem of one
 // compile-time model, and its load steps become a driver's steps. Each step applies the totals of the
 // increments so far. Three runs: linear (the seed's elastic codes: materials and temperatures are fixed
 // from the first step on, so the stiffness is factorized once and each later step costs an assembly of
@@ -8,7 +8,7 @@
 // end of load step k.
 //
 // A partitioned run (core/subdomain.hpp) gives each run a DeckPart: the process's part of the scene. Every
-// process builds the whole Problem from the deck and keeps its part (assembly/partition.hpp); each step's
+// process builds the whole Problem from the deck and keeps its part (assembly/problem_part.hpp); each step's
 // totals, in the whole mesh's numbering, go to the part the same way. The drivers do the rest.
 #include <algorithm>
 #include <cmath>
@@ -16,13 +16,13 @@
 #include <sstream>
 #include <string>
 
-#include "gapfe/assembly/partition.hpp"
+#include "gapfe/assembly/problem_part.hpp"
 #include "gapfe/driver/contact_static.hpp"
 #include "gapfe/driver/linear_static.hpp"
 #include "gapfe/driver/nonlinear_static.hpp"
-#include "gapfe/io/deck_scene.hpp"
-#include "gapfe/io/step_loads.hpp"
+#include "gapfe/input/deck_scene.hpp"
 #include "gapfe/material/hill.hpp"
+#include "gapfe/run/step_loads.hpp"
 
 namespace gapfe {
 

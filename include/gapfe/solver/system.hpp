@@ -22,12 +22,11 @@ class System {
  public:
   /// `pattern`: the structure, values ignored. No analysis when there is no free DOF (a pure recovery) and
   /// the system is not distributed.
-  /// `order`: a fill-reducing elimination order (Assembler::fill_reducing_order) for solvers that take
-  /// one (OrderedSolver); others, or an empty order, order the pattern themselves.
-  /// `layout`: where the equations sit in a partitioned system (a part of a partitioned problem, or a
-  /// distributed solver's near-null space); only a DistributedSolver takes one.
-  /// `solver`: the solver object (one a caller chose and set up, e.g. a RuntimeSolver); empty: a
-  /// default-constructed one.
+  /// `order`: a fill-reducing elimination order (driver/system_setup.hpp, fill_reducing_order) for solvers
+  /// that take one (OrderedSolver); others, or an empty order, order the pattern themselves. `layout`: where
+  /// the equations sit in a partitioned system (a part of a partitioned problem, or a distributed solver's
+  /// near-null space); only a DistributedSolver takes one. `solver`: the solver object (one a caller chose
+  /// and set up, e.g. a RuntimeSolver); empty: a default-constructed one.
   explicit System(SpMat pattern, const std::vector<int>& order = {}, const EquationLayout* layout = nullptr,
                   std::unique_ptr<Solver> solver = nullptr)
       : k_(std::move(pattern)), solver_(solver ? std::move(solver) : std::make_unique<Solver>()) {

@@ -44,7 +44,7 @@
 
 #include "gapfe/core/error.hpp"
 #include "gapfe/core/types.hpp"
-#include "gapfe/mesh/gmsh_words.hpp"
+#include "gapfe/input/gmsh_words.hpp"
 
 namespace gapfe {
 

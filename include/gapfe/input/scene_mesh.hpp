@@ -1,5 +1,5 @@
 #pragma once
-// The mesh of a scene file (io/scene_file.hpp) and its named groups, from either source a scene's [mesh]
+// The mesh of a scene file (input/scene_file.hpp) and its named groups, from either source a scene's [mesh]
 // table can name: a Gmsh file, whose physical groups are the names, or the seed's I-J generator (line
 // segment cards, Appendix A Data 3-4), whose groups are rectangles of grid indices. Both fill the scene's
 // grid cells and mesh alike (cells in their numbering order, quadrilaterals as Mesh::cells, triangles as
@@ -7,7 +7,7 @@
 // up by name without knowing which source made them.
 //
 // A grid's group `NAME = {i = [I1, I2], j = [J1, J2]}` (or one index for either) reads as a deck's cards do
-// (io/deck_scene.hpp): its nodes are the grid points in the rectangle (a BC card); as a surface, its cells
+// (input/deck_scene.hpp): its nodes are the grid points in the rectangle (a BC card); as a surface, its cells
 // are those whose lower-left corner (I, J) has I1 <= I < I2 and J1 <= J < J2 (a material block); a
 // rectangle one index wide (I1 = I2 or J1 = J2) is a curve, whose edges are the cell sides between
 // neighbouring grid points on it.
@@ -23,11 +23,11 @@
 #include <utility>
 #include <vector>
 
-#include "gapfe/io/deck_cards.hpp"
-#include "gapfe/io/deck_scene.hpp"
-#include "gapfe/io/scene_table.hpp"
-#include "gapfe/mesh/gmsh_mesh.hpp"
-#include "gapfe/mesh/gmsh_reader.hpp"
+#include "gapfe/input/deck_cards.hpp"
+#include "gapfe/input/deck_scene.hpp"
+#include "gapfe/input/gmsh_mesh.hpp"
+#include "gapfe/input/gmsh_reader.hpp"
+#include "gapfe/input/scene_table.hpp"
 #include "gapfe/mesh/ij_grid.hpp"
 
 namespace gapfe::detail {

@@ -1,7 +1,7 @@
 #pragma once
 // The seed's card deck (BRL-CR-670 Appendix A, cards 0-15) as data, and its reader. Its pieces:
-// io/deck_options.hpp (the `$ key = value` extensions), io/deck_cards.hpp (the cards as data) and
-// io/deck_reader.hpp (read_deck); io/deck_scene.hpp builds the mesh and checks what refers to it.
+// input/deck_options.hpp (the `$ key = value` extensions), input/deck_cards.hpp (the cards as data) and
+// input/deck_reader.hpp (read_deck); input/deck_scene.hpp builds the mesh and checks what refers to it.
 //
 // Readings of what the seed leaves open (also in the README's deck section):
 //  * Deck formats: `saac` (default; SAAC/SAAC2: a yield card, card 11, follows each material's
@@ -19,6 +19,6 @@
 // Extensions (options the seed's input lacks) are lines `$ key = value` before the first card; a
 // line that is only `$` or `$ text` without `=` is a comment. The same keys can be set from the
 // command line (gapfe --set key=value), so legacy decks stay untouched. See DeckOptions.
-#include "gapfe/io/deck_cards.hpp"
-#include "gapfe/io/deck_options.hpp"
-#include "gapfe/io/deck_reader.hpp"
+#include "gapfe/input/deck_cards.hpp"
+#include "gapfe/input/deck_options.hpp"
+#include "gapfe/input/deck_reader.hpp"

@@ -1,11 +1,11 @@
 #pragma once
-// A Gmsh mesh (mesh/gmsh_reader.hpp) as a finite-element Mesh<N> for a Problem: 4-node quadrangles with
+// A Gmsh mesh (input/gmsh_reader.hpp) as a finite-element Mesh<N> for a Problem: 4-node quadrangles with
 // 3-node triangles beside them (Quad4, Quad4BBar, LegacyQuad; the triangles as constant-strain triangles),
 // or 8-node quadrangles only (Quad8; gapfe has no 6-node triangle, and a 3-node triangle beside an 8-node
 // quadrangle would not conform). Nodes no cell uses (Gmsh's geometry points, a curve meshed alone) are
 // dropped, since they would carry no stiffness; `node` maps Gmsh's node indices to the mesh's. Cells keep
 // the file's order. A material index per physical surface sets each cell's tag (its material, default
-// axes). The scene files (io/scene_mesh.hpp) build their meshes with it too.
+// axes). The scene files (input/scene_mesh.hpp) build their meshes with it too.
 //
 //   const GmshMesh g  = read_gmsh(text);
 //   auto fe           = gmsh_fe_mesh<8>(g, {{"steel", 0}});
@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "gapfe/core/error.hpp"
-#include "gapfe/mesh/gmsh_reader.hpp"
+#include "gapfe/input/gmsh_reader.hpp"
 #include "gapfe/mesh/mesh.hpp"
 
 namespace gapfe {

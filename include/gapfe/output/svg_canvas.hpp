@@ -13,7 +13,7 @@
 
 #include "gapfe/core/text.hpp"
 #include "gapfe/core/types.hpp"
-#include "gapfe/io/vtu_writer.hpp"
+#include "gapfe/output/vtu_writer.hpp"
 
 namespace gapfe::detail {
 

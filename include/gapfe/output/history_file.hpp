@@ -1,7 +1,7 @@
 #pragma once
 // history.csv (issue 17): one row per accepted increment of a run of more than one load step, the numbers a
 // load-displacement, torque-twist or stress-time curve is drawn from (`gapfe plot DIR --x COL --y COL`):
-//   step, inc, t           as in every table (io/deck_output.hpp): t = inc x the time a load step lasts
+//   step, inc, t           as in every table (output/step_files.hpp): t = inc x the time a load step lasts
 //   load_factor            inc / the number of load steps: the fraction of the deck's total load applied
 //                          (of each load's value, where a scene gives it a history: its amplitude)
 //   R_r_CARD, R_z_CARD, R_t_CARD   the total reaction of each boundary card in the components it prescribes
@@ -24,8 +24,8 @@
 //                          the gap pairs' own (Balance::gap_torque) [force x length]
 //   balance                Balance::relative(): |applied + reaction| / the load's size, the larger of the
 //                          two directions (about the axis, applied + reaction - gap_torque)
-// Each row is one write (io/output_file.hpp), so a run that fails or is killed keeps the history of what it
-// accepted, every row whole.
+// Each row is one write (output/output_file.hpp), so a run that fails or is killed keeps the history of what
+// it accepted, every row whole.
 #include <algorithm>
 #include <map>
 #include <set>
@@ -34,9 +34,9 @@
 
 #include "gapfe/core/error.hpp"
 #include "gapfe/core/text.hpp"
-#include "gapfe/io/deck_scene.hpp"
-#include "gapfe/io/output_file.hpp"
-#include "gapfe/io/vtu_writer.hpp"
+#include "gapfe/input/deck_scene.hpp"
+#include "gapfe/output/output_file.hpp"
+#include "gapfe/output/vtu_writer.hpp"
 #include "gapfe/problem/results.hpp"
 
 namespace gapfe {

@@ -1,9 +1,9 @@
 #pragma once
-// The scene file (issue 16): a model in TOML, by name instead of by card column, on a Gmsh mesh or on the
-// seed's I-J grid. It says what a deck says (io/deck.hpp): materials by surface, conditions and loads by
+// The scene file: a model in TOML, by name instead of by card column, on a Gmsh mesh or on the
+// seed's I-J grid. It says what a deck says (input/deck.hpp): materials by surface, conditions and loads by
 // curve or surface, load steps and their histories, temperatures, inertia, the rate card, contact between
 // two facing curves, and the deck options. read_scene turns it into the Deck and DeckScene a deck becomes,
-// so everything after it (run/deck_run.hpp, the command, io/deck_output.hpp) is one path for decks and
+// so everything after it (run/deck_run.hpp, the command, output/step_files.hpp) is one path for decks and
 // scenes, and one model given both ways gives the same answers.
 //
 // Needs toml++ (Debian's libtomlplusplus-dev; CMake target gapfe::scene), so gapfe.hpp does not include
@@ -12,8 +12,8 @@
 //   title = "..."
 //   [mesh]        file = "part.msh" (relative to the scene file; physical groups name its parts), or
 //                 grid = [MAXI, MAXJ] with [[mesh.segments]] type, points = [[I, J, r, z], ...], centre and
-//                 [mesh.groups] NAME = {i = [I1, I2], j = [J1, J2]} (io/scene_mesh.hpp)
-//   [options]     any deck option (io/deck_options.hpp) except format, which the scene implies
+//                 [mesh.groups] NAME = {i = [I1, I2], j = [J1, J2]} (input/scene_mesh.hpp)
+//   [options]     any deck option (input/deck_options.hpp) except format, which the scene implies
 //   [steps]       count = N (load steps, default 1); time = dt (a step's duration, with [rate])
 //   [materials.NAME]  surfaces = [...] (default [NAME]); number = k (its number in the output, default
 //                 its place in the file's sorted names); E, nu, G, alpha as one number (isotropic) or
@@ -64,13 +64,14 @@
 
 #include "gapfe/contact/facing_faces.hpp"
 #include "gapfe/contact/gap_pairs.hpp"
-#include "gapfe/io/deck.hpp"
-#include "gapfe/io/deck_scene.hpp"
-#include "gapfe/io/input_file.hpp"
-#include "gapfe/io/scene_mesh.hpp"
-#include "gapfe/io/scene_table.hpp"
+#include "gapfe/input/deck.hpp"
+#include "gapfe/input/deck_scene.hpp"
+#include "gapfe/input/gmsh_reader.hpp"
+#include "gapfe/input/input_file.hpp"
+#include "gapfe/input/scene_materials.hpp"
+#include "gapfe/input/scene_mesh.hpp"
+#include "gapfe/input/scene_table.hpp"
 #include "gapfe/material/orientation.hpp"
-#include "gapfe/mesh/gmsh_reader.hpp"
 
 namespace gapfe {
 
@@ -78,98 +79,6 @@ namespace gapfe {
 using SceneMeshLoader = std::function<std::string(const std::string& name)>;
 
 namespace detail {
-
-/// One elastic row from a table holding E, nu and optionally G and alpha, each one number (isotropic) or
-/// three (N, S, T).
-inline ElasticConstants scene_elastic_row(const SceneTable& t, double temperature) {
-  const char* three = "a number or three (N, S, T)";
-  const auto E      = t.numbers("E", 3, three);
-  const auto nu     = t.numbers("nu", 3, three);
-  ElasticConstants c;
-  c.temperature = temperature;
-  c.E_N = E[0], c.E_S = E[1], c.E_T = E[2];
-  c.nu_NS = nu[0], c.nu_NT = nu[1], c.nu_ST = nu[2];
-  if (t.has("G")) {
-    const auto G = t.numbers("G", 3, three);
-    c.G_NS = G[0], c.G_ST = G[1], c.G_TN = G[2];
-  } else if (E[0] == E[1] && E[1] == E[2] && nu[0] == nu[1] && nu[1] == nu[2]) {
-    c.G_NS = c.G_ST = c.G_TN = ElasticConstants::isotropic(E[0], nu[0]).G_NS;
-  } else {
-    throw InputError("scene: " + t.where() + " needs " + t.where("G") +
-                     ": an orthotropic material (three E or nu) gives its shear moduli");
-  }
-  if (t.has("alpha")) {
-    const auto a = t.numbers("alpha", 3, three);
-    c.alpha_N = a[0], c.alpha_S = a[1], c.alpha_T = a[2];
-  }
-  try {
-    c.validate("");
-  } catch (const InputError& e) {
-    throw InputError("scene: " + t.where() + e.what());
-  }
-  return c;
-}
-
-/// [materials.NAME]: the deck material (its table and yield card) and its surfaces and orientation.
-struct SceneMaterial {
-  std::string name;
-  DeckMaterial deck;
-  std::vector<std::string> surfaces;
-  double beta_deg = 0, helix_deg = 0;
-  bool has_number = false;
-};
-
-inline SceneMaterial scene_material(const std::string& name, const SceneTable& t) {
-  SceneMaterial m;
-  m.name     = name;
-  m.surfaces = t.names("surfaces", std::vector<std::string>{name});
-  if (t.has("number")) {
-    const double k = t.number("number");
-    if (!(k >= 1 && k <= 1e6 && k == std::floor(k))) t.fail("number", "a whole number from 1 to 1000000");
-    m.deck.id = static_cast<int>(k), m.has_number = true;
-  }
-  m.deck.ref           = {"[materials." + name + "]", SceneTable::line(t.raw())};
-  m.deck.table.density = t.number("density", 0.0);
-  if (m.deck.table.density < 0) t.fail("density", "a number >= 0");
-  const std::string thermal = t.text("thermal", std::string("coefficients"));
-  if (thermal != "coefficients" && thermal != "free-strain")
-    t.fail("thermal", "\"coefficients\" or \"free-strain\"");
-  m.deck.table.thermal = thermal == "free-strain" ? ThermalInput::free_strain : ThermalInput::coefficients;
-  m.beta_deg           = t.number("beta", 0.0);
-  m.helix_deg          = t.number("helix", 0.0);
-  if (t.has("rows")) {
-    if (t.has("E") || t.has("nu") || t.has("G") || t.has("alpha"))
-      throw InputError("scene: " + t.where() + ": give the constants either in [[" + t.path() +
-                       ".rows]] (a temperature table) or directly, not both");
-    for (const SceneTable& row : t.tables("rows", {"temperature", "E", "nu", "G", "alpha"})) {
-      const double T = row.number("temperature");
-      if (!m.deck.table.rows.empty() && !(T > m.deck.table.rows.back().temperature))
-        row.fail("temperature", "a temperature above the row before's (rows in increasing temperature)");
-      m.deck.table.rows.push_back(scene_elastic_row(row, T));
-    }
-  } else {
-    m.deck.table.rows.push_back(scene_elastic_row(t, 0.0));
-  }
-  if (t.has("yield") || t.has("hardening")) {
-    YieldCard card;
-    if (const toml::node* y = t.get("yield"); y && SceneTable::as_number(*y)) {
-      const double Y = t.positive("yield");  // Mises: shear yield Y / sqrt(3)
-      card.yield     = {Y, Y, Y, Y / std::sqrt(3.0), Y / std::sqrt(3.0), Y / std::sqrt(3.0)};
-    } else {
-      const auto v = t.numbers("yield", 6, "one yield stress (Mises) or six [N, S, T, NS, NT, TS], all > 0");
-      for (int k = 0; k < 6; ++k) {
-        if (!(v[k] > 0)) t.fail("yield", "one yield stress (Mises) or six [N, S, T, NS, NT, TS], all > 0");
-        card.yield[k] = v[k];
-      }
-    }
-    card.hardening = t.number("hardening", 0.0);
-    card.blank     = false;
-    m.deck.yield   = card;
-  } else {
-    m.deck.yield = YieldCard{};  // blank: elastic (a scene is read in a format with yield cards)
-  }
-  return m;
-}
 
 /// Builds a SceneModel from a scene's tables, one member per table, in the order their data depend on each
 /// other: options and steps, the mesh and its cells, materials, conditions, loads, temperature, contact.
@@ -281,7 +190,7 @@ class SceneBuilder {
       throw InputError("scene: [rate] has b != 0, so a load step's duration matters: give key 'steps.time'");
   }
 
-  /// [mesh]: a Gmsh file, or the I-J generator's grid, segments and groups (io/scene_mesh.hpp).
+  /// [mesh]: a Gmsh file, or the I-J generator's grid, segments and groups (input/scene_mesh.hpp).
   void mesh(const SceneMeshLoader& load_mesh) {
     const auto table = top_.table("mesh", {"file", "grid", "segments", "groups"});
     if (!table)
@@ -414,210 +323,20 @@ class SceneBuilder {
 
   /// [[boundary]]: a condition on every node of the groups; values are totals, so each step adds 1 / N,
   /// unless an amplitude gives their history.
-  void boundary() {
-    DeckScene& s                          = model_.scene;
-    const std::array<const char*, 3> dirs = {"r", "z", "theta"};
-    for (const SceneTable& b :
-         top_.tables("boundary", {"groups", "fix", "displacement", "force", "amplitude"})) {
-      const int history  = amplitude(b);
-      const double steps = history < 0 ? model_.deck.control.nlinc : 1.0;
-      int code = 0, given = 0;  // prescribed displacements (seed Data 5's code bits); directions given
-      std::array<double, 3> value{};
-      if (b.has("fix"))
-        for (const std::string& c : b.names("fix")) {
-          const auto k = std::find(dirs.begin(), dirs.end(), c) - dirs.begin();
-          if (k == 3) b.fail("fix", "directions among \"r\", \"z\", \"theta\"");
-          code |= 1 << k, given |= 1 << k;
-        }
-      for (const char* kind : {"displacement", "force"})
-        if (const auto v = b.table(kind, {"r", "z", "theta"}))
-          for (int k = 0; k < 3; ++k)
-            if (v->has(dirs[k])) {
-              if ((given >> k) & 1)
-                v->fail(dirs[k], std::string("one condition per direction (") + dirs[k] + " is given twice)");
-              given |= 1 << k;
-              code |= std::string_view(kind) == "displacement" ? 1 << k : 0;
-              value[k] = v->number(dirs[k]) / steps;
-            }
-      if (given == 0)
-        throw InputError("scene: " + b.where() + ": a [[boundary]] needs fix, displacement or force");
-      const std::vector<std::string> groups = b.names("groups");
-      const int card                        = static_cast<int>(s.condition_cards.size());
-      s.condition_cards.emplace_back();
-      for (const std::string& name : groups) {
-        s.condition_cards.back() += (s.condition_cards.back().empty() ? "" : "+") + name;
-        for (const int n : in_group(b, "groups", [&](const SceneMesh& g) { return g.nodes(name); })) {
-          s.conditions.push_back({n, code, value, given});
-          s.condition_amplitude.push_back(history);
-          s.condition_card.push_back(card);
-        }
-      }
-      if (value[2] != 0)
-        s.needs.theta.push_back(std::string("a theta ") + ((code & 4) ? "displacement" : "force") + " in " +
-                                b.where());
-    }
-  }
+  void boundary();
 
   /// [[load]] on curves as the deck's edge cards (Data 13-15), each edge from M to N with its cell on the
   /// left; [inertia] as the first block's inertia card. Both repeat every step (INCI = INCF = 0), or follow
   /// their amplitude.
-  void loads() {
-    Deck& d         = model_.deck;
-    const IJGrid& g = model_.scene.grid;
-    std::set<std::pair<int, int>> ccw;  // every cell side, counterclockwise
-    for (const auto& c : g.cells)
-      for (int k = 0; k < c.corners; ++k) ccw.insert({c.node[k], c.node[(k + 1) % c.corners]});
-    LoadBlock block;
-    const std::array<const char*, 3> kinds = {"pressure", "shear", "transverse_shear"};
-    for (const SceneTable& l :
-         top_.tables("load", {"curves", "pressure", "shear", "transverse_shear", "amplitude"})) {
-      const int history  = amplitude(l);
-      const double steps = history < 0 ? d.control.nlinc : 1.0;
-      std::array<std::optional<double>, 3> value;
-      for (int k = 0; k < 3; ++k)
-        if (l.has(kinds[k])) value[k] = l.number(kinds[k]) / steps;
-      if (!value[0] && !value[1] && !value[2])
-        throw InputError("scene: " + l.where() + ": a [[load]] needs pressure, shear or transverse_shear");
-      const CardRef ref{"scene key '" + l.path() + ".curves'",
-                        l.has("curves") ? SceneTable::line(*l.get("curves")) : 0};
-      // Each edge once per [[load]]: a curve named twice, or two curves that share an edge, would load it
-      // twice.
-      std::map<std::pair<int, int>, std::string> loaded;  // edge (sorted nodes) -> the curve that loads it
-      const std::vector<std::string> curves = l.names("curves");
-      for (std::size_t k = 0; k < curves.size(); ++k)
-        if (std::find(curves.begin(), curves.begin() + static_cast<std::ptrdiff_t>(k), curves[k]) !=
-            curves.begin() + static_cast<std::ptrdiff_t>(k))
-          throw InputError("scene: " + l.where("curves") + ": the curve \"" + curves[k] +
-                           "\" is listed twice (its edges would be loaded twice)");
-      for (const std::string& name : curves)
-        for (const SceneEdge& e :
-             in_group(l, "curves", [&](const SceneMesh& groups) { return groups.curve_edges(name); })) {
-          int m = e.m, n = e.n;
-          const std::string& edge = e.where;
-          if (const auto [at, fresh] = loaded.emplace(std::minmax(m, n), name); !fresh)
-            throw InputError("scene: " + l.where("curves") + ": the curves \"" + at->second + "\" and \"" +
-                             name + "\" share " + edge +
-                             ": a [[load]] loads each edge once (name it in one curve, or "
-                             "give the two their own [[load]] tables to load it twice)");
-          const bool forward  = m >= 0 && n >= 0 && ccw.count({m, n}),
-                     backward = m >= 0 && n >= 0 && ccw.count({n, m});
-          if (!forward && !backward)
-            throw InputError("scene: " + l.where("curves") + ": " + edge + " is not a side of a cell");
-          if (forward && backward)
-            throw InputError("scene: " + l.where("curves") + ": " + edge +
-                             " lies between two cells; a surface load acts on the boundary");
-          if (backward) std::swap(m, n);
-          for (int k = 0; k < 3; ++k)
-            if (value[k])
-              (k == 0   ? block.pressure
-               : k == 1 ? block.shear
-                        : block.transverse_shear)
-                  .push_back({m + 1, n + 1, *value[k], ref, history});
-        }
-    }
-    d.control.numpc = static_cast<int>(block.pressure.size());
-    d.control.numsc = static_cast<int>(block.shear.size());
-    d.control.numst = static_cast<int>(block.transverse_shear.size());
-    if (const auto in = top_.table(
-            "inertia", {"axial_acceleration", "angular_velocity", "angular_acceleration", "amplitude"})) {
-      block.inertia_amplitude = amplitude(*in);
-      const double steps      = block.inertia_amplitude < 0 ? d.control.nlinc : 1.0;
-      block.inertia           = InertiaLoad{in->number("axial_acceleration", 0.0) / steps,
-                                  in->number("angular_velocity", 0.0) / steps,
-                                  in->number("angular_acceleration", 0.0) / steps};
-      d.control.inert         = 1;
-    }
-    d.control.inci = d.control.incf = 0;
-    d.blocks_read.push_back(std::move(block));
-  }
+  void loads();
 
   /// [temperature]: the reference, and one value (card 9's constant form) or (r, z, T) points; the field
   /// acts from the end of the first step on (a deck's reading) unless an amplitude gives its history.
-  void temperature() {
-    Deck& d      = model_.deck;
-    const auto t = top_.table("temperature", {"reference", "value", "points", "amplitude"});
-    if (!t) return;
-    d.control.tref          = t->number("reference", 0.0);
-    d.temperature_amplitude = amplitude(*t);
-    if (t->has("value") && t->has("points"))
-      throw InputError("scene: " + t->where() + ": give value (one temperature) or points, not both");
-    if (t->has("value")) {
-      d.constant_temperature = t->number("value"), d.control.numtc = -2;
-      return;
-    }
-    const toml::node* p = t->get("points");
-    if (!p) return;
-    d.temperature_where  = "scene: " + t->where("points") + ", point";
-    const toml::array* a = p->as_array();
-    if (!a || a->empty()) t->fail("points", "an array of [r, z, T] points");
-    for (const toml::node& e : *a) {
-      const toml::array* q = e.as_array();
-      std::array<double, 3> v{};
-      for (int k = 0; k < 3; ++k) {
-        const auto x = q && q->size() == 3 ? SceneTable::as_number(*q->get(k)) : std::nullopt;
-        if (!x || !std::isfinite(*x)) t->fail("points", "an array of [r, z, T] points");
-        v[k] = *x;
-      }
-      d.temperature_points.push_back({v[0], v[1], v[2]});
-    }
-    d.control.numtc = static_cast<int>(d.temperature_points.size());
-  }
+  void temperature();
 
   /// [[contact]]: gap elements between facing curves (contact/facing_faces.hpp); a soft surface's cells
   /// are the gap elements they bridge, soft while open (a deck's material 2), or soft throughout.
-  void contact() {
-    DeckScene& s            = model_.scene;
-    const std::size_t cells = s.grid.cells.size();
-    std::vector<char> soft(cells, 0);  // 1: a soft cell, 2: one that bridges the faces
-    for (const SceneTable& c : contact_tables()) {
-      const std::vector<std::string> faces = c.names("faces");
-      if (faces.size() != 2 || faces[0] == faces[1])
-        c.fail("faces", "two different curve groups [\"A\", \"B\"]");
-      std::array<std::vector<std::array<int, 2>>, 2> edges;
-      for (int f = 0; f < 2; ++f)
-        for (const SceneEdge& e :
-             in_group(c, "faces", [&](const SceneMesh& g) { return g.curve_edges(faces[f]); })) {
-          const int m = e.m, n = e.n;
-          if (m < 0 || n < 0)
-            throw InputError("scene: " + c.where("faces") + ": curve \"" + faces[f] +
-                             "\" has a node no cell uses");
-          edges[f].push_back({m, n});
-        }
-      std::map<std::array<int, 4>, int> soft_by_corners;  // sorted corners -> cell
-      if (c.has("soft")) {
-        const std::string name = c.text("soft");
-        for (const int e : in_group(c, "soft", [&](const SceneMesh& g) { return g.surface_cells(name); })) {
-          if (s.gap_material >= 0 && s.gap_material != tag(e).material)
-            c.fail("soft", "the soft cells of every contact in one material");
-          s.gap_material             = tag(e).material;
-          soft[e]                    = std::max<char>(soft[e], 1);
-          std::array<int, 4> corners = s.grid.cells[e].node;
-          if (s.grid.cells[e].corners == 4)
-            std::sort(corners.begin(), corners.end()), soft_by_corners[corners] = e;
-        }
-      }
-      std::vector<std::array<int, 4>> elements;
-      try {
-        elements = facing_gap_elements(s.grid.nodes, edges[0], edges[1], faces[0], faces[1], mesh_->labels());
-      } catch (const InputError& e) {
-        throw InputError("scene: " + c.where("faces") + ": " + e.what());
-      }
-      for (const auto& ix : elements) {
-        std::array<int, 4> corners = ix;
-        std::sort(corners.begin(), corners.end());
-        const auto cell = soft_by_corners.find(corners);
-        const int element =
-            cell != soft_by_corners.end() ? cell->second : static_cast<int>(cells + s.gaps.pairs.size() / 2);
-        if (cell != soft_by_corners.end()) soft[cell->second] = 2;
-        const auto pairs = gap_element_pairs(element, ix, 1, s.grid.nodes);
-        s.gaps.pairs.insert(s.gaps.pairs.end(), pairs.begin(), pairs.end());
-      }
-      s.needs.gaps.push_back("contact between \"" + faces[0] + "\" and \"" + faces[1] + "\" (" +
-                             c.where("faces") + ")");
-    }
-    for (std::size_t e = 0; e < cells; ++e)
-      if (soft[e] == 1) s.gaps.soft.push_back(static_cast<int>(e));
-  }
+  void contact();
 
   const SceneTable& top_;
   DeckLimits limits_;
@@ -632,7 +351,7 @@ class SceneBuilder {
 
 /// Read a scene file's text; `load_mesh` reads the mesh it names (read_scene_file: a file beside the
 /// scene). `overrides` are option settings (the command's --set) applied after the scene's [options];
-/// `limits` bound the grid and the load steps as a deck's (io/deck_cards.hpp).
+/// `limits` bound the grid and the load steps as a deck's (input/deck_cards.hpp).
 inline SceneModel read_scene(std::string_view text, const SceneMeshLoader& load_mesh,
                              const std::vector<std::pair<std::string, std::string>>& overrides = {},
                              const DeckLimits& limits                                          = {}) {
@@ -661,3 +380,6 @@ inline SceneModel read_scene_file(const std::string& path,
 }
 
 }  // namespace gapfe
+
+// Out-of-class members of SceneBuilder.
+#include "gapfe/input/scene_loads.hpp"  // IWYU pragma: export

@@ -1,7 +1,7 @@
 #pragma once
 // One part of a Problem partitioned over several processes (core/subdomain.hpp), made from the whole
 // Problem that every process builds (the deck and its mesh are read everywhere): the part's cells and nodes
-// (mesh/partition.hpp), the materials, and the loads and conditions that fall on it, renumbered.
+// (mesh/cell_partition.hpp), the materials, and the loads and conditions that fall on it, renumbered.
 //
 // Bad input must fail the same way on every process: a part that threw alone would leave the others waiting
 // in their next collective call. So the whole problem is checked here before it is cut (the checks a part's
@@ -24,7 +24,7 @@
 #include "gapfe/assembly/edge_index.hpp"
 #include "gapfe/assembly/problem_check.hpp"
 #include "gapfe/contact/gap_pairs.hpp"
-#include "gapfe/mesh/partition.hpp"
+#include "gapfe/mesh/cell_partition.hpp"
 #include "gapfe/problem/problem.hpp"
 
 namespace gapfe {

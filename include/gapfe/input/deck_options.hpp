@@ -1,7 +1,7 @@
 #pragma once
 // Deck extensions: the options the seed's input lacks, set by lines `$ key = value` before the first card
 // or from the command line (gapfe --set key=value), so legacy decks stay untouched. Each key's values and
-// default are documented at its field; io/deck_reader.hpp reads them.
+// default are documented at its field; input/deck_reader.hpp reads them.
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -75,7 +75,7 @@ struct DeckOptions {
   double time_tolerance = 1e-3;
   /// fields = legacy | wide (issue 16): wide widens the two fields that cap a deck's size, the line
   /// segment cards' grid indices (I3, at most 999) and the edge load cards' node numbers (I5, at most
-  /// 99,999); every other card keeps its columns (CardLayout, io/deck_reader.hpp).
+  /// 99,999); every other card keeps its columns (CardLayout, input/deck_reader.hpp).
   bool wide_fields = false;
   /// units = LENGTH,FORCE,STRESS (e.g. mm,N,MPa): names for the pictures' labels (issue 17); gapfe never
   /// converts units, so this only says which consistent set the deck uses. Empty: generic names.

@@ -2,7 +2,7 @@
 // From a read Deck to what an analysis needs: the I-J grid and its mesh with material tags, the
 // boundary conditions on nodes, the temperature field, the edge loads checked against the mesh, and which
 // model features the deck requires (so the runner picks the smallest variant). Everything that refers to
-// the mesh is checked here and reported with its card and line; io/step_loads.hpp turns the scene's cards
+// the mesh is checked here and reported with its card and line; run/step_loads.hpp turns the scene's cards
 // into the loads in force after each step.
 //
 // Readings (README deck section): a BC card applies to the grid points in [I1, I2] x [J1, J2]; a
@@ -15,7 +15,8 @@
 #include <vector>
 
 #include "gapfe/contact/gap_pairs.hpp"
-#include "gapfe/io/deck.hpp"
+#include "gapfe/input/deck.hpp"
+#include "gapfe/input/grid_gaps.hpp"
 #include "gapfe/mesh/ij_grid.hpp"
 #include "gapfe/mesh/temperature.hpp"
 
@@ -82,7 +83,7 @@ struct DeckScene {
 };
 
 /// A model as read: a card deck with its scene (build_scene), or the deck and scene a scene file stands for
-/// (io/scene_file.hpp), which everything after reading takes alike.
+/// (input/scene_file.hpp), which everything after reading takes alike.
 struct SceneModel {
   Deck deck;
   DeckScene scene;

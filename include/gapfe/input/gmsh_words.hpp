@@ -1,5 +1,5 @@
 #pragma once
-// The words of a Gmsh MSH file (mesh/gmsh_reader.hpp reads them): the element types gapfe keeps, and a
+// The words of a Gmsh MSH file (input/gmsh_reader.hpp reads them): the element types gapfe keeps, and a
 // tokenizer that knows the line it is on, so that every error names the line and the section.
 #include <cctype>
 #include <cmath>

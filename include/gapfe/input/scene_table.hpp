@@ -1,6 +1,7 @@
 #pragma once
-// Typed reading of a scene file's TOML tables (io/scene_file.hpp) through toml++: every table checks that it
-// holds only the keys it knows, and every value read names its key path and line when it is missing or wrong
+// Typed reading of a scene file's TOML tables (input/scene_file.hpp) through toml++: every table checks that
+// it holds only the keys it knows, and every value read names its key path and line when it is missing or
+// wrong
 // ("scene: key 'materials.steel.E' (line 6): expected a number or three (N, S, T), got \"big\"").
 #include <algorithm>
 #include <cmath>

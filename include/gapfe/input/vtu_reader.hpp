@@ -1,6 +1,6 @@
 #pragma once
-// Reading back what io/vtu_writer.hpp writes, for `gapfe plot` (the pictures of a finished run): a VTK XML
-// UnstructuredGrid (.vtu) with inline arrays, `binary` (base64 of a UInt32 or UInt64 byte count and the
+// Reading back what output/vtu_writer.hpp writes, for `gapfe plot` (the pictures of a finished run): a VTK
+// XML UnstructuredGrid (.vtu) with inline arrays, `binary` (base64 of a UInt32 or UInt64 byte count and the
 // little-endian values, uncompressed) or `ascii`, and a ParaView collection (.pvd). Not a general VTK reader:
 // appended data and compressed arrays are refused by name. tests/check_output.py reads the same files with
 // meshio (a reader independent of this one) and compares them with the CSV tables.
@@ -18,26 +18,9 @@
 
 #include "gapfe/core/error.hpp"
 #include "gapfe/core/types.hpp"
-#include "gapfe/io/vtu_writer.hpp"
+#include "gapfe/problem/field_arrays.hpp"
 
 namespace gapfe {
-
-/// A VTU file's mesh and arrays: points (x, y) = (r, z), each cell's nodes, point and cell arrays.
-struct VtuData {
-  std::vector<Vec2> points;
-  std::vector<std::vector<int>> cells;
-  std::vector<VtuField> point_data, cell_data;
-
-  const VtuField* point(const std::string& name) const { return find(point_data, name); }
-  const VtuField* cell(const std::string& name) const { return find(cell_data, name); }
-
- private:
-  static const VtuField* find(const std::vector<VtuField>& fields, const std::string& name) {
-    for (const auto& f : fields)
-      if (f.name == name) return &f;
-    return nullptr;
-  }
-};
 
 namespace detail {
 

@@ -4,7 +4,7 @@
 // UInt32 byte count and the little-endian values): exact doubles, and several times faster to write
 // than text, which matters when every contact increment writes a file.
 //
-// Files are written whole through write_file_atomically (io/output_file.hpp), so an interrupted run never
+// Files are written whole through write_file_atomically (output/output_file.hpp), so an interrupted run never
 // leaves a half-written file under the final name.
 #include <bit>
 #include <charconv>
@@ -15,19 +15,12 @@
 #include <vector>
 
 #include "gapfe/core/error.hpp"
-#include "gapfe/io/output_file.hpp"
 #include "gapfe/mesh/mesh.hpp"
+#include "gapfe/output/output_file.hpp"
+#include "gapfe/problem/field_arrays.hpp"
 #include "gapfe/problem/results.hpp"
 
 namespace gapfe {
-
-/// A point or cell array: `components` values per point or cell, row after row.
-struct VtuField {
-  std::string name;
-  int components = 1;
-  std::vector<double> values;
-  bool integer = false;  ///< written as Int32 (material ids, status codes)
-};
 
 /// Cells as VTK wants them: VTK types 5 (triangle), 9 (quad), 23 (quad8).
 struct VtuCells {

@@ -1,7 +1,7 @@
 #pragma once
 // One run per output folder. A run's files are a fixed family of names (run_file: the tables, gaps.csv,
 // history.csv, plasticity.csv, result.pvd and step_*.vtu, deformed.svg, the pictures plot_* and curve_*,
-// and the temporaries of io/output_file.hpp), and a run starts by writing a manifest, gapfe-run.txt,
+// and the temporaries of output/output_file.hpp), and a run starts by writing a manifest, gapfe-run.txt,
 // which says the folder is a run's and how the run went (running; complete; stopped, and why: a run
 // killed leaves "running"). Before a run writes anything:
 //   - a folder with a manifest held the last run: every file of the family is removed (a link is removed,
@@ -20,8 +20,8 @@
 
 #include "gapfe/core/error.hpp"
 #include "gapfe/core/text.hpp"
-#include "gapfe/io/input_file.hpp"
-#include "gapfe/io/output_file.hpp"
+#include "gapfe/input/input_file.hpp"
+#include "gapfe/output/output_file.hpp"
 
 namespace gapfe {
 

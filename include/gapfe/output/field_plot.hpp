@@ -1,10 +1,10 @@
 #pragma once
 // Pictures an analyst reads at a glance (issue 17): the deformed section coloured by a field, with a colour
 // bar, r and z axes in the run's units and the magnification stated (write_field_svg), and a curve of one
-// history.csv column against another (write_curve_svg). Both are SVG through io/svg_canvas.hpp; the command
-// also rasterizes them to PNG when rsvg-convert is installed.
+// history.csv column against another (write_curve_svg). Both are SVG through output/svg_canvas.hpp; the
+// command also rasterizes them to PNG when rsvg-convert is installed.
 //
-// Fields (plot_field), from the arrays of a VTU file (io/vtu_writer.hpp, io/vtu_reader.hpp):
+// Fields (plot_field), from the arrays of a VTU file (output/vtu_writer.hpp, input/vtu_reader.hpp):
 //   nodal   u (|u|, all components), u_r, u_z, u_t                                         [length]
 //   cells   s_rr, s_zz, s_tt, s_rz, s_rt, s_zt, mises (von Mises, core/types.hpp)           [stress]
 //           eqps (equivalent plastic strain) [-], gap_state (0 structural, -1 soft throughout, 1-4 the seed's
@@ -23,8 +23,8 @@
 
 #include "gapfe/core/error.hpp"
 #include "gapfe/core/types.hpp"
-#include "gapfe/io/svg_canvas.hpp"
-#include "gapfe/io/vtu_reader.hpp"
+#include "gapfe/input/vtu_reader.hpp"
+#include "gapfe/output/svg_canvas.hpp"
 
 namespace gapfe {
 

@@ -1,13 +1,13 @@
 #pragma once
 // The seed's card deck (BRL-CR-670 Appendix A, cards 0-15) as data: one struct per card kind, named
-// after the card (Data N), and the Deck that holds them. io/deck_reader.hpp fills it.
+// after the card (Data N), and the Deck that holds them. input/deck_reader.hpp fills it.
 #include <array>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "gapfe/io/deck_options.hpp"
+#include "gapfe/input/deck_options.hpp"
 #include "gapfe/material/elastic.hpp"
 #include "gapfe/mesh/ij_grid.hpp"
 #include "gapfe/mesh/temperature.hpp"
@@ -65,7 +65,7 @@ struct DeckMaterial {  // Data 10 (+ 11)
 /// A load history, which a scene file can give (issue 16) and a deck cannot: the factor on a load's value at
 /// the end of each load step, linear between (step, factor) points at whole steps, 0 at step 0 unless a
 /// point says otherwise, and the last point's factor after it. Within a step the load moves linearly, as
-/// every load does (io/deck_scene.hpp, interpolate).
+/// every load does (input/deck_scene.hpp, interpolate).
 struct Amplitude {
   std::vector<std::pair<int, double>> points;  ///< (step, factor), steps increasing, from 0
 

@@ -1,106 +1,19 @@
 #pragma once
-// The card-deck reader: the deck's text to a Deck (io/deck_cards.hpp). It only parses: it checks each
-// card's columns, counts and value ranges that need no mesh; io/deck_scene.hpp builds the mesh and checks
-// what refers to it (node numbers, edges, material numbers). The readings of what the seed leaves open
-// are listed in io/deck.hpp.
-#include <sstream>
+// The card-deck reader's card groups, in the deck's order (BRL-CR-670 Appendix A): each reads its cards
+// from DeckLines (input/deck_lines.hpp) into the Deck, checking columns, counts and ranges.
 #include <string>
-#include <string_view>
+#include <utility>
 #include <vector>
 
-#include "gapfe/io/deck_cards.hpp"
-#include "gapfe/io/fixed_format.hpp"
+#include "gapfe/input/deck_cards.hpp"
+#include "gapfe/input/deck_lines.hpp"
+#include "gapfe/input/fixed_format.hpp"
 
-namespace gapfe {
+namespace gapfe::detail {
 
-namespace detail {
-
-class DeckLines {
- public:
-  explicit DeckLines(std::string_view text) {
-    std::size_t start = 0;
-    while (start < text.size()) {
-      std::size_t end = text.find('\n', start);
-      if (end == std::string_view::npos) end = text.size();
-      lines_.push_back(text.substr(start, end - start));
-      start = end + 1;
-    }
-  }
-  bool done() const { return next_ >= lines_.size(); }
-  int line_number() const { return static_cast<int>(next_) + 1; }
-  std::string_view peek() const { return lines_[next_]; }
-  void skip() { ++next_; }
-  /// The next card image, or an error that names the card the deck still owed.
-  CardImage take(const std::string& card) {
-    if (done())
-      throw InputError(card + ": the deck ends after line " + std::to_string(lines_.size()) +
-                       "; a count on the control cards asks for more cards than the deck has");
-    const std::size_t k = next_++;
-    return CardImage(lines_[k], static_cast<int>(k) + 1, card);
-  }
-  /// After the last card: only blank lines may follow.
-  void expect_end() const {
-    for (std::size_t k = next_; k < lines_.size(); ++k)
-      if (lines_[k].find_first_not_of(" \r") != std::string_view::npos)
-        throw InputError("line " + std::to_string(k + 1) +
-                         ": unexpected card after the last load block; a count on the control cards (NUMPC, "
-                         "NUMSC, NUMST, NLINC, INERT, INCI, INCF, NUMTC, IPLLOT) or the deck format (yield "
-                         "cards: format = saac or elastic) disagrees with the cards");
-  }
-
- private:
-  std::vector<std::string_view> lines_;
-  std::size_t next_ = 0;
-};
-
-inline std::string numbered(const std::string& data, const std::string& what, int k) {
-  return data + " (" + what + " " + std::to_string(k) + ")";
-}
-
-/// The columns of the fields that `fields = wide` widens (DeckOptions::wide_fields). Legacy, as the seed:
-/// line segment cards 3(2I3, 2F8.3), I5 and edge load cards 2I5, F10.0. Wide: line segment cards
-/// 3(2I5, 2F12.3), I5 (grid indices to 99,999 as MAXI and MAXJ on Data 3, coordinates with four more
-/// columns) and edge load cards 2I10, F10.0 (node numbers to 2,147,483,647).
-struct CardLayout {
-  int index_width;       ///< I and J of a segment point
-  int coordinate_width;  ///< R and Z of a segment point (F.3)
-  int node_width;        ///< M and N of an edge load card
-  int point_width() const { return 2 * index_width + 2 * coordinate_width; }
-};
-inline constexpr CardLayout kLegacyCards{3, 8, 5}, kWideCards{5, 12, 10};
-
-/// Minimum I, maximum I, minimum J, maximum J: four I5 fields from column `first` (Data 5 and 6),
-/// within 1..MAXI and 1..MAXJ. A material block must span at least one cell (`spans_cell`: min < max);
-/// a BC rectangle may be a line or a point (min <= max).
-inline void read_index_rectangle(const CardImage& c, int first, const MeshControlCard& m, bool spans_cell,
-                                 int& i1, int& i2, int& j1, int& j2) {
-  i1                     = c.integer(first, first + 4, "minimum I");
-  i2                     = c.integer(first + 5, first + 9, "maximum I");
-  j1                     = c.integer(first + 10, first + 14, "minimum J");
-  j2                     = c.integer(first + 15, first + 19, "maximum J");
-  const char* order      = spans_cell ? " < " : " <= ";
-  const std::string cell = spans_cell ? " (a block spans at least one cell)" : "";
-  if (i1 < 1 || i2 < i1 + spans_cell || i2 > m.max_i)
-    c.reject(first, first + 9, "I range",
-             std::string("needs 1 <= minimum I") + order + "maximum I <= MAXI = " + std::to_string(m.max_i) +
-                 cell);
-  if (j1 < 1 || j2 < j1 + spans_cell || j2 > m.max_j)
-    c.reject(first + 10, first + 19, "J range",
-             std::string("needs 1 <= minimum J") + order + "maximum J <= MAXJ = " + std::to_string(m.max_j) +
-                 cell);
-}
-
-}  // namespace detail
-
-/// Read a deck held in `text` (the string must outlive nothing: all values are copied). `overrides`
-/// are applied after the deck's own `$` lines (the command line wins). Throws InputError naming the
-/// card, the line, the columns and what was expected.
-inline Deck read_deck(std::string_view text,
-                      const std::vector<std::pair<std::string, std::string>>& overrides = {},
-                      const DeckLimits& limits                                          = {}) {
-  Deck d;
-  detail::DeckLines in(text);
-
+/// The extension lines `$ key = value` before the first card, then the command line's `overrides`.
+inline void read_extensions(DeckLines& in, Deck& d,
+                            const std::vector<std::pair<std::string, std::string>>& overrides) {
   // ---- extensions: `$ key = value` lines before the first card
   while (!in.done() && !in.peek().empty() && in.peek().front() == '$') {
     std::string line(in.peek().substr(1));
@@ -120,9 +33,10 @@ inline Deck read_deck(std::string_view text,
     }
   }
   for (const auto& [key, value] : overrides) d.options.set(key, value);
-  const bool plastic_format      = d.options.format != DeckFormat::elastic;
-  const detail::CardLayout& cols = d.options.wide_fields ? detail::kWideCards : detail::kLegacyCards;
+}
 
+/// Data 0-3: the rate property card (SAAC3 only), the title, the control card, the mesh generation control.
+inline void read_head_cards(DeckLines& in, Deck& d, const DeckLimits& limits) {
   // ---- Data 0: rate property card (5E12.6), SAAC3 / SAAC3X only
   if (d.options.format == DeckFormat::saac3) {
     const CardImage c = in.take("DATA NO. 0 (rate property card)");
@@ -135,14 +49,12 @@ inline Deck read_deck(std::string_view text,
     if (!(r.time_step > 0)) c.reject(1, 12, "time increment", "must be > 0");
     d.rate = r;
   }
-
   // ---- Data 1: title (20A4)
   {
     const CardImage c = in.take("DATA NO. 1 (title card)");
     d.title           = c.field(1, 80);
     while (!d.title.empty() && d.title.back() == ' ') d.title.pop_back();
   }
-
   // ---- Data 2: control card (6I5, F5.0, 6I5)
   {
     const CardImage c = in.take("DATA NO. 2 (control card)");
@@ -169,7 +81,6 @@ inline Deck read_deck(std::string_view text,
     if (k.nlinc > limits.max_load_steps) c.reject(41, 45, "NLINC", "exceeds the limit of load steps");
     if (k.inert < 0) c.reject(36, 40, "INERT", "must be 0 (no inertia card) or positive");
   }
-
   // ---- Data 3: mesh generation control (5I5)
   {
     const CardImage c  = in.take("DATA NO. 3 (mesh generation control card)");
@@ -188,11 +99,15 @@ inline Deck read_deck(std::string_view text,
     if (k.nbc < 0) c.reject(16, 20, "NBC", "must be >= 0");
     if (k.nmtl < 1) c.reject(21, 25, "NMTL", "must be >= 1");
   }
+}
 
+/// Data 4-6: line segments, boundary conditions, material blocks.
+inline void read_mesh_cards(DeckLines& in, Deck& d) {
+  const CardLayout& cols = d.options.wide_fields ? kWideCards : kLegacyCards;
   // ---- Data 4: line segment cards (3(2I3, 2F8.3), I5; wide: 3(2I5, 2F12.3), I5)
   const int iw = cols.index_width, cw = cols.coordinate_width, type_at = 3 * cols.point_width() + 1;
   for (int s = 1; s <= d.mesh.nseg; ++s) {
-    const CardImage c = in.take(detail::numbered("DATA NO. 4", "line segment card", s));
+    const CardImage c = in.take(numbered("DATA NO. 4", "line segment card", s));
     Segment seg;
     for (int k = 0; k < 3; ++k) {
       const int o = cols.point_width() * k;
@@ -219,12 +134,11 @@ inline Deck read_deck(std::string_view text,
     d.segments.push_back(seg);
     d.segment_refs.push_back({c.card(), c.line()});
   }
-
   // ---- Data 5: boundary condition cards (4I5, I10, 3F10.0)
   for (int b = 1; b <= d.mesh.nbc; ++b) {
-    const CardImage c = in.take(detail::numbered("DATA NO. 5", "boundary condition card", b));
+    const CardImage c = in.take(numbered("DATA NO. 5", "boundary condition card", b));
     BoundaryCard k;
-    detail::read_index_rectangle(c, 1, d.mesh, false, k.i1, k.i2, k.j1, k.j2);
+    read_index_rectangle(c, 1, d.mesh, false, k.i1, k.i2, k.j1, k.j2);
     k.code  = c.integer(21, 30, "boundary condition code");
     k.value = {c.real(31, 40, 0, "XR"), c.real(41, 50, 0, "XZ"), c.real(51, 60, 0, "XT")};
     if (k.code < 0 || k.code > 7)
@@ -235,13 +149,12 @@ inline Deck read_deck(std::string_view text,
     k.ref = {c.card(), c.line()};
     d.boundary.push_back(k);
   }
-
   // ---- Data 6: material block cards (5I5, 2F10.0, 3I5)
   for (int b = 1; b <= d.mesh.nmtl; ++b) {
-    const CardImage c = in.take(detail::numbered("DATA NO. 6", "material block card", b));
+    const CardImage c = in.take(numbered("DATA NO. 6", "material block card", b));
     MaterialBlockCard k;
     k.material = c.integer(1, 5, "material number");
-    detail::read_index_rectangle(c, 6, d.mesh, true, k.i1, k.i2, k.j1, k.j2);
+    read_index_rectangle(c, 6, d.mesh, true, k.i1, k.i2, k.j1, k.j2);
     k.beta_deg  = c.real(26, 35, 0, "BETA");
     k.alpha_deg = c.real(36, 45, 0, "ALPHA");
     k.iang      = c.integer(46, 50, "IANG");
@@ -254,7 +167,10 @@ inline Deck read_deck(std::string_view text,
     k.ref = {c.card(), c.line()};
     d.blocks.push_back(k);
   }
+}
 
+/// Data 7-9: the plot cards (IPLLOT = 1) and the temperature field.
+inline void read_temperature_cards(DeckLines& in, Deck& d) {
   // ---- Data 7, 8: plot title and plot limits, only with IPLLOT = 1
   if (d.control.iplot == 1) {
     const CardImage t = in.take("DATA NO. 7 (plot title card)");
@@ -264,11 +180,10 @@ inline Deck read_deck(std::string_view text,
     d.plot_rmax       = c.real(1, 10, 0, "RMAX");
     d.plot_zmax       = c.real(11, 20, 0, "ZMAX");
   }
-
   // ---- Data 9: temperature field
   if (d.control.numtc > 0) {
     for (int t = 1; t <= d.control.numtc; ++t) {
-      const CardImage c = in.take(detail::numbered("DATA NO. 9", "temperature card", t));
+      const CardImage c = in.take(numbered("DATA NO. 9", "temperature card", t));
       d.temperature_points.push_back({c.real(1, 10, 0, "R coordinate"), c.real(11, 20, 0, "Z coordinate"),
                                       c.real(21, 30, 0, "temperature")});
     }
@@ -276,11 +191,14 @@ inline Deck read_deck(std::string_view text,
     const CardImage c      = in.take("DATA NO. 9 (constant temperature card)");
     d.constant_temperature = c.real(1, 10, 0, "temperature");
   }
+}
 
+/// Data 10 and 11: each material's property table, and its yield card in the plastic formats.
+inline void read_material_cards(DeckLines& in, Deck& d) {
+  const bool plastic_format = d.options.format != DeckFormat::elastic;
   // ---- Data 10 (+ 11): materials
   for (int m = 1; m <= d.control.nummat; ++m) {
-    const CardImage c =
-        in.take(detail::numbered("DATA NO. 10a", "material identification card of material", m));
+    const CardImage c = in.take(numbered("DATA NO. 10a", "material identification card of material", m));
     DeckMaterial mat;
     mat.id            = c.integer(1, 5, "material identification number");
     const int ntemp   = c.integer(6, 10, "number of temperatures");
@@ -343,7 +261,11 @@ inline Deck read_deck(std::string_view text,
     }
     d.materials.push_back(std::move(mat));
   }
+}
 
+/// Data 12-15: the load blocks, one per load step or the first only (INCI, INCF = 0).
+inline void read_load_cards(DeckLines& in, Deck& d) {
+  const CardLayout& cols = d.options.wide_fields ? kWideCards : kLegacyCards;
   // ---- Data 12-15: load blocks
   const ControlCard& k = d.control;
   for (int s = 1; s <= k.nlinc; ++s) {
@@ -381,8 +303,6 @@ inline Deck read_deck(std::string_view text,
     }
     d.blocks_read.push_back(std::move(block));
   }
-  in.expect_end();
-  return d;
 }
 
-}  // namespace gapfe
+}  // namespace gapfe::detail

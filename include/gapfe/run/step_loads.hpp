@@ -1,5 +1,5 @@
 #pragma once
-// The loads in force after each load step of a deck's scene (io/deck_scene.hpp): the totals of the step
+// The loads in force after each load step of a deck's scene (input/deck_scene.hpp): the totals of the step
 // increments so far, and the loads between two steps (a split step's). The README's deck section gives the
 // readings: each step adds its BC values, inertia increments and surface load increments to the totals of
 // the steps before; a block given once (INCI = 0, INCF = 0) repeats every step; angular velocities add, so
@@ -16,7 +16,7 @@
 #include <tuple>
 #include <vector>
 
-#include "gapfe/io/deck_scene.hpp"
+#include "gapfe/input/deck_scene.hpp"
 
 namespace gapfe {
 

@@ -1,0 +1,74 @@
+#pragma once
+// The pass of a law with history over the cells, Assembler's members defined out of its class (included at
+// the end of assembly/assembler.hpp, never on its own): F_int, the trial history and, for tangent(), K_t
+// and Newton's iteration-0 predictor.
+
+#include "gapfe/assembly/assembler.hpp"
+
+namespace gapfe {
+
+template <class M>
+template <class State>
+void Assembler<M>::history_pass(const Problem<M>& p, const VecX& u, History<State>& points,
+                                std::vector<Vec6>& stress, const StepContext& ctx, double* values,
+                                VecX& internal, const VecX* prescribed_step, VecX* predictor) const {
+  static_assert(ElementKernel<Kin, Elem>::kInner == 0,
+                "laws with history need elements without condensed interior nodes (not LegacyQuad)");
+  if (values) Eigen::Map<VecX>(values, nonzeros_).setZero();
+  internal.setZero(u.size());
+  if (predictor) predictor->setZero(dofs_.free_count);
+  cache_.reset();
+  StepContext point_ctx = ctx;  // a residual pass: the laws may skip their tangents
+  point_ctx.tangent     = values != nullptr;
+  for_each_cell<Elem>(
+      p.mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
+                                            const std::array<int, NPC>& cell, const CellTag& tag) {
+        using Kernel                           = ElementKernel<Kin, E>;
+        const typename Kernel::Points geometry = Kernel::stiffness_points(cell_coords<E>(p.mesh, cell));
+        const auto& lp                         = local(p, tag, cell);
+        const auto mean                        = Kernel::mean_volumetric(geometry);
+        const auto ue                          = gather(cell, u);
+        const std::size_t first                = first_point<E>(e);
+        typename Kernel::Matrix k              = Kernel::Matrix::Zero();
+        typename Kernel::Vector f              = Kernel::Vector::Zero();
+        for (int q = 0; q < E::kStiffnessPoints; ++q) {
+          const auto& g   = geometry[q];
+          const auto b    = Kernel::point_B(g, mean);
+          const auto resp = Law::update(lp, Kernel::extend(b * ue), points.committed(first + q), point_ctx);
+          f.noalias() += g.weight * (b.transpose() * Kernel::restrict(resp.stress));
+          if (values) {  // lazyProduct: see ElementKernel::shape_stiffness
+            const typename Kernel::StrainDisplacement d_b = Kernel::restrict(resp.tangent) * b;
+            k.noalias() += g.weight * b.transpose().lazyProduct(d_b);
+          }
+          points.trial(first + q) = resp.state;
+          stress[first + q]       = resp.stress;
+        }
+        add_to(cell, f, internal);
+        if (!values) return;
+        scatter<kStorage>(values, offsets<E>(e), k);
+        if (prescribed_step) add_predictor(cell, k, *prescribed_step, *predictor);
+      });
+  add_link_forces(u, internal);
+  if (!values) return;
+  constexpr int n = 2 * kNd;
+  for (std::size_t l = 0; l < links_.size(); ++l) {
+    if (!assembles_link(l)) continue;
+    const Mat<n, n> k = link_values_[l].template element_stiffness<kNd>();
+    scatter<kStorage>(values, link_offsets_.data() + l * offset_count(n, kStorage), k);
+    if (prescribed_step) add_predictor(links_[l], k, *prescribed_step, *predictor);
+  }
+}
+
+template <class M>
+template <std::size_t NPC, class Matrix>
+void Assembler<M>::add_predictor(const std::array<int, NPC>& nodes, const Matrix& k, const VecX& du_p,
+                                 VecX& predictor) const {
+  const auto step = gather(nodes, du_p);
+  if (step.isZero(0.0)) return;
+  for (int i = 0; i < k.rows(); ++i) {
+    const int eq = dofs_.equation[dofs_.dof(nodes[i / kNd], i % kNd)];
+    if (eq >= 0) predictor(eq) -= k.row(i).dot(step);
+  }
+}
+
+}  // namespace gapfe
