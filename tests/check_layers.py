@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """The library's shape, as docs/architecture.md states it: folders are layers and a header includes only
-from its own layer or those below; no header over 400 lines; no function over 150 lines (a brace count
-over the sources, tests aside); no two headers with one file name; the command's program calls nothing of
-the library's `detail`.
+from its own layer or the layers before it in the table (never gapfe.hpp, never a folder that does not
+exist); no header over 400 lines; no function over 150 lines (a brace count over the sources, tests aside);
+no two headers with one file name; the command's program includes only app/command.hpp of the library and
+names nothing of it but gapfe::app.
 
     python3 tests/check_layers.py SOURCE_DIR"""
 import os
@@ -26,13 +27,15 @@ def function_lengths(lines):
         stripped = lines[i].strip()
         if m and not stripped.startswith(("//", "return", "if", "for", "while", "switch", "else", "#")) \
                 and not lines[i].rstrip().endswith(";") and m.group(2) not in ("class", "struct", "namespace"):
+            def code(n):  # the line without a trailing // comment
+                return lines[n].split("//")[0].rstrip()
             j = i
-            while j < len(lines) and j < i + 8 and not lines[j].rstrip().endswith(("{", ";")):
+            while j < len(lines) and j < i + 8 and not code(j).endswith(("{", ";")):
                 j += 1
-            if j < len(lines) and lines[j].rstrip().endswith("{"):
+            if j < len(lines) and code(j).endswith("{"):
                 depth, k = 0, j
                 while k < len(lines):
-                    depth += lines[k].count("{") - lines[k].count("}")
+                    depth += code(k).count("{") - code(k).count("}")
                     if depth <= 0:
                         break
                     k += 1
@@ -60,9 +63,17 @@ def main():
             if len(lines) - 1 > MAX_HEADER_LINES:
                 problems.append(f"{where}: {len(lines) - 1} lines (at most {MAX_HEADER_LINES})")
             for n, line in enumerate(lines, 1):
-                m = re.match(r'#include "gapfe/(\w+)/', line)
-                if m and m.group(1) in RANK and RANK[m.group(1)] > RANK[folder]:
-                    problems.append(f"{where}:{n}: includes gapfe/{m.group(1)}/ from a layer above {folder}/")
+                m = re.match(r'\s*#\s*include\s*[<"]gapfe/([\w.]+)(/?)', line)
+                if not m:
+                    continue
+                target = m.group(1)
+                if not m.group(2):  # gapfe/gapfe.hpp or gapfe/version.hpp
+                    if target != "version.hpp":
+                        problems.append(f"{where}:{n}: includes gapfe/{target} (the umbrella is for programs)")
+                elif target not in RANK:
+                    problems.append(f"{where}:{n}: includes gapfe/{target}/, a folder in no layer")
+                elif RANK[target] > RANK[folder]:
+                    problems.append(f"{where}:{n}: includes gapfe/{target}/ from a layer above {folder}/")
     for f, where in names.items():
         if len(where) > 1:
             problems.append(f"one file name in two folders: {', '.join(where)}")
@@ -75,9 +86,14 @@ def main():
                         if length > MAX_FUNCTION_LINES:
                             problems.append(f"{os.path.relpath(p, root)}:{line}: {name} is {length} lines "
                                             f"(at most {MAX_FUNCTION_LINES})")
-    main_cpp = os.path.join(root, "examples", "gapfe", "main.cpp")
-    if "detail::" in open(main_cpp).read():
-        problems.append("examples/gapfe/main.cpp calls the library's detail namespace")
+    main_text = open(os.path.join(root, "examples", "gapfe", "main.cpp")).read()
+    for inc in re.findall(r'#\s*include\s*[<"](gapfe/[^>"]+)', main_text):
+        if inc != "gapfe/app/command.hpp":
+            problems.append(f"examples/gapfe/main.cpp includes {inc}: the program sees the library's command only")
+    for name in set(re.findall(r"\bgapfe::(\w+)", main_text)) - {"app"}:
+        problems.append(f"examples/gapfe/main.cpp names gapfe::{name}: the program calls gapfe::app only")
+    if re.search(r"using\s+namespace\s+gapfe|namespace\s+\w+\s*=\s*gapfe", main_text):
+        problems.append("examples/gapfe/main.cpp brings gapfe's names in wholesale")
     for p in problems:
         print(p)
     print(f"{len(problems)} problem(s) in the library's shape")

@@ -58,7 +58,7 @@ inline std::string steel_first_property_card(const char* temperature = "0.") {
 /// The Lame tube of the example deck (thick_tube.deck) on any grid: a = 100 < r < b = 200, plane strain
 /// (u_z = 0 on both ends), pressure p on the bore as NUMPC = nj - 1 pressure cards, E = 200000, nu = 0.3;
 /// node(I, J) = (J - 1) ni + I. `wide`: `$ fields = wide` with the widened line segment cards
-/// 3(2I5, 2F12.3), I5 and pressure cards 2I10, F10.0 (input/deck_reader.hpp, CardLayout); otherwise the
+/// 3(2I5, 2F12.3), I5 and pressure cards 2I10, F10.0 (input/deck_lines.hpp, CardLayout); otherwise the
 /// seed's 3(2I3, 2F8.3), I5 and 2I5, F10.0, whose fields cut an index above 999 or a node above 99,999
 /// short, as a card punch would.
 inline std::string lame_tube_deck(int ni, int nj, bool wide, double p = 100) {

@@ -112,12 +112,12 @@ TEST_CASE("Deck cards 1-6 and 10-13 read from their exact columns") {
   CHECK(d.materials[0].table.thermal == ThermalInput::coefficients);
   CHECK_FALSE(d.materials[0].yield.has_value());  // elastic format: no card 11
   // Card 13: M, N, pressure.
-  REQUIRE(d.blocks_read.size() == 1);
-  REQUIRE(d.blocks_read[0].pressure.size() == 2);
-  CHECK(d.blocks_read[0].pressure[0].node_m == 6);
-  CHECK(d.blocks_read[0].pressure[0].node_n == 1);
-  CHECK(d.blocks_read[0].pressure[0].value == 100.0);
-  CHECK(d.blocks_read[0].pressure[0].ref.line == 15);
+  REQUIRE(d.program.blocks.size() == 1);
+  REQUIRE(d.program.blocks[0].pressure.size() == 2);
+  CHECK(d.program.blocks[0].pressure[0].node_m == 6);
+  CHECK(d.program.blocks[0].pressure[0].node_n == 1);
+  CHECK(d.program.blocks[0].pressure[0].value == 100.0);
+  CHECK(d.program.blocks[0].pressure[0].ref.line == 15);
 }
 
 TEST_CASE("Deck card 0 (SAAC3 rate card) in E12.6 fields, and cards 7-9, 11, 12, 14, 15") {
@@ -178,7 +178,7 @@ TEST_CASE("Deck card 0 (SAAC3 rate card) in E12.6 fields, and cards 7-9, 11, 12,
   CHECK_FALSE(d.materials[0].yield->blank);
   CHECK(d.materials[0].yield->yield[5] == 320.0);
   CHECK(d.materials[0].yield->hardening == 1000.0);
-  REQUIRE(d.blocks_read.size() == 2);
+  REQUIRE(d.program.blocks.size() == 2);
   CHECK(d.inertia(1).axial_acceleration == 9.81);
   CHECK(d.inertia(1).angular_velocity == 100.0);
   CHECK(d.inertia(2).axial_acceleration == 1.0);  // step 2 has its own inertia card (INCI = 1)
@@ -423,7 +423,7 @@ TEST_CASE("deformed.svg of a large mesh: the outline keeps the boundary and the 
   for (const auto& [a, b] : edges) CHECK(a < b);
 }
 
-// ---- Gmsh meshes (issue 16, item 2; input/gmsh_reader.hpp). The files in tests/data were written by meshio
+// ---- Gmsh meshes (input/gmsh_reader.hpp). The files in tests/data were written by meshio
 // (a writer independent of the reader) or, for MSH 4.1 with curve groups, by tests/data/make_meshes.py and
 // read back there with meshio; each holds the tube 100 <= r <= 200, 0 <= z <= 25.
 namespace {

@@ -189,12 +189,27 @@ TEST_CASE("[library] a C++ user's run is the command's: make_plan, check_plan, r
   plastic.scene           = build_scene(plastic.deck);
   const app::Plan refused = app::make_plan(plastic.deck, plastic.scene);
   CHECK(refused.key.law == app::LawKind::plastic);
-  CHECK_THROWS_WITH_AS(app::check_plan(refused, plastic.deck),
+  CHECK_THROWS_WITH_AS(app::check_plan(refused, plastic.deck, plastic.scene),
                        doctest::Contains("a law with history on the legacy quad"), InputError);
   std::ostringstream err;
   const app::RunRequest request{plastic.deck, plastic.scene, refused, scratch("library_refused").string(),
                                 err,          false,         {},      {}};
   CHECK_THROWS_AS(app::run(request), InputError);
+  // The checks a C++ user meets that the command's process set-up made before: a plan made for another
+  // model, PETSc without a partitioned run.
+  const app::RunRequest other{model.deck, model.scene, refused, scratch("library_other").string(),
+                              err,        false,       {},      {}};
+  CHECK_THROWS_WITH_AS(app::run(other), doctest::Contains("made for another model"), InputError);
+  app::Plan petsc = plan;
+  petsc.solver    = SolverChoice::petsc;
+  if (app::kHasPetsc) {
+    const app::RunRequest whole{model.deck, model.scene, petsc, scratch("library_petsc").string(),
+                                err,        false,       {},    {}};
+    CHECK_THROWS_WITH_AS(app::run(whole), doctest::Contains("partitioned"), InputError);
+  } else {
+    CHECK_THROWS_WITH_AS(app::check_plan(petsc, model.deck, model.scene), doctest::Contains("without PETSc"),
+                         InputError);
+  }
   std::ostringstream o, e;
   CHECK(app::command({"run", (kExamples / "plastic_tube.deck").string(), "--element", "legacy", "--out",
                       scratch("library_refused_command").string()},
@@ -1697,7 +1712,7 @@ TEST_CASE("solver = petsc and PETSc's options: clear refusals where the run cann
     const int code = gapfe::app::command(args, o, e);
     return std::make_pair(code, e.str());
   };
-  // In-process, no program started MPI (gapfe.cpp's main does, given StartMpi): said, not crashed.
+  // In-process, no program started MPI (examples/gapfe/main.cpp does, given StartMpi): said, not crashed.
   auto [code, err] = run({"run", deck, "--out", out, "--solver", "petsc"});
   CHECK(code == gapfe::app::input);
 #ifdef GAPFE_HAS_PETSC

@@ -40,7 +40,7 @@ namespace {
 /// into a scratch folder (the same one every input: RunFolder clears the last input's files).
 void run_small(gapfe::Deck deck, const gapfe::DeckScene& scene) {
   if (scene.mesh.nodes.size() > 300 || scene.gaps.pairs.size() > 100) return;
-  deck.control.nlinc             = std::min(deck.control.nlinc, 2);
+  deck.program.steps             = std::min(deck.program.steps, 2);
   deck.options.newton_iterations = std::min(deck.options.newton_iterations, 8);
   static const std::string dir   = [] {  // a char array: no destructor runs before the exit handler
     static char name[] = "/tmp/gapfe_fuzz_XXXXXX";

@@ -1,9 +1,9 @@
 #pragma once
-// The `gapfe` command as one library call (STYLE.md A8: a program over a library). command() parses the
-// arguments, reads the deck or scene, makes the plan, runs it and reports, and maps the outcome to an exit
-// code; the program (examples/gapfe/main.cpp) only sets up the process around it. Declared here, defined in
-// app/command_impl.hpp, which one translation unit includes (the gapfe::app target's, cmake/app.cmake), so
-// that the tests run the command in-process. README "Running decks".
+// The `gapfe` command as one library call (a program over a library, as Gmsh's app over its API). command()
+// parses the arguments, reads the deck or scene, makes the plan, runs it and reports, and maps the outcome to
+// an exit code; the program (examples/gapfe/main.cpp) only sets up the process around it. Declared here,
+// defined in app/command_impl.hpp, which one translation unit includes (the gapfe::app target's,
+// cmake/app.cmake), so that the tests run the command in-process. README "Running decks".
 #include <functional>
 #include <iosfwd>
 #include <string>

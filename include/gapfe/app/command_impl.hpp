@@ -142,14 +142,7 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
   const DeckScene& s                    = model.scene;
   const auto [launch_rank, launch_size] = launcher_ranks();
   check_process(a, plan, launch_size, process.start_mpi);
-  check_plan(plan, d);
-  // The bilinear quad locks near incompressibility (its volumetric strain is enforced at every Gauss point):
-  // said on the error stream so that --quiet keeps it. B-bar (the mean dilatation) relieves it.
-  if (plan.key.element == ElementChoice::quad4)
-    if (const auto [material, nu] = largest_poisson(d); nu > kLockingPoisson)
-      err << "gapfe: warning: element = quad4 with Poisson's ratio " << nu << " (material " << material
-          << "): the bilinear quad locks near incompressibility and its displacements come out too "
-             "small; use element = quad4bbar or legacy\n";
+  check_plan(plan, d, s);
   std::optional<DeckPart> part;
   const int rank = plan.solver == SolverChoice::petsc ? partition(a, s, process.start_mpi, part, log) : 0;
   log << "solver: " << solver_text(plan) << "; element " << name_of(plan.key.element) << "\n";

@@ -26,15 +26,18 @@ inline void describe_deck(std::ostream& out, const Deck& d, const DeckScene& s) 
       << " nodes, " << s.mesh.cells.size() << " quadrilaterals, " << s.mesh.triangles.size() << " triangles\n"
       << "  " << d.boundary.size() << " boundary condition card(s), " << d.blocks.size()
       << " material block(s), " << d.steps() << " load step(s)";
-  if (d.control.numtc != 0) out << ", temperature field";
-  if (d.control.inert != 0) out << ", inertia loads";
+  if (d.has_temperature()) out << ", temperature field";
+  if (d.program.inertia) out << ", inertia loads";
   out << "\n";
 }
 
 /// The model read from a scene file: its title, mesh (the generator's or a Gmsh file) and loads.
 inline void describe_scene(std::ostream& out, const SceneModel& m) {
-  const Deck& d      = m.deck;
-  const DeckScene& s = m.scene;
+  const Deck& d         = m.deck;
+  const DeckScene& s    = m.scene;
+  const auto edge_cards = [&](std::vector<EdgeCard> LoadBlock::*kind) {
+    return d.program.blocks.empty() ? std::size_t{0} : (d.program.blocks.front().*kind).size();
+  };
   out << "scene: " << detail::visible_text(d.title) << "\n"
       << "  element " << name_of(d.options.element) << "; " << d.materials.size() << " material(s)"
       << (d.rate ? "; rate card (saac3)" : "") << "\n"
@@ -44,11 +47,12 @@ inline void describe_scene(std::ostream& out, const SceneModel& m) {
                               : m.mesh_file)
       << ": " << s.grid.node_count() << " nodes, " << s.mesh.cells.size() << " quadrilaterals, "
       << s.mesh.triangles.size() << " triangles\n"
-      << "  " << s.conditions.size() << " node condition(s), " << d.control.numpc << " pressure, "
-      << d.control.numsc << " shear and " << d.control.numst << " transverse shear edge(s), " << d.steps()
+      << "  " << s.conditions.size() << " node condition(s), " << edge_cards(&LoadBlock::pressure)
+      << " pressure, " << edge_cards(&LoadBlock::shear) << " shear and "
+      << edge_cards(&LoadBlock::transverse_shear) << " transverse shear edge(s), " << d.steps()
       << " load step(s)";
-  if (d.control.numtc != 0) out << ", temperature field";
-  if (d.control.inert != 0) out << ", inertia loads";
+  if (d.has_temperature()) out << ", temperature field";
+  if (d.program.inertia) out << ", inertia loads";
   out << "\n";
 }
 

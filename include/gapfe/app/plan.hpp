@@ -1,5 +1,5 @@
 #pragma once
-// A run's plan: what a deck or a scene asks for, decided once into types (STYLE.md A8, habit 4). The
+// A run's plan: what a deck or a scene asks for, decided once into types (docs/architecture.md). The
 // compiled variant it needs (kinematics, element, law and its integration, contact policy, friction
 // model; app/variant_table.hpp holds one row per key the library runs), the solver, and the reasons. The
 // command and a C++ user make the same plan (make_plan), meet the same checks (check_plan) and run it the
@@ -114,11 +114,21 @@ inline void check_solver_built(SolverChoice solver) {
         "\"Past one machine\")");
 }
 
-/// The checks a plan must pass before it runs: the library's rule of what combines (core/combinations.hpp),
-/// friction without gaps, events without an exact policy, and a rate card that cannot integrate. InputError
-/// naming the options and the reason.
-inline void check_plan(const Plan& p, const Deck& d) {
+/// The checks a plan must pass before it runs on the model (`d`, `s`): a solver this build has; the plan
+/// made for this model (its kinematics, gaps and plasticity); the library's rule of what combines
+/// (core/combinations.hpp), friction without gaps, events without an exact policy, and a rate card that
+/// cannot integrate. InputError naming the options and the reason.
+inline void check_plan(const Plan& p, const Deck& d, const DeckScene& s) {
   const DeckOptions& o = d.options;
+  if (p.solver == SolverChoice::automatic)
+    throw InputError("the plan's solver is not chosen (make_plan chooses it)");
+  check_solver_built(p.solver);
+  if (p.key.kinematics == VariantChoice::saas && s.needs.needs_theta())
+    throw InputError("--variant saas cannot represent this deck: it needs u_theta (" + s.needs.theta.front() +
+                     ")");
+  if (p.gaps != !s.needs.gaps.empty() || p.plastic != !s.needs.plasticity.empty())
+    throw InputError(
+        "the plan was made for another model (its gaps or plasticity differ): make_plan for this one");
   const std::string friction(name_of(p.key.friction));
   if (p.key.friction != FrictionChoice::none && !p.gaps)
     throw InputError("friction = " + detail::number_text(o.friction) + ", slip = " + friction +

@@ -42,6 +42,17 @@ inline std::pair<int, double> largest_poisson(const Deck& d) {
   return worst;
 }
 
+/// The warning of a plan on the plain bilinear quad (element = quad4) with a nearly incompressible material:
+/// it locks (its volumetric strain is enforced at every Gauss point), so its displacements come out too
+/// small; on the error stream, so that --quiet keeps it. B-bar (the mean dilatation) relieves it.
+inline void warn_locking(const Plan& p, const Deck& d, std::ostream& err) {
+  if (p.key.element != ElementChoice::quad4) return;
+  if (const auto [material, nu] = largest_poisson(d); nu > kLockingPoisson)
+    err << "gapfe: warning: element = quad4 with Poisson's ratio " << nu << " (material " << material
+        << "): the bilinear quad locks near incompressibility and its displacements come out too "
+           "small; use element = quad4bbar or legacy\n";
+}
+
 /// Up to this many load steps the log lists a per-step figure (the relative residual, the friction cone)
 /// for each step; beyond, their median and the largest with its step.
 inline constexpr std::size_t kListedSteps = 50;

@@ -6,17 +6,25 @@
 #include <utility>
 
 #include "gapfe/app/plan.hpp"
+#include "gapfe/app/report.hpp"
 #include "gapfe/app/run_output.hpp"
 #include "gapfe/app/run_result.hpp"
 #include "gapfe/app/variant_table.hpp"
 
 namespace gapfe::app {
 
-/// Run the request on the variant its plan's key names, after the plan's checks (check_plan). Writes the
-/// files into r.dir (which must exist) and returns what the run did; InputError when the plan fails its
-/// checks, SolveError when a step cannot be solved (the files then hold the increments accepted).
+/// Run the request on the variant its plan's key names, after the plan's checks (check_plan) and the
+/// warning of a locking element (warn_locking). Writes the files into r.dir (which must exist) and returns
+/// what the run did; InputError when the plan fails its checks, SolveError when a step cannot be solved
+/// (the files then hold the increments accepted).
 inline RunResult run(const RunRequest& r) {
-  check_plan(r.plan, r.deck);
+  check_plan(r.plan, r.deck, r.scene);
+  if (r.plan.solver == SolverChoice::petsc && !r.part)
+    throw InputError(
+        "solver = petsc runs a partitioned model: each process's part (RunRequest::part) on PETSc and MPI, "
+        "which "
+        "the program starts (the gapfe command does)");
+  warn_locking(r.plan, r.deck, r.err);
   RunResult result;
   const bool done = [&]<std::size_t... Shard>(std::index_sequence<Shard...>) {
     return (run_shard<Shard>(r, result) || ...);

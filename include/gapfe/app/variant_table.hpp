@@ -6,6 +6,7 @@
 // shard, kShardOfRow), so the compile time is the table's size spread over the cores, and offering a new
 // law, element or contact policy is one more entry on an axis. The solver is not a column: RunSolver picks
 // it at run time, except that the Coulomb rows use RunLuSolver (their tangent is unsymmetric).
+#include <array>
 #include <cstddef>
 #include <stdexcept>
 #include <string>
@@ -65,24 +66,32 @@ using VariantTable = decltype(all_rows(Kinematics{}));
 
 inline constexpr std::size_t kVariantCount = std::tuple_size_v<VariantTable>;
 
-/// A row's key: what each of its types is in the plan's words.
+/// A row's key: what each of its types is in the plan's words. A type on an axis without its word here is
+/// a compile error (not a silent alias of another row's key); kKeysUnique checks the table as a whole.
+template <class>
+inline constexpr bool kNoWord = false;
 template <class Elem>
 constexpr ElementChoice element_choice() {
   if constexpr (std::is_same_v<Elem, LegacyQuad>)
     return ElementChoice::legacy;
   else if constexpr (std::is_same_v<Elem, Quad4>)
     return ElementChoice::quad4;
-  else
+  else if constexpr (std::is_same_v<Elem, Quad4BBar>)
     return ElementChoice::quad4bbar;
+  else
+    static_assert(kNoWord<Elem>, "element_choice: an element on the Elements axis without an ElementChoice");
 }
 template <class Law>
 constexpr LawKind law_kind() {
   if constexpr (Law::kLinear)
     return LawKind::elastic;
-  else if constexpr (std::is_same_v<typename Law::Local, RatePoint>)
+  else if constexpr (std::is_same_v<Law, DrysdaleZak<Tangent>> ||
+                     std::is_same_v<Law, DrysdaleZak<ReturnMapping>>)
     return LawKind::rate_dependent;
-  else
+  else if constexpr (std::is_same_v<Law, Hill<Tangent>> || std::is_same_v<Law, Hill<ReturnMapping>>)
     return LawKind::plastic;
+  else
+    static_assert(kNoWord<Law>, "law_kind: a law on the Laws axis without a LawKind");
 }
 template <class Law>
 constexpr PlasticityChoice integration_of() {
@@ -100,6 +109,17 @@ constexpr VariantKey key_of(Variant<Kin, Elem, Law, Policy, Friction>) {
           *choice_named<ContactChoice>(Policy::kName),
           *choice_named<FrictionChoice>(Friction::kName)};
 }
+
+/// Whether every row has its own key: a plan names one row or none.
+inline constexpr bool kKeysUnique = []<std::size_t... I>(std::index_sequence<I...>) {
+  const std::array<VariantKey, kVariantCount> keys{key_of(std::tuple_element_t<I, VariantTable>{})...};
+  for (std::size_t a = 0; a < keys.size(); ++a)
+    for (std::size_t b = a + 1; b < keys.size(); ++b)
+      if (keys[a] == keys[b]) return false;
+  return true;
+}
+(std::make_index_sequence<kVariantCount>{});
+static_assert(kKeysUnique, "two rows of the variant table have one key");
 
 /// Runs the request when this shard holds the row of its plan's key; false otherwise. Defined in
 /// app/variant_shards.hpp, instantiated for Shard in [0, GAPFE_APP_SHARDS) once each (cmake/app.cmake).

@@ -163,8 +163,9 @@ class Assembler {
   /// temperatures (the element loads may differ: body forces, and the part of the thermal strain in
   /// force, Problem::thermal_fraction): F_ext (free rows) + element loads -
   /// K_fp u_p. Only cells with a body or thermal load or a non-zero prescribed value compute their element
-  /// system; for pressures and card forces alone this is a scan of the cells (issue 14: a contact run's
-  /// increments and a linear deck's later steps re-assembled the whole stiffness for their loads).
+  /// system; for pressures and card forces alone this is a scan of the cells (BENCHMARKS.md, levers: a
+  /// contact run's increments and a linear deck's later steps re-assembled the whole stiffness for their
+  /// loads).
   void linear_rhs(const Problem<M>& p, const VecX& external, VecX& rhs) const;
 
   /// K u - f of a linear law's elements and of the node links at `u` (all DOFs). `prescribed_only`: only
@@ -172,7 +173,8 @@ class Assembler {
   /// at free DOFs are not: a pass over the boundary instead of the mesh. Those cells' element stiffnesses
   /// are kept from the first such pass (when they fit in kKeptBytes) and reused until
   /// forget_kept_stiffness(): a contact run reads reactions every increment, and with u_z prescribed at
-  /// every node its "boundary" is the whole mesh (issue 14: 11 element passes of the two-tube run).
+  /// every node its "boundary" is the whole mesh (BENCHMARKS.md, levers: 11 element passes of the two-tube
+  /// run).
   VecX linear_internal(const Problem<M>& p, const VecX& u, bool prescribed_only = false) const;
   /// The element stiffness changed (a new assembly): linear_internal's kept matrices no longer hold.
   void forget_kept_stiffness() { kept_.valid = false, kept_.values = {}; }

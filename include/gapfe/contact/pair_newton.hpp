@@ -19,31 +19,23 @@ struct PairNewtonOptions {
   int max_iterations = 40;     ///< solves, then fail
 };
 
-/// What the pair Newton did: its imbalance after each solve, and whether it stopped stalled.
-struct PairNewtonRecord {
-  std::vector<double> residuals;
-  int solves   = 0;      ///< re-solves beyond the first
-  bool stalled = false;  ///< stopped stalled below 1e-4, not at the tolerance
-};
-
 /// Iterate after a solve: `resolve()` sets the pairs' links again (update_links), solves the structure
-/// with them and re-evaluates the pairs. Stops at the tolerance, or stalled: below 1e-4 for four solves,
-/// pairs that have just closed carry forces so small that their stick/slip status and slip direction are
-/// decided at round-off, and their force is right to that fraction of the pair forces. `fail(why)` past
-/// max_iterations (`where`: the load factor, for the message).
+/// with them and re-evaluates the pairs (and counts its solve: a failure below keeps the count). Each
+/// imbalance goes into `residuals` (cleared first) as it is reached. Stops at the tolerance, or stalled:
+/// below 1e-4 for four solves, pairs that have just closed carry forces so small that their stick/slip
+/// status and slip direction are decided at round-off, and their force is right to that fraction of the
+/// pair forces. `fail(why)` past max_iterations (`where`: the load factor, for the message). Returns
+/// whether it stopped stalled.
 template <class PairSet, class Resolve, class Fail>
-PairNewtonRecord pair_newton(const PairSet& pairs, const PairNewtonOptions& o, double where,
-                             Resolve&& resolve, Fail&& fail) {
-  PairNewtonRecord record;
-  auto& r = record.residuals;
+bool pair_newton(const PairSet& pairs, const PairNewtonOptions& o, double where,
+                 std::vector<double>& residuals, Resolve&& resolve, Fail&& fail) {
+  auto& r = residuals;
+  r.clear();
   for (int it = 0;; ++it) {
     r.push_back(pairs.imbalance(o.tolerance));
     const double now = r.back();
-    if (now <= o.tolerance) return record;
-    if (it >= 4 && now <= 1e-4 && now >= 0.5 * *std::min_element(r.end() - 5, r.end() - 1)) {
-      record.stalled = true;
-      return record;
-    }
+    if (now <= o.tolerance) return false;
+    if (it >= 4 && now <= 1e-4 && now >= 0.5 * *std::min_element(r.end() - 5, r.end() - 1)) return true;
     if (it + 1 >= o.max_iterations) {
       std::ostringstream text;
       text << "the friction iterations did not converge in " << o.max_iterations << " solves at load factor "
@@ -53,7 +45,6 @@ PairNewtonRecord pair_newton(const PairSet& pairs, const PairNewtonOptions& o, d
       fail(text.str());
     }
     resolve();
-    ++record.solves;
   }
 }
 

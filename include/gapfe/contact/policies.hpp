@@ -1,7 +1,7 @@
 #pragma once
 // Contact policies: how a load step treats the gap pairs (THEORY.md 5.3-5.5). A policy is a type with
 // a name, whether it acts on the pairs at all, its default penalty factor, and a step function that
-// drives a Stepper (driver/contact_static.hpp) from the accepted load factor to the step's end:
+// drives a Stepper (driver/contact_stepper.hpp) from the accepted load factor to the step's end:
 //
 //   NoContact            gap elements keep their soft stiffness; no links, so a scene pays nothing.
 //   Saac                 the seed (section 2.2): solve the step, split it once at the smallest closure

@@ -65,8 +65,12 @@ constexpr Combination combination_of() {
   c.history = !Law::kLinear;
   if constexpr (!Law::kLinear) c.iterates = Law::kIterate;
   c.condensed = condensed<Elem>();
-  c.contact   = *choice_named<ContactChoice>(Policy::kName);
-  c.friction  = *choice_named<FrictionChoice>(Friction::kName);
+  // A policy or model of one's own, under a name the deck options do not have, counts as an exact policy
+  // (one that contacts: Policy::kContact) and as Coulomb-like friction (a friction model: kFriction).
+  const auto contact  = choice_named<ContactChoice>(Policy::kName);
+  const auto friction = choice_named<FrictionChoice>(Friction::kName);
+  c.contact  = contact ? *contact : Policy::kContact ? ContactChoice::active_set : ContactChoice::none;
+  c.friction = friction ? *friction : Friction::kFriction ? FrictionChoice::coulomb : FrictionChoice::none;
   return c;
 }
 

@@ -299,17 +299,16 @@ void ContactStatic<M, Policy, Friction>::equilibrium(bool assemble) {
   ++count_.solves;
   evaluate_pairs();
   if constexpr (Friction::kIterative && M::Material::kLinear) {
-    const auto record = pair_newton(
-        set_, {opt_.friction_tolerance, opt_.max_friction_iterations}, t_trial_,
+    const bool stalled = pair_newton(
+        set_, {opt_.friction_tolerance, opt_.max_friction_iterations}, t_trial_, friction_residuals_,
         [&] {
           set_links();
           fe_.resolve_links(!set_.links_changed());
+          ++count_.solves, ++count_.friction_iterations;
           evaluate_pairs();
         },
         [&](const std::string& why) { fail(why); });
-    friction_residuals_ = record.residuals;
-    count_.solves += record.solves, count_.friction_iterations += record.solves;
-    count_.friction_stalls += record.stalled;
+    count_.friction_stalls += stalled;
   } else if constexpr (Friction::kIterative) {
     friction_residuals_ = fe_.report().residuals;
     count_.friction_iterations += fe_.report().iterations;

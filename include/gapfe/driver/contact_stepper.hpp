@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <string>
 
+#include "gapfe/contact/pair_state.hpp"
 #include "gapfe/contact/policies.hpp"
 
 namespace gapfe {

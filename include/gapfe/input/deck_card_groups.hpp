@@ -81,6 +81,10 @@ inline void read_head_cards(DeckLines& in, Deck& d, const DeckLimits& limits) {
     if (k.nlinc > limits.max_load_steps) c.reject(41, 45, "NLINC", "exceeds the limit of load steps");
     if (k.inert < 0) c.reject(36, 40, "INERT", "must be 0 (no inertia card) or positive");
   }
+  LoadProgram& program = d.program;  // the control card's part of it
+  program.steps = d.control.nlinc, program.inertia = d.control.inert != 0;
+  program.inertia_repeats = d.control.inci == 0, program.surface_repeats = d.control.incf == 0;
+  program.reference_temperature = d.control.tref;
   // ---- Data 3: mesh generation control (5I5)
   {
     const CardImage c  = in.take("DATA NO. 3 (mesh generation control card)");
@@ -301,7 +305,7 @@ inline void read_load_cards(DeckLines& in, Deck& d) {
       edges(k.numsc, "DATA NO. 14", "boundary shear card", block.shear);
       edges(k.numst, "DATA NO. 15", "boundary transverse shear card", block.transverse_shear);
     }
-    d.blocks_read.push_back(std::move(block));
+    d.program.blocks.push_back(std::move(block));
   }
 }
 

@@ -62,7 +62,7 @@ struct DeckMaterial {  // Data 10 (+ 11)
   CardRef ref;
 };
 
-/// A load history, which a scene file can give (issue 16) and a deck cannot: the factor on a load's value at
+/// A load history, which a scene file can give and a deck cannot: the factor on a load's value at
 /// the end of each load step, linear between (step, factor) points at whole steps, 0 at step 0 unless a
 /// point says otherwise, and the last point's factor after it. Within a step the load moves linearly, as
 /// every load does (input/deck_scene.hpp, interpolate).
@@ -95,6 +95,35 @@ struct LoadBlock {  // Data 12-15 of one load step
   std::vector<EdgeCard> pressure, shear, transverse_shear;
 };
 
+/// The load program of a model, as both readers give it (a deck from its control card and load blocks, a
+/// scene file from its [steps], loads and histories): what run/step_loads.hpp sums. In a deck's terms:
+/// NLINC steps, INERT, INCI = 0 (inertia_repeats), INCF = 0 (surface_repeats), TREF.
+struct LoadProgram {
+  int steps            = 1;       ///< load steps
+  bool inertia         = false;   ///< an inertia card in the blocks (a deck's INERT != 0)
+  bool inertia_repeats = true;    ///< the first block's inertia card repeats every step (INCI = 0)
+  bool surface_repeats = true;    ///< the first block's edge load cards repeat every step (INCF = 0)
+  std::vector<LoadBlock> blocks;  ///< as given: one per step, or the first only
+  /// Load histories (EdgeCard::amplitude, LoadBlock::inertia_amplitude, DeckScene::condition_amplitude,
+  /// temperature_amplitude): a scene file's; a deck has none. They act only in a block that repeats, which is
+  /// how a scene gives its loads.
+  std::vector<Amplitude> amplitudes;
+  /// The temperature field's history (an index into amplitudes); -1: the deck's, the whole field from the
+  /// end of the first load step on (StepTotals::thermal_fraction).
+  int temperature_amplitude    = -1;
+  double reference_temperature = 0;  ///< T_ref, from which thermal strains count (a deck's TREF)
+
+  /// Inertia increment of load step s (1-based): its own card, the first block's when it repeats.
+  InertiaLoad inertia_at(int s) const {
+    if (!inertia) return {};
+    return blocks[inertia_repeats ? 0 : static_cast<std::size_t>(s - 1)].inertia.value_or(InertiaLoad{});
+  }
+  /// Surface-load cards of load step s (1-based): its own, the first block's when they repeat.
+  const LoadBlock& surface(int s) const {
+    return blocks[surface_repeats ? 0 : static_cast<std::size_t>(s - 1)];
+  }
+};
+
 struct Deck {
   DeckOptions options;
   std::optional<RateCard> rate;
@@ -111,30 +140,19 @@ struct Deck {
   std::string temperature_where =
       "DATA NO. 9, temperature card";  ///< how errors name a point (and its number)
   std::optional<double> constant_temperature;
-  /// A scene's [temperature] history (an index into amplitudes); -1: the deck's, the whole field from the
-  /// end of the first load step on (StepTotals::thermal_fraction).
-  int temperature_amplitude = -1;
   std::vector<DeckMaterial> materials;
-  std::vector<LoadBlock> blocks_read;  ///< the blocks as read (one per step, or the first only)
-  /// Load histories of a scene file (EdgeCard::amplitude, LoadBlock::inertia_amplitude,
-  /// DeckScene::condition_amplitude, temperature_amplitude); a deck has none. They act only in a block given
-  /// once (INCI = 0 for inertia, INCF = 0 for surface loads), which is how a scene gives its loads.
-  std::vector<Amplitude> amplitudes;
+  LoadProgram program;  ///< the load steps, blocks and histories (a deck's from its control card)
 
-  int steps() const { return control.nlinc; }
+  int steps() const { return program.steps; }
+  /// Whether a temperature field is given (points, or one value everywhere).
+  bool has_temperature() const { return !temperature_points.empty() || constant_temperature.has_value(); }
   /// Whether the law is rate dependent (SAAC3): a rate card (Data 0) with b != 0.
   bool rate_dependent() const { return rate && rate->rate_b != 0; }
   /// The time one load step lasts [model time unit]: card 0's delta t for a rate-dependent deck, else 1
   /// (time is the load factor). A cut or split piece of a step lasts its fraction of it.
   double step_time() const { return rate_dependent() ? rate->time_step : 1.0; }
-  /// Inertia increment of load step s (1-based): its own card, the first block's when INCI = 0.
-  InertiaLoad inertia(int s) const {
-    if (control.inert == 0) return {};
-    const LoadBlock& b = blocks_read[control.inci == 0 ? 0 : s - 1];
-    return b.inertia.value_or(InertiaLoad{});
-  }
-  /// Surface-load cards of load step s (1-based): its own, the first block's when INCF = 0.
-  const LoadBlock& surface(int s) const { return blocks_read[control.incf == 0 ? 0 : s - 1]; }
+  InertiaLoad inertia(int s) const { return program.inertia_at(s); }
+  const LoadBlock& surface(int s) const { return program.surface(s); }
   const DeckMaterial* material(int id) const {
     for (const auto& m : materials)
       if (m.id == id) return &m;

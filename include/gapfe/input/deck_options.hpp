@@ -73,11 +73,11 @@ struct DeckOptions {
   /// to yield); a load step is cut into halves until its pieces meet it (plasticity = return-mapping; the
   /// seed's tangent scheme keeps one increment per step). 0: off. docs/plasticity.md, "Time steps".
   double time_tolerance = 1e-3;
-  /// fields = legacy | wide (issue 16): wide widens the two fields that cap a deck's size, the line
+  /// fields = legacy | wide: wide widens the two fields that cap a deck's size, the line
   /// segment cards' grid indices (I3, at most 999) and the edge load cards' node numbers (I5, at most
-  /// 99,999); every other card keeps its columns (CardLayout, input/deck_reader.hpp).
+  /// 99,999); every other card keeps its columns (CardLayout, input/deck_lines.hpp).
   bool wide_fields = false;
-  /// units = LENGTH,FORCE,STRESS (e.g. mm,N,MPa): names for the pictures' labels (issue 17); gapfe never
+  /// units = LENGTH,FORCE,STRESS (e.g. mm,N,MPa): names for the pictures' labels; gapfe never
   /// converts units, so this only says which consistent set the deck uses. Empty: generic names.
   std::string units;
 

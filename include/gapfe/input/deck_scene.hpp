@@ -63,8 +63,9 @@ struct DeckScene {
   std::vector<int> ijdir;                  ///< per grid cell: IJDIR of its block (gap direction)
   std::vector<Orthotropic> materials;      ///< in deck order; CellTag::material indexes this
   std::vector<NodalCondition> conditions;  ///< one step's BC values (0-based nodes), later cards last
-  /// Per condition (parallel to `conditions`, or empty): an index into Deck::amplitudes, whose factor then
-  /// multiplies the condition's values in place of the step count (a scene file's load history); -1: none.
+  /// Per condition (parallel to `conditions`, or empty): an index into LoadProgram::amplitudes, whose factor
+  /// then multiplies the condition's values in place of the step count (a scene file's load history); -1:
+  /// none.
   std::vector<int> condition_amplitude;
   /// Per condition (parallel to `conditions`): the card that gave it (a deck's BC card, a scene's
   /// [[boundary]]), an index into condition_cards, their names (bc1, bc2, ...; a scene's groups):
@@ -114,7 +115,7 @@ inline void finish_scene(const Deck& d, DeckScene& s) {
   const int nn         = g.node_count();
   const std::size_t ne = g.cells.size();
   // ---- temperature: the field; the load program applies it (StepTotals::thermal_fraction)
-  s.reference_temperature = d.control.tref;
+  s.reference_temperature = d.program.reference_temperature;
   if (!d.temperature_points.empty())
     s.temperature = nodal_temperatures(s.mesh, d.temperature_points, d.temperature_where);
   else if (d.constant_temperature)
@@ -139,7 +140,7 @@ inline void finish_scene(const Deck& d, DeckScene& s) {
     }
     return false;
   };
-  for (const auto& block : d.blocks_read) {
+  for (const auto& block : d.program.blocks) {
     for (const auto* cards : {&block.pressure, &block.shear, &block.transverse_shear})
       for (const auto& c : *cards) {
         for (const int n : {c.node_m, c.node_n})

@@ -174,13 +174,13 @@ class SceneBuilder {
 
   void steps() {
     Deck& d         = model_.deck;
-    d.control.nlinc = 1;
+    d.program.steps = 1;
     if (const auto s = top_.table("steps", {"count", "time"})) {
       const int most = limits_.max_load_steps;
       const double n = s->number("count", 1.0);
       if (!(n >= 1 && n <= most && n == std::floor(n)))
         s->fail("count", "a whole number of load steps from 1 to " + std::to_string(most));
-      d.control.nlinc = static_cast<int>(n);
+      d.program.steps = static_cast<int>(n);
       if (s->has("time")) {
         if (!d.rate) s->fail("time", "no step duration without a [rate] table (time is the load factor)");
         d.rate->time_step = s->positive("time");
@@ -236,8 +236,8 @@ class SceneBuilder {
     }
   }
 
-  /// A load history (`amplitude = [[step, factor], ...]`, Amplitude) as an index into Deck::amplitudes, -1
-  /// without one.
+  /// A load history (`amplitude = [[step, factor], ...]`, Amplitude) as an index into
+  /// LoadProgram::amplitudes, -1 without one.
   int amplitude(const SceneTable& t) {
     const toml::node* node = t.get("amplitude");
     if (!node) return -1;
@@ -256,8 +256,8 @@ class SceneBuilder {
         t.fail("amplitude", expected);
       amp.points.emplace_back(static_cast<int>(*step), *factor);
     }
-    model_.deck.amplitudes.push_back(std::move(amp));
-    return static_cast<int>(model_.deck.amplitudes.size()) - 1;
+    model_.deck.program.amplitudes.push_back(std::move(amp));
+    return static_cast<int>(model_.deck.program.amplitudes.size()) - 1;
   }
 
   /// [materials.NAME] on their surfaces: material numbers (given, or the next free in name order), the
@@ -289,7 +289,6 @@ class SceneBuilder {
       }
       d.materials.push_back(m.deck);
     }
-    d.control.nummat = static_cast<int>(d.materials.size());
     // Per cell, the material (index into read) and surface that gave it one: a cell in two surface groups
     // (a surface in "steel" and in "all") may be named by both, for one material only.
     std::vector<std::pair<int, const std::string*>> given(s.material_id.size(), {-1, nullptr});

@@ -11,7 +11,7 @@ inline void SceneBuilder::boundary() {
   for (const SceneTable& b :
        top_.tables("boundary", {"groups", "fix", "displacement", "force", "amplitude"})) {
     const int history  = amplitude(b);
-    const double steps = history < 0 ? model_.deck.control.nlinc : 1.0;
+    const double steps = history < 0 ? model_.deck.program.steps : 1.0;
     int code = 0, given = 0;  // prescribed displacements (seed Data 5's code bits); directions given
     std::array<double, 3> value{};
     if (b.has("fix"))
@@ -60,7 +60,7 @@ inline void SceneBuilder::loads() {
   for (const SceneTable& l :
        top_.tables("load", {"curves", "pressure", "shear", "transverse_shear", "amplitude"})) {
     const int history  = amplitude(l);
-    const double steps = history < 0 ? d.control.nlinc : 1.0;
+    const double steps = history < 0 ? d.program.steps : 1.0;
     std::array<std::optional<double>, 3> value;
     for (int k = 0; k < 3; ++k)
       if (l.has(kinds[k])) value[k] = l.number(kinds[k]) / steps;
@@ -103,32 +103,29 @@ inline void SceneBuilder::loads() {
                 .push_back({m + 1, n + 1, *value[k], ref, history});
       }
   }
-  d.control.numpc = static_cast<int>(block.pressure.size());
-  d.control.numsc = static_cast<int>(block.shear.size());
-  d.control.numst = static_cast<int>(block.transverse_shear.size());
   if (const auto in = top_.table(
           "inertia", {"axial_acceleration", "angular_velocity", "angular_acceleration", "amplitude"})) {
     block.inertia_amplitude = amplitude(*in);
-    const double steps      = block.inertia_amplitude < 0 ? d.control.nlinc : 1.0;
+    const double steps      = block.inertia_amplitude < 0 ? d.program.steps : 1.0;
     block.inertia           = InertiaLoad{in->number("axial_acceleration", 0.0) / steps,
                                 in->number("angular_velocity", 0.0) / steps,
                                 in->number("angular_acceleration", 0.0) / steps};
-    d.control.inert         = 1;
+    d.program.inertia       = true;
   }
-  d.control.inci = d.control.incf = 0;
-  d.blocks_read.push_back(std::move(block));
+  d.program.inertia_repeats = d.program.surface_repeats = true;
+  d.program.blocks.push_back(std::move(block));
 }
 
 inline void SceneBuilder::temperature() {
   Deck& d      = model_.deck;
   const auto t = top_.table("temperature", {"reference", "value", "points", "amplitude"});
   if (!t) return;
-  d.control.tref          = t->number("reference", 0.0);
-  d.temperature_amplitude = amplitude(*t);
+  d.program.reference_temperature = t->number("reference", 0.0);
+  d.program.temperature_amplitude = amplitude(*t);
   if (t->has("value") && t->has("points"))
     throw InputError("scene: " + t->where() + ": give value (one temperature) or points, not both");
   if (t->has("value")) {
-    d.constant_temperature = t->number("value"), d.control.numtc = -2;
+    d.constant_temperature = t->number("value");
     return;
   }
   const toml::node* p = t->get("points");
@@ -146,7 +143,6 @@ inline void SceneBuilder::temperature() {
     }
     d.temperature_points.push_back({v[0], v[1], v[2]});
   }
-  d.control.numtc = static_cast<int>(d.temperature_points.size());
 }
 
 inline void SceneBuilder::contact() {

@@ -164,7 +164,7 @@ PointResponse<State> hill_return_map(const HillPoint& p, const Vec6& strain, con
     // first Newton iteration of the next step, NonlinearStatic): the continuum tangent C_ep, the
     // consistent tangent's limit as dl -> 0+, on the expectation that the loading goes on. The stress
     // is the same either way; with the elastic tangent the first solve ignored the plastic zone (the
-    // 1e4-equation tube: 49 solves instead of 45, BENCHMARKS.md issue 14).
+    // 1e4-equation tube: 49 solves instead of 45, BENCHMARKS.md, "Levers measured on the second machine").
     if (tangent && old.plastic && strain == old.strain && p.thermal_strain == old.thermal_strain)
       r.tangent = continuum_tangent(c, p.hardening_matrix, Vec6(2.0 * (P * xi_trial)));
     return r;

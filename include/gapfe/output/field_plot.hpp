@@ -1,5 +1,5 @@
 #pragma once
-// Pictures an analyst reads at a glance (issue 17): the deformed section coloured by a field, with a colour
+// Pictures an analyst reads at a glance: the deformed section coloured by a field, with a colour
 // bar, r and z axes in the run's units and the magnification stated (write_field_svg), and a curve of one
 // history.csv column against another (write_curve_svg). Both are SVG through output/svg_canvas.hpp; the
 // command also rasterizes them to PNG when rsvg-convert is installed.

@@ -1,5 +1,5 @@
 #pragma once
-// history.csv (issue 17): one row per accepted increment of a run of more than one load step, the numbers a
+// history.csv: one row per accepted increment of a run of more than one load step, the numbers a
 // load-displacement, torque-twist or stress-time curve is drawn from (`gapfe plot DIR --x COL --y COL`):
 //   step, inc, t           as in every table (output/step_files.hpp): t = inc x the time a load step lasts
 //   load_factor            inc / the number of load steps: the fraction of the deck's total load applied

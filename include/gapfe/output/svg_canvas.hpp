@@ -34,7 +34,7 @@ inline std::string xml_text(const std::string& text) {
 
 /// The cell sides a picture keeps as the section's outline: those of one cell only (the boundary) and those
 /// between cells of different materials (`material` per cell; empty: one material), as node pairs (smaller
-/// node first). `sides_of(e, side)` calls side(a, b) for each side of cell e. deck_output.hpp's outline of a
+/// node first). `sides_of(e, side)` calls side(a, b) for each side of cell e. deformed_svg.hpp's outline of a
 /// large mesh and the field pictures' undeformed boundary (field_plot.hpp).
 template <class SidesOf>
 std::vector<std::array<int, 2>> outline_sides(std::size_t cells, const SidesOf& sides_of,

@@ -1,6 +1,6 @@
 #pragma once
-// The deck layer, above the drivers and io: a deck's scene (input/deck_scene.hpp) becomes a Problem of one
-// compile-time model, and its load steps become a driver's steps. Each step applies the totals of the
+// The run layer, above the drivers, input and output: a deck's scene (input/deck_scene.hpp) becomes a Problem
+// of one compile-time model, and its load steps become a driver's steps. Each step applies the totals of the
 // increments so far. Three runs: linear (the seed's elastic codes: materials and temperatures are fixed
 // from the first step on, so the stiffness is factorized once and each later step costs an assembly of
 // the right-hand side and two triangular solves), plastic (Newton with history, step cutting) and

@@ -4,7 +4,8 @@
 // readings: each step adds its BC values, inertia increments and surface load increments to the totals of
 // the steps before; a block given once (INCI = 0, INCF = 0) repeats every step; angular velocities add, so
 // the centrifugal load goes with the square of their sum; the temperature field is a load of the first
-// step (ramped with it, then held); a scene file's load histories (Deck::amplitudes) scale their loads.
+// step (ramped with it, then held); a scene file's load histories (LoadProgram::amplitudes) scale their
+// loads.
 //
 // The sums over a deck's load blocks (one per step when INCI or INCF is not 0) are kept as the steps
 // advance, so a run's load work is linear in its step count (re-summing blocks 1..k at step k was
@@ -59,12 +60,10 @@ class StepLoads {
 
   /// Loads in force after step `step` (1-based; 0: none).
   StepTotals at(int step) {
-    const Deck& d = d_;
-    // A block given once (INCI = 0, INCF = 0) repeats: its total is `step` times the increment.
-    const double inertia_scale = d.control.inci == 0 ? step : 1,
-                 surface_scale = d.control.incf == 0 ? step : 1;
-    sum_blocks(d.control.inci == 0 ? std::min(step, 1) : step,
-               d.control.incf == 0 ? std::min(step, 1) : step);
+    const LoadProgram& d = d_.program;
+    // A block that repeats (INCI = 0, INCF = 0) adds its increment every step: its total is `step` times it.
+    const double inertia_scale = d.inertia_repeats ? step : 1, surface_scale = d.surface_repeats ? step : 1;
+    sum_blocks(d.inertia_repeats ? std::min(step, 1) : step, d.surface_repeats ? std::min(step, 1) : step);
     StepTotals t;
     // The temperature field: a deck applies it in the first load step (ramped over it like that step's
     // loads, so that a split of the step splits it too) and holds it; a scene may give it a history.
@@ -74,8 +73,7 @@ class StepLoads {
       const double f = factor(s_.condition_amplitude.empty() ? -1 : s_.condition_amplitude[k], step, step);
       for (double& v : t.conditions[k].value) v *= f;
     }
-    const int inertia_amplitude =
-        d.control.inert != 0 && d.control.inci == 0 ? d.blocks_read[0].inertia_amplitude : -1;
+    const int inertia_amplitude    = d.inertia && d.inertia_repeats ? d.blocks[0].inertia_amplitude : -1;
     const double f                 = factor(inertia_amplitude, step, inertia_scale);
     t.inertia.axial_acceleration   = f * inertia_.axial_acceleration;
     t.inertia.angular_velocity     = f * inertia_.angular_velocity;
@@ -96,7 +94,7 @@ class StepLoads {
  private:
   /// A load's factor at `step`: its history's value where a scene gave one (amplitude >= 0), else `scale`.
   double factor(int amplitude, int step, double scale) const {
-    return amplitude < 0 ? scale : d_.amplitudes[static_cast<std::size_t>(amplitude)].at(step);
+    return amplitude < 0 ? scale : d_.program.amplitudes[static_cast<std::size_t>(amplitude)].at(step);
   }
 
   /// Bring the sums to blocks 1..inertia_blocks and 1..surface_blocks (again from block 1 if fewer).

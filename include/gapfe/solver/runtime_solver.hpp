@@ -1,8 +1,8 @@
 #pragma once
-// RuntimeSolver<S...>: a LinearSolver whose implementation is one of S..., picked at run time with
-// select(). A program that offers its users several solvers (the gapfe command's `solver =` option)
-// instantiates its models once with RuntimeSolver instead of once per solver: half the compile time with
-// two solvers. The calls are per matrix (analyze, factorize, solve), so the one virtual call each costs
+// RuntimeSolver<S...>: a LinearSolver whose implementation is one of S..., chosen at run time when the
+// object is constructed. A program that offers its users several solvers (the gapfe command's `solver =`
+// option) instantiates its models once with RuntimeSolver instead of once per solver: half the compile time
+// with two solvers. The calls are per matrix (analyze, factorize, solve), so the one virtual call each costs
 // nothing measurable; element and point code never sees it.
 //
 // The choice is the solver object's own, made when it is constructed (RuntimeSolver(index)): a driver is

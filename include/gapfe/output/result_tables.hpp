@@ -1,0 +1,132 @@
+#pragma once
+// nodes.csv, reactions.csv and elements.csv of a run (the columns: output/step_files.hpp): one block of rows
+// per increment written, flushed after each, so the increments before a failure survive it.
+#include <string>
+#include <vector>
+
+#include "gapfe/input/deck_scene.hpp"
+#include "gapfe/output/csv_rows.hpp"
+#include "gapfe/output/output_file.hpp"
+#include "gapfe/problem/results.hpp"
+
+namespace gapfe {
+
+/// The centroid values of deck element e among a driver's centroid_values(): cells first, then triangles.
+inline const PointValues& element_value(const DeckScene& scene, const std::vector<PointValues>& values,
+                                        std::size_t e) {
+  const GridCell& c = scene.grid.cells[e];
+  return values[(c.corners == 4 ? 0 : scene.mesh.cells.size()) + static_cast<std::size_t>(c.group_index)];
+}
+
+class ResultTables {
+ public:
+  /// Opens the three tables in `dir` with their header lines; `step_time`: how long a load step lasts.
+  ResultTables(const std::string& dir, const DeckScene& scene, double step_time)
+      : scene_(scene), step_time_(step_time) {
+    prescribed_.assign(static_cast<std::size_t>(scene.grid.node_count()), 0);
+    for (const NodalCondition& c : scene.conditions) {  // later conditions win in what they set (DofMap)
+      int& code = prescribed_[static_cast<std::size_t>(c.node)];
+      code      = (code & ~c.sets) | (c.code & c.sets);
+    }
+    for (const int n : scene.strain_rate_test.bottom) prescribed_[static_cast<std::size_t>(n)] |= 2 | 4;
+    for (const int n : scene.strain_rate_test.top) prescribed_[static_cast<std::size_t>(n)] |= 2;
+    nodes_ = OutputFile(dir + "/nodes.csv");
+    nodes_.append("step,inc,t,node,i,j,r,z,u_r,u_z,u_t\n");
+    reactions_ = OutputFile(dir + "/reactions.csv");
+    reactions_.append("step,inc,t,node,i,j,r,z,R_r,R_z,R_t\n");
+    elements_ = OutputFile(dir + "/elements.csv");
+    elements_.append("step,inc,t,element,i,j,material,r,z,s_rr,s_zz,s_tt,s_rz,s_rt,s_zt,eqps\n");
+  }
+
+  /// The tables' rows, written in chunks (a 1e6-node table is 100 MB of text). Every row starts with the
+  /// increment's step,inc,t and the mesh's part of the row (node,i,j,r,z or element,i,j,material,r,z),
+  /// which is formatted once, at the second increment written, and copied from then on.
+  void write(int step, double inc, const Solution& solution, const std::vector<PointValues>& values) {
+    const IJGrid& g = scene_.grid;
+    const auto& u   = solution.displacement;
+    std::string prefix;
+    detail::csv_increment(prefix, step, inc, step_time_);
+    if (++tables_written_ == 2) {
+      for (int n = 0; n < g.node_count(); ++n)
+        node_head(node_heads_, n), node_head_end_.push_back(node_heads_.size());
+      for (std::size_t e = 0; e < g.cells.size(); ++e)
+        element_head(element_heads_, e, by_element(values, e)),
+            element_head_end_.push_back(element_heads_.size());
+    }
+    const auto head = [](std::string& s, const std::string& heads, const std::vector<std::size_t>& end,
+                         std::size_t k) {
+      s.append(heads, k == 0 ? 0 : end[k - 1], end[k] - (k == 0 ? 0 : end[k - 1]));
+    };
+    std::string s;
+    constexpr std::size_t kChunk = std::size_t(1) << 20;
+    s.reserve(kChunk + 512);
+    const auto row_end = [&](OutputFile& out) {  // (a piece of whole rows, one write: see output_file.hpp)
+      s += '\n';
+      if (s.size() >= kChunk) out.append(s), s.clear();
+    };
+    const auto flush  = [&](OutputFile& out) { out.append(s), s.clear(); };
+    const bool cached = !node_heads_.empty();
+    for (int n = 0; n < g.node_count(); ++n) {
+      s += prefix;
+      cached ? head(s, node_heads_, node_head_end_, static_cast<std::size_t>(n)) : node_head(s, n);
+      detail::csv_number(s, u(n, 0)), detail::csv_number(s, u(n, 1)), detail::append_number(s, u(n, 2));
+      row_end(nodes_);
+    }
+    flush(nodes_);
+    for (int n = 0; n < g.node_count(); ++n) {
+      const int code = prescribed_[static_cast<std::size_t>(n)];
+      if (code == 0) continue;
+      s += prefix;
+      cached ? head(s, node_heads_, node_head_end_, static_cast<std::size_t>(n)) : node_head(s, n);
+      for (int c = 0; c < 3; ++c) {
+        detail::append_number(s, (code >> c) & 1 ? solution.reaction(n, c) : 0.0);
+        if (c < 2) s += ',';
+      }
+      row_end(reactions_);
+    }
+    flush(reactions_);
+    for (std::size_t e = 0; e < g.cells.size(); ++e) {
+      const PointValues& v = by_element(values, e);
+      s += prefix;
+      cached ? head(s, element_heads_, element_head_end_, e) : element_head(s, e, v);
+      for (const int k : {voigt::rr, voigt::zz, voigt::hoop, voigt::rz, voigt::theta_r, voigt::z_theta})
+        detail::csv_number(s, v.stress(k));
+      detail::append_number(s, v.eqps);
+      row_end(elements_);
+    }
+    flush(elements_);
+  }
+
+  void close() {
+    for (OutputFile* f : {&nodes_, &reactions_, &elements_}) f->close();
+  }
+
+ private:
+  /// "node,i,j,r,z," of node n (0-based; the table's node numbers are the deck's, 1-based).
+  void node_head(std::string& s, int n) const {
+    const IJGrid& g = scene_.grid;
+    for (const int k : {n + 1, g.node_ij[n][0], g.node_ij[n][1]})
+      detail::append_number(s, static_cast<long long>(k)), s += ',';
+    detail::csv_number(s, g.nodes[n](0)), detail::csv_number(s, g.nodes[n](1));
+  }
+  /// "element,i,j,material,r,z," of element e at its centroid value v.
+  void element_head(std::string& s, std::size_t e, const PointValues& v) const {
+    const GridCell& c = scene_.grid.cells[e];
+    for (const int k : {static_cast<int>(e) + 1, c.i, c.j, scene_.material_id[e]})
+      detail::append_number(s, static_cast<long long>(k)), s += ',';
+    detail::csv_number(s, v.r), detail::csv_number(s, v.z);
+  }
+  const PointValues& by_element(const std::vector<PointValues>& values, std::size_t e) const {
+    return element_value(scene_, values, e);
+  }
+
+  const DeckScene& scene_;
+  double step_time_ = 1.0;
+  OutputFile nodes_, elements_, reactions_;
+  std::vector<int> prescribed_;  ///< per node: the OR of its BC codes (1 u_r, 2 u_z, 4 u_theta)
+  int tables_written_ = 0;
+  std::string node_heads_, element_heads_;  ///< the rows' mesh parts, from the second increment on
+  std::vector<std::size_t> node_head_end_, element_head_end_;
+};
+
+}  // namespace gapfe
