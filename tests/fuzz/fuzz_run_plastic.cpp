@@ -10,9 +10,7 @@
 void gapfe::fuzz::run_plastic(const Deck& deck, const DeckScene& scene, const std::string& dir, bool gaps) {
   using M = Model<Axisym3, Quad4BBar, Hill<ReturnMapping>, EigenLdlt>;
   std::ostringstream err;  // the warnings a run would print
-  app::Plan plan;
-  plan.key.kinematics = VariantChoice::saga, plan.key.element = ElementChoice::quad4bbar;
-  plan.solver = SolverChoice::eigen;
+  const app::Plan plan = fuzz_plan(deck, scene);
   const app::RunRequest r{deck, scene, plan, dir, err, false, {"mises"}, {}};
   app::RunResult times;
   gaps ? app::run_contact<M, Saac>(r, times) : app::run_plastic<M>(r, times);
