@@ -89,7 +89,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--before", required=True)
     ap.add_argument("--after", required=True)
-    ap.add_argument("--work", default="parity-out")
+    ap.add_argument("--work", default="build/parity-out")
     ap.add_argument("--tolerance", type=float, default=1e-12)
     a = ap.parse_args()
     worst, files, problems, runs = 0.0, 0, [], 0

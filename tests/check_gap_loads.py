@@ -202,7 +202,7 @@ def programs():
 def event_step(name, amplitude):
     """The load factor (inc) at which the moving load's measure reaches 1 / PAST of its total's: its value
     follows the amplitude, linear between whole steps, and within a step what moves linearly is the measure
-    (a spin's square, input/deck_scene.hpp's interpolate)."""
+    (a spin's square, run/step_loads.hpp's interpolate)."""
     def factor(k):  # the amplitude at whole step k
         for (s0, f0), (s1, f1) in zip(amplitude, amplitude[1:]):
             if s0 <= k <= s1:

@@ -413,7 +413,7 @@ TEST_CASE("The gapfe command: usage errors and unreadable decks") {
 TEST_CASE("deformed.svg of a large mesh: the outline keeps the boundary and the material interfaces") {
   // tube_deck(): a 5 x 3 grid, 4 x 2 cells. Its boundary has 2 (4 + 2) = 12 cell sides; a second material
   // in the cells of I >= 3 adds the 2 sides between I = 2 and I = 3.
-  const gapfe::DeckScene s = gapfe::build_scene(gapfe::read_deck(gapfe::test::tube_deck()));
+  const gapfe::Scene s = gapfe::build_scene(gapfe::read_deck(gapfe::test::tube_deck()));
   REQUIRE(s.grid.cells.size() == 8);
   std::vector<int> material(8, 1);
   CHECK(gapfe::detail::outline_edges(s.grid, material).size() == 12);

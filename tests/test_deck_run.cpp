@@ -150,10 +150,10 @@ TEST_CASE("Thick-tube example deck: equals the library-API solution to 1e-12 and
 
 TEST_CASE("[library] a C++ user's run is the command's: make_plan, check_plan, run; one solver per run") {
   // The thick tube through the library's three calls, as the command makes them (app/command_impl.hpp).
-  SceneModel model;
-  model.deck           = read_deck(read_input((kExamples / "thick_tube.deck").string(), "deck"));
-  model.scene          = build_scene(model.deck);
-  const app::Plan plan = app::make_plan(model.deck, model.scene);
+  // A deck becomes a description and its scene, as a scene file does (input/scene.hpp).
+  const Deck tube = read_deck(read_input((kExamples / "thick_tube.deck").string(), "deck"));
+  const SceneModel model{tube, build_scene(tube), {}};
+  const app::Plan plan = app::make_plan(model.description, model.scene);
   CHECK(plan.key == app::VariantKey{VariantChoice::saas, ElementChoice::legacy, app::LawKind::elastic,
                                     PlasticityChoice::return_mapping, ContactChoice::none,
                                     FrictionChoice::none});
@@ -166,7 +166,7 @@ TEST_CASE("[library] a C++ user's run is the command's: make_plan, check_plan, r
     p.solver           = solver;  // two solvers in one process: the choice is the run's, not a global
     const fs::path out = scratch(std::string("library_") + std::string(name_of(solver)));
     std::ostringstream err;
-    const app::RunRequest request{model.deck, model.scene, p, out.string(), err, false, {}, {}};
+    const app::RunRequest request{model.description, model.scene, p, out.string(), err, false, {}, {}};
     const app::RunResult result = app::run(request);
     CHECK(result.equilibrium < 1e-12);
     CHECK(result.step_residual.size() == 1);
@@ -183,32 +183,31 @@ TEST_CASE("[library] a C++ user's run is the command's: make_plan, check_plan, r
   CHECK(command_nodes.back().at("u_r") == doctest::Approx(by_solver[0].at("u_r")).epsilon(1e-12));
 
   // A refusal is the same from either side: the plastic tube on the legacy quad.
-  SceneModel plastic;
-  plastic.deck =
+  const Deck plastic_deck =
       read_deck(read_input((kExamples / "plastic_tube.deck").string(), "deck"), {{"element", "legacy"}});
-  plastic.scene           = build_scene(plastic.deck);
-  const app::Plan refused = app::make_plan(plastic.deck, plastic.scene);
+  const SceneModel plastic{plastic_deck, build_scene(plastic_deck), {}};
+  const app::Plan refused = app::make_plan(plastic.description, plastic.scene);
   CHECK(refused.key.law == app::LawKind::plastic);
-  CHECK_THROWS_WITH_AS(app::check_plan(refused, plastic.deck, plastic.scene),
+  CHECK_THROWS_WITH_AS(app::check_plan(refused, plastic.description, plastic.scene),
                        doctest::Contains("a law with history on the legacy quad"), InputError);
   std::ostringstream err;
-  const app::RunRequest request{plastic.deck, plastic.scene, refused, scratch("library_refused").string(),
-                                err,          false,         {},      {}};
+  const app::RunRequest request{
+      plastic.description, plastic.scene, refused, scratch("library_refused").string(), err, false, {}, {}};
   CHECK_THROWS_AS(app::run(request), InputError);
   // The checks a C++ user meets that the command's process set-up made before: a plan made for another
   // model, PETSc without a partitioned run.
-  const app::RunRequest other{model.deck, model.scene, refused, scratch("library_other").string(),
-                              err,        false,       {},      {}};
+  const app::RunRequest other{
+      model.description, model.scene, refused, scratch("library_other").string(), err, false, {}, {}};
   CHECK_THROWS_WITH_AS(app::run(other), doctest::Contains("made for another model"), InputError);
   app::Plan petsc = plan;
   petsc.solver    = SolverChoice::petsc;
   if (app::kHasPetsc) {
-    const app::RunRequest whole{model.deck, model.scene, petsc, scratch("library_petsc").string(),
-                                err,        false,       {},    {}};
+    const app::RunRequest whole{
+        model.description, model.scene, petsc, scratch("library_petsc").string(), err, false, {}, {}};
     CHECK_THROWS_WITH_AS(app::run(whole), doctest::Contains("partitioned"), InputError);
   } else {
-    CHECK_THROWS_WITH_AS(app::check_plan(petsc, model.deck, model.scene), doctest::Contains("without PETSc"),
-                         InputError);
+    CHECK_THROWS_WITH_AS(app::check_plan(petsc, model.description, model.scene),
+                         doctest::Contains("without PETSc"), InputError);
   }
   std::ostringstream o, e;
   CHECK(app::command({"run", (kExamples / "plastic_tube.deck").string(), "--element", "legacy", "--out",

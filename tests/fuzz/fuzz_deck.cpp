@@ -38,11 +38,11 @@ namespace {
 
 /// Run a deck and its scene as `gapfe run` would, small: up to two load steps, eight Newton iterations,
 /// into a scratch folder (the same one every input: RunFolder clears the last input's files).
-void run_small(gapfe::Deck deck, const gapfe::DeckScene& scene) {
+void run_small(gapfe::ModelDescription model, const gapfe::Scene& scene) {
   if (scene.mesh.nodes.size() > 300 || scene.gaps.pairs.size() > 100) return;
-  deck.program.steps             = std::min(deck.program.steps, 2);
-  deck.options.newton_iterations = std::min(deck.options.newton_iterations, 8);
-  static const std::string dir   = [] {  // a char array: no destructor runs before the exit handler
+  model.program.steps             = std::min(model.program.steps, 2);
+  model.options.newton_iterations = std::min(model.options.newton_iterations, 8);
+  static const std::string dir    = [] {  // a char array: no destructor runs before the exit handler
     static char name[] = "/tmp/gapfe_fuzz_XXXXXX";
     if (!::mkdtemp(name)) __builtin_trap();
     std::atexit([] { std::filesystem::remove_all(name); });  // libFuzzer ends with exit()
@@ -50,20 +50,20 @@ void run_small(gapfe::Deck deck, const gapfe::DeckScene& scene) {
   }();
   gapfe::RunFolder::prepare(dir, false, "fuzz");
   const bool gaps = !scene.needs.gaps.empty();
-  scene.needs.plasticity.empty() ? gapfe::fuzz::run_elastic(deck, scene, dir, gaps)
-                                 : gapfe::fuzz::run_plastic(deck, scene, dir, gaps);
+  scene.needs.plasticity.empty() ? gapfe::fuzz::run_elastic(model, scene, dir, gaps)
+                                 : gapfe::fuzz::run_plastic(model, scene, dir, gaps);
 }
 
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);
-  gapfe::DeckLimits limits;
+  gapfe::InputLimits limits;
   limits.max_grid_points = 40'000;  // keep each input fast: the fuzzer explores the reader, not big meshes
   limits.max_load_steps  = 1'000;
   try {
-    const gapfe::Deck deck       = gapfe::read_deck(text, {}, limits);
-    const gapfe::DeckScene scene = gapfe::build_scene(deck);
+    const gapfe::Deck deck   = gapfe::read_deck(text, {}, limits);
+    const gapfe::Scene scene = gapfe::build_scene(deck);
     for (const auto& x : scene.mesh.nodes)
       if (!x.allFinite()) __builtin_trap();  // the generator must reject what it cannot place
     gapfe::StepLoads loads(deck, scene);
@@ -97,14 +97,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
   }
 #ifdef GAPFE_HAS_SCENE
-  if (size < (1u << 14)) {  // a scene: its deck and scene as the command would run them
+  if (size < (1u << 14)) {  // a scene: its description and scene as the command would run them
     try {
       const gapfe::SceneModel m = gapfe::read_scene(text, gapfe::fuzz::scene_mesh, {}, limits);
-      gapfe::StepLoads loads(m.deck, m.scene);
-      for (int step = 1; step <= m.deck.steps() && step <= 3; ++step) (void)loads.at(step);
+      gapfe::StepLoads loads(m.description, m.scene);
+      for (int step = 1; step <= m.description.steps() && step <= 3; ++step) (void)loads.at(step);
       for (const auto& p : m.scene.gaps.pairs)
         if (!std::isfinite(p.initial_gap) || !p.normal.allFinite()) __builtin_trap();
-      run_small(m.deck, m.scene);
+      run_small(m.description, m.scene);
     } catch (const gapfe::InputError&) {
     } catch (const gapfe::SolveError&) {
     }

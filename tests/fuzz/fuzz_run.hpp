@@ -6,22 +6,21 @@
 #include <string>
 
 #include "gapfe/app/plan.hpp"
-#include "gapfe/input/deck.hpp"
-#include "gapfe/input/deck_scene.hpp"
+#include "gapfe/input/scene.hpp"
 
 namespace gapfe::fuzz {
 
 /// The plan both runs take: the library's for the model (make_plan, forced to SAGA), on the one model per
 /// law compiled here (quad4bbar, Eigen) and frictionless, as the runs are.
-inline app::Plan fuzz_plan(const Deck& deck, const DeckScene& scene) {
-  app::Plan plan    = app::make_plan(deck, scene, VariantChoice::saga);
+inline app::Plan fuzz_plan(const ModelDescription& model, const Scene& scene) {
+  app::Plan plan    = app::make_plan(model, scene, VariantChoice::saga);
   plan.key.element  = ElementChoice::quad4bbar;
   plan.key.friction = FrictionChoice::none;
   plan.solver       = SolverChoice::eigen;
   return plan;
 }
 
-void run_elastic(const Deck& deck, const DeckScene& scene, const std::string& dir, bool gaps);
-void run_plastic(const Deck& deck, const DeckScene& scene, const std::string& dir, bool gaps);
+void run_elastic(const ModelDescription& model, const Scene& scene, const std::string& dir, bool gaps);
+void run_plastic(const ModelDescription& model, const Scene& scene, const std::string& dir, bool gaps);
 
 }  // namespace gapfe::fuzz

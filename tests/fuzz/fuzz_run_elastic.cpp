@@ -7,11 +7,12 @@
 
 #include "fuzz_run.hpp"
 
-void gapfe::fuzz::run_elastic(const Deck& deck, const DeckScene& scene, const std::string& dir, bool gaps) {
+void gapfe::fuzz::run_elastic(const ModelDescription& model, const Scene& scene, const std::string& dir,
+                              bool gaps) {
   using M = Model<Axisym3, Quad4BBar, Orthotropic, EigenLdlt>;
   std::ostringstream err;  // the warnings a run would print
-  const app::Plan plan = fuzz_plan(deck, scene);
-  const app::RunRequest r{deck, scene, plan, dir, err, false, {"mises"}, {}};
+  const app::Plan plan = fuzz_plan(model, scene);
+  const app::RunRequest r{model, scene, plan, dir, err, false, {"mises"}, {}};
   app::RunResult times;
   gaps ? app::run_contact<M, Saac>(r, times) : app::run_linear<M>(r, times);
 }

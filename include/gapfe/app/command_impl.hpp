@@ -22,6 +22,8 @@
 #include "gapfe/app/report.hpp"
 #include "gapfe/app/run.hpp"
 #include "gapfe/core/text.hpp"
+#include "gapfe/input/deck.hpp"
+#include "gapfe/input/deck_scene.hpp"
 #include "gapfe/input/input_file.hpp"
 #include "gapfe/output/mesh_files.hpp"
 #include "gapfe/output/run_folder.hpp"
@@ -50,20 +52,14 @@ inline bool is_scene_file(const std::string& path) {
   return std::filesystem::path(path).extension() == ".toml";
 }
 
-/// The model of a deck or a scene file, with the command line's --set options: one Deck and DeckScene
-/// either way. The scene (mesh, loads, gaps) of a deck is built later (build_scene), after large_model.
-inline SceneModel read_model(const Args& a) {
-  SceneModel model;
-  if (is_scene_file(a.deck)) {
+/// A scene file with the command line's --set options, read whole (its mesh too).
+inline SceneModel read_scene_model(const Args& a) {
 #ifdef GAPFE_HAS_SCENE
-    model = read_scene_file(a.deck, a.options);
+  return read_scene_file(a.deck, a.options);
 #else
-    throw InputError("this gapfe was built without toml++ (libtomlplusplus-dev), so it reads decks only");
+  (void)a;
+  throw InputError("this gapfe was built without toml++ (libtomlplusplus-dev), so it reads decks only");
 #endif
-  } else {
-    model.deck = read_deck(read_input(a.deck, "deck"), a.options);
-  }
-  return model;
 }
 
 /// The process checks of a run: a launch of several processes needs solver = petsc, PETSc's options too,
@@ -89,8 +85,8 @@ inline void check_process(const Args& a, const Plan& p, int launch_size, const S
 /// A partitioned run: MPI and PETSc start here (the deck was read and checked on every process, so bad
 /// input fails alike everywhere before any collective call); this process keeps its part of the scene,
 /// and the log lists every rank's share. Returns this process's rank.
-inline int partition(const Args& a, const DeckScene& s, const StartMpi& start_mpi,
-                     std::optional<DeckPart>& part, std::ostream& log) {
+inline int partition(const Args& a, const Scene& s, const StartMpi& start_mpi, std::optional<ScenePart>& part,
+                     std::ostream& log) {
 #ifdef GAPFE_HAS_PETSC
   const auto [rank, ranks] = start_mpi(a.petsc_options);
   auto piece = mesh_part(s.mesh, partition_cells(s.mesh, ranks), ranks, rank, pair_nodes(s.gaps.pairs));
@@ -110,7 +106,7 @@ inline int partition(const Args& a, const DeckScene& s, const StartMpi& start_mp
         << static_cast<long long>(counts[static_cast<std::size_t>(3 * k + 1)]) << " / "
         << static_cast<long long>(counts[static_cast<std::size_t>(3 * k + 2)]);
   log << "\n";
-  part.emplace(DeckPart{std::move(piece.mesh), std::move(pairs), std::move(domain)});
+  part.emplace(ScenePart{std::move(piece.mesh), std::move(pairs), std::move(domain)});
   return rank;
 #else
   (void)a, (void)s, (void)start_mpi, (void)part, (void)log;
@@ -120,7 +116,8 @@ inline int partition(const Args& a, const DeckScene& s, const StartMpi& start_mp
 
 /// The files a run wrote, in the log (the pictures rasterized with --png), and the load-displacement curve
 /// of history.csv for a run of several steps.
-inline void list_files(const Args& a, const Plan& p, const Deck& d, const RunResult& r, std::ostream& log) {
+inline void list_files(const Args& a, const Plan& p, const ModelDescription& d, const RunResult& r,
+                       std::ostream& log) {
   const bool tables = d.options.output_csv != Increments::none,
              fields = d.options.output_vtu != Increments::none;
   log << "wrote " << a.out << "/" << (tables ? "nodes.csv, elements.csv, reactions.csv, " : "")
@@ -138,12 +135,12 @@ inline void list_files(const Args& a, const Plan& p, const Deck& d, const RunRes
 /// the report and the record of the folder's run.
 inline int run_command(const Args& a, const SceneModel& model, const Plan& plan, std::ostream& log,
                        std::ostream& err, const Process& process, double t_read, double t_mesh) {
-  const Deck& d                         = model.deck;
-  const DeckScene& s                    = model.scene;
+  const ModelDescription& d             = model.description;
+  const Scene& s                        = model.scene;
   const auto [launch_rank, launch_size] = launcher_ranks();
   check_process(a, plan, launch_size, process.start_mpi);
   check_plan(plan, d, s);
-  std::optional<DeckPart> part;
+  std::optional<ScenePart> part;
   const int rank = plan.solver == SolverChoice::petsc ? partition(a, s, process.start_mpi, part, log) : 0;
   log << "solver: " << solver_text(plan) << "; element " << name_of(plan.key.element) << "\n";
   set_solver_threads(a.threads);  // CHOLMOD's OpenMP and OpenBLAS; one thread unless asked (threads.hpp)
@@ -182,30 +179,41 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
 }
 
 /// run, mesh and info: read the model, plan and explain it; info stops there, mesh writes the mesh files.
+/// A deck and a scene file become the same SceneModel (a description and its scene); a deck's scene is
+/// built from its grid cards after the large-model set-up, which may start the process anew.
 inline int execute(const Args& a, std::ostream& out, std::ostream& err, const Process& process) {
   std::ostringstream null_stream;
   std::ostream& log = a.quiet ? null_stream : out;
   log << std::setprecision(3);
   auto t0          = Clock::now();
-  SceneModel model = read_model(a);
-  const Deck& d    = model.deck;
   const bool scene = is_scene_file(a.deck);
-  const long steps = a.command == "run" ? std::max(1, d.steps()) : 1;
-  const long grid  = scene ? static_cast<long>(model.scene.grid.node_count())
-                           : static_cast<long>(d.mesh.max_i) * static_cast<long>(d.mesh.max_j);
+  std::optional<Deck> deck;
+  SceneModel model;
+  if (scene)
+    model = read_scene_model(a);
+  else
+    deck = read_deck(read_input(a.deck, "deck"), a.options);
+  const ModelDescription& read = scene ? model.description : *deck;
+  const long steps             = a.command == "run" ? std::max(1, read.steps()) : 1;
+  const long grid              = scene ? static_cast<long>(model.scene.grid.node_count())
+                                       : static_cast<long>(deck->mesh.max_i) * static_cast<long>(deck->mesh.max_j);
   // (Not for standard input: the re-executed process would find it read already.)
   if (process.large_model && a.command != "info" && !is_standard_input(a.deck) && grid * steps >= kLargeModel)
     process.large_model();
   const double t_read = since(t0);
   t0                  = Clock::now();
-  if (!scene) model.scene = build_scene(d);
-  const DeckScene& s  = model.scene;
+  if (!scene) model.scene = build_scene(*deck);
   const double t_mesh = since(t0);
-  if (scene)
+  if (scene) {
     describe_scene(log, model);
-  else
-    describe_deck(log, d, s);
-  const Plan plan = make_plan(d, s, a.variant);
+  } else {
+    describe_deck(log, *deck, model.scene);
+    model.description = std::move(*deck);  // the description; the grid cards are done with
+    deck.reset();
+  }
+  const ModelDescription& d = model.description;
+  const Scene& s            = model.scene;
+  const Plan plan           = make_plan(d, s, a.variant);
   explain_plan(log, plan, d, s);
   if (a.command == "info") return ok;
   if (a.command == "mesh") {

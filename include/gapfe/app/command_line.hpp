@@ -3,7 +3,7 @@
 // --help text are made, so a new option is one row. Hand-written rather than CLI11 (Debian's libcli11-dev):
 // this is shorter than the CLI11 set-up it would replace (the table is the whole specification), keeps the
 // exit codes and messages the tests pin down, and suggests the nearest option for a misspelt one, which
-// CLI11 does not. A deck option given here (--set, --element, ...) goes through DeckOptions::set, the typed
+// CLI11 does not. A deck option given here (--set, --element, ...) goes through ModelOptions::set, the typed
 // setter the deck's `$ key = value` lines use.
 #include <algorithm>
 #include <cctype>

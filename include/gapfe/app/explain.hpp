@@ -6,7 +6,8 @@
 
 #include "gapfe/app/plan.hpp"
 #include "gapfe/core/text.hpp"
-#include "gapfe/input/deck_scene.hpp"
+#include "gapfe/input/deck_cards.hpp"
+#include "gapfe/input/scene.hpp"
 #include "gapfe/solver/eigen_ldlt.hpp"
 #ifdef GAPFE_HAS_PETSC
 #include <petscsys.h>
@@ -15,7 +16,7 @@
 namespace gapfe::app {
 
 /// The model read from a card deck: its title, format, mesh and cards.
-inline void describe_deck(std::ostream& out, const Deck& d, const DeckScene& s) {
+inline void describe_deck(std::ostream& out, const Deck& d, const Scene& s) {
   const char* format = d.options.format == DeckFormat::elastic ? "elastic (SAAS/SAGA, no yield cards)"
                        : d.options.format == DeckFormat::saac3 ? "saac3 (rate card, yield cards)"
                                                                : "saac (yield cards)";
@@ -33,9 +34,9 @@ inline void describe_deck(std::ostream& out, const Deck& d, const DeckScene& s) 
 
 /// The model read from a scene file: its title, mesh (the generator's or a Gmsh file) and loads.
 inline void describe_scene(std::ostream& out, const SceneModel& m) {
-  const Deck& d         = m.deck;
-  const DeckScene& s    = m.scene;
-  const auto edge_cards = [&](std::vector<EdgeCard> LoadBlock::*kind) {
+  const ModelDescription& d = m.description;
+  const Scene& s            = m.scene;
+  const auto edge_cards     = [&](std::vector<EdgeCard> LoadBlock::*kind) {
     return d.program.blocks.empty() ? std::size_t{0} : (d.program.blocks.front().*kind).size();
   };
   out << "scene: " << detail::visible_text(d.title) << "\n"
@@ -57,8 +58,8 @@ inline void describe_scene(std::ostream& out, const SceneModel& m) {
 }
 
 /// How a law with history is integrated, in words (the log's "integration:" line).
-inline std::string integration_text(const Plan& p, const Deck& d) {
-  const DeckOptions& o = d.options;
+inline std::string integration_text(const Plan& p, const ModelDescription& d) {
+  const ModelOptions& o = d.options;
   if (p.key.integration == PlasticityChoice::tangent)
     return std::string(
                "tangent (the seed's one solve per increment, for reproducing legacy results: not iterated, "
@@ -73,8 +74,8 @@ inline std::string integration_text(const Plan& p, const Deck& d) {
 }
 
 /// The plan: the variant and why, then what the gaps, the plasticity, the rate card and SAAC3X's test ask.
-inline void explain_plan(std::ostream& log, const Plan& p, const Deck& d, const DeckScene& s) {
-  const DeckOptions& o = d.options;
+inline void explain_plan(std::ostream& log, const Plan& p, const ModelDescription& d, const Scene& s) {
+  const ModelOptions& o = d.options;
   log << "variant: " << name_of(p.key.kinematics) << " (" << p.variant_reason << ")\n";
   if (p.gaps) {
     log << "  gaps: " << s.needs.gaps.front() << (s.needs.gaps.size() > 1 ? " and more" : "") << "; "

@@ -12,7 +12,7 @@
 #include "gapfe/core/choices.hpp"
 #include "gapfe/core/combinations.hpp"
 #include "gapfe/core/error.hpp"
-#include "gapfe/input/deck_scene.hpp"
+#include "gapfe/input/scene.hpp"
 
 namespace gapfe::app {
 
@@ -61,7 +61,7 @@ inline constexpr bool kHasPetsc   = false;
 /// The kinematics the model needs, and why: SAGA when anything needs u_theta, else SAAS unless `forced`
 /// asks for SAGA (then u_theta = 0 everywhere). InputError when SAAS is forced on a model that needs
 /// u_theta.
-inline VariantChoice pick_variant(const DeckNeeds& needs, std::optional<VariantChoice> forced,
+inline VariantChoice pick_variant(const ModelNeeds& needs, std::optional<VariantChoice> forced,
                                   std::string& why) {
   if (needs.needs_theta()) {
     why = "3 DOF per node: " + needs.theta.front() +
@@ -84,8 +84,8 @@ inline VariantChoice pick_variant(const DeckNeeds& needs, std::optional<VariantC
 /// (auto: quad4bbar for plastic models, legacy otherwise), the law, the contact policy and friction model,
 /// the solver (auto: CHOLMOD when built, else Eigen). Checks only what the variant needs; check_plan the
 /// rest.
-inline Plan make_plan(const Deck& d, const DeckScene& s, std::optional<VariantChoice> forced = {}) {
-  const DeckOptions& o = d.options;
+inline Plan make_plan(const ModelDescription& d, const Scene& s, std::optional<VariantChoice> forced = {}) {
+  const ModelOptions& o = d.options;
   Plan p;
   p.gaps            = !s.needs.gaps.empty();
   p.plastic         = !s.needs.plasticity.empty();
@@ -118,8 +118,8 @@ inline void check_solver_built(SolverChoice solver) {
 /// made for this model (its kinematics, gaps and plasticity); the library's rule of what combines
 /// (core/combinations.hpp), friction without gaps, events without an exact policy, and a rate card that
 /// cannot integrate. InputError naming the options and the reason.
-inline void check_plan(const Plan& p, const Deck& d, const DeckScene& s) {
-  const DeckOptions& o = d.options;
+inline void check_plan(const Plan& p, const ModelDescription& d, const Scene& s) {
+  const ModelOptions& o = d.options;
   if (p.solver == SolverChoice::automatic)
     throw InputError("the plan's solver is not chosen (make_plan chooses it)");
   check_solver_built(p.solver);

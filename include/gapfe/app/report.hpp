@@ -14,7 +14,6 @@
 #include "gapfe/app/plan.hpp"
 #include "gapfe/app/run_result.hpp"
 #include "gapfe/driver/newton_options.hpp"
-#include "gapfe/input/deck.hpp"
 
 namespace gapfe::app {
 
@@ -34,9 +33,9 @@ inline constexpr double kResidualWarning = 1e-4;
 inline constexpr double kBalanceWarning = 1e-8;
 
 /// The largest Poisson's ratio of any material table row, and its material's deck number.
-inline std::pair<int, double> largest_poisson(const Deck& d) {
+inline std::pair<int, double> largest_poisson(const ModelDescription& d) {
   std::pair<int, double> worst{0, -1.0};
-  for (const DeckMaterial& m : d.materials)
+  for (const MaterialInput& m : d.materials)
     for (const ElasticConstants& c : m.table.rows)
       if (const double nu = std::max({c.nu_NS, c.nu_NT, c.nu_ST}); nu > worst.second) worst = {m.id, nu};
   return worst;
@@ -45,7 +44,7 @@ inline std::pair<int, double> largest_poisson(const Deck& d) {
 /// The warning of a plan on the plain bilinear quad (element = quad4) with a nearly incompressible material:
 /// it locks (its volumetric strain is enforced at every Gauss point), so its displacements come out too
 /// small; on the error stream, so that --quiet keeps it. B-bar (the mean dilatation) relieves it.
-inline void warn_locking(const Plan& p, const Deck& d, std::ostream& err) {
+inline void warn_locking(const Plan& p, const ModelDescription& d, std::ostream& err) {
   if (p.key.element != ElementChoice::quad4) return;
   if (const auto [material, nu] = largest_poisson(d); nu > kLockingPoisson)
     err << "gapfe: warning: element = quad4 with Poisson's ratio " << nu << " (material " << material
@@ -133,7 +132,8 @@ inline bool warn_seed_residual(std::ostream& err, const RunResult& times) {
 /// A rate-dependent run under return-mapping: the largest estimated time error of an accepted increment in
 /// the log (DrysdaleZak::time_error, docs/plasticity.md "Time steps"), and a warning when it stayed above
 /// time_tolerance (a step cut to its smallest pieces, 1/1024, and still above it).
-inline void report_time_error(std::ostream& log, std::ostream& err, const RunResult& times, const Deck& d) {
+inline void report_time_error(std::ostream& log, std::ostream& err, const RunResult& times,
+                              const ModelDescription& d) {
   const double tol = d.options.time_tolerance;
   log << "time steps: largest estimated time error of an increment " << times.time_error
       << (tol > 0 ? " (time_tolerance " + detail::number_text(tol) + ")"
@@ -150,8 +150,9 @@ inline void report_time_error(std::ostream& log, std::ostream& err, const RunRes
 /// for runs that iterate (plasticity, contact) at least the residual Newton accepts, newton_tolerance times
 /// NewtonOptions::stall_factor (100: a stalled increment). The seed's one-solve plasticity leaves an
 /// out-of-balance by design: when its residual was warned of (`seed_warned`), that warning says it.
-inline void report_balance(std::ostream& log, std::ostream& err, const RunResult& times, const Deck& d,
-                           bool torque, bool gaps, bool plastic, bool seed_warned) {
+inline void report_balance(std::ostream& log, std::ostream& err, const RunResult& times,
+                           const ModelDescription& d, bool torque, bool gaps, bool plastic,
+                           bool seed_warned) {
   log_per_step(log,
                "global balance per load step (the loads against the reactions along the axis and about it)",
                times.step_balance);
@@ -178,7 +179,7 @@ inline void report_balance(std::ostream& log, std::ostream& err, const RunResult
 
 /// The run's figures after it ends: residuals per step, equilibrium, global balance, the plastic and contact
 /// work, the friction cone and the rate-dependent increments in the log; the warnings their limits call for.
-inline void report_run(std::ostream& log, std::ostream& err, const Plan& p, const Deck& d,
+inline void report_run(std::ostream& log, std::ostream& err, const Plan& p, const ModelDescription& d,
                        const RunResult& r) {
   const bool plastic = p.plastic;
   // Each load step's worst relative residual: a step the solver could not hold to round-off shows where.

@@ -18,13 +18,13 @@ namespace gapfe::app {
 /// what the run did; InputError when the plan fails its checks, SolveError when a step cannot be solved
 /// (the files then hold the increments accepted).
 inline RunResult run(const RunRequest& r) {
-  check_plan(r.plan, r.deck, r.scene);
+  check_plan(r.plan, r.model, r.scene);
   if (r.plan.solver == SolverChoice::petsc && !r.part)
     throw InputError(
         "solver = petsc runs a partitioned model: each process's part (RunRequest::part) on PETSc and MPI, "
         "which "
         "the program starts (the gapfe command does)");
-  warn_locking(r.plan, r.deck, r.err);
+  warn_locking(r.plan, r.model, r.err);
   RunResult result;
   const bool done = [&]<std::size_t... Shard>(std::index_sequence<Shard...>) {
     return (run_shard<Shard>(r, result) || ...);

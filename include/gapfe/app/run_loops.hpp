@@ -1,6 +1,6 @@
 #pragma once
 // The three ways a run steps a model on one compiled variant M, with the files each writes:
-//   run_linear   no gaps, linear law: LinearStatic, one factorization (run_deck);
+//   run_linear   no gaps, linear law: LinearStatic, one factorization (run_scene);
 //   run_plastic  no gaps, law with history: NonlinearStatic with step cutting, plus plasticity.csv;
 //   run_contact  gap elements under contact policy P and friction model F: ContactStatic (over
 //                NonlinearStatic for laws with history: SAAC = SAGAEP + gaps), plus gaps.csv.
@@ -18,7 +18,7 @@
 #include "gapfe/output/gap_file.hpp"
 #include "gapfe/output/grid_arrays.hpp"
 #include "gapfe/output/plasticity_file.hpp"
-#include "gapfe/run/deck_run.hpp"
+#include "gapfe/run/scene_run.hpp"
 
 namespace gapfe::app {
 
@@ -28,7 +28,7 @@ namespace gapfe::app {
 /// fill the log). A partitioned run's `part` holds its own points only: the extremes and the count are over
 /// every part.
 template <class States>
-void note_relaxation(RunResult& times, const Deck& d, int step, double inc, const States& states,
+void note_relaxation(RunResult& times, const ModelDescription& d, int step, double inc, const States& states,
                      const Subdomain* part) {
   if constexpr (requires { states.front().relaxation; }) {
     if (inc != std::floor(inc)) return;  // the same on every part: inc is the whole run's
@@ -54,8 +54,8 @@ template <class M>
 void run_linear(const RunRequest& r, RunResult& times) {
   RunFiles files = step_files(r);
   FinishFiles finish{r, times, files};
-  run_deck<M>(
-      r.deck, r.scene,
+  run_scene<M>(
+      r.model, r.scene,
       [&](int step, double inc, const LinearStatic<M>& fe) {
         const auto& t = fe.timings();
         times.assemble += t.assemble, times.factorize += t.factorize, times.solve += t.solve + t.reactions;
@@ -69,10 +69,10 @@ template <class M>
 void run_plastic(const RunRequest& r, RunResult& times) {
   RunFiles files = step_files(r);
   FinishFiles finish{r, times, files};
-  PlasticityFile record(r.writes ? &r.dir : nullptr, r.deck.step_time());  // plasticity.csv
+  PlasticityFile record(r.writes ? &r.dir : nullptr, r.model.step_time());  // plasticity.csv
   int last_step = 0;
-  run_deck_plastic<M>(
-      r.deck, r.scene,
+  run_scene_plastic<M>(
+      r.model, r.scene,
       [&](int step, double inc, const NonlinearStatic<M>& fe) {
         const auto& rep = fe.report();
         const auto& t   = fe.total_timings();  // every Newton solve so far, cut attempts included
@@ -88,7 +88,7 @@ void run_plastic(const RunRequest& r, RunResult& times) {
         times.worst_residual = std::max(times.worst_residual, rep.residuals.back());
         times.stalled += rep.stalled;
         ++times.increments;
-        note_relaxation(times, r.deck, step, inc, fe.states(), fe.problem().subdomain.get());
+        note_relaxation(times, r.model, step, inc, fe.states(), fe.problem().subdomain.get());
         record.write(step, inc, rep);
         last_step = step;
         write_increment(r, times, files, step, inc, fe, {}, {rep.iterations, rep.plastic_points, 0, 0});
@@ -126,7 +126,7 @@ void run_contact(const RunRequest& r, RunResult& times) {
   RunFiles files = step_files(r);
   FinishFiles finish{r, times, files};
   std::optional<GapFile> gaps;
-  if (r.writes) gaps.emplace(r.dir, r.scene, F::kFriction, r.deck.step_time());
+  if (r.writes) gaps.emplace(r.dir, r.scene, F::kFriction, r.model.step_time());
   std::vector<char> outline;  // friction: the nodes on the mesh's outline, for the cone warning's cause
   if constexpr (F::kFriction) {
     outline.assign(static_cast<std::size_t>(r.scene.grid.node_count()), 0);
@@ -134,8 +134,8 @@ void run_contact(const RunRequest& r, RunResult& times) {
       for (const int n : side) outline[static_cast<std::size_t>(n)] = 1;
   }
   int solves_before = 0;  // the contact counters' solves at the last increment
-  run_deck_contact<M, P, F>(
-      r.deck, r.scene, r.deck.options.gap_penalty,
+  run_scene_contact<M, P, F>(
+      r.model, r.scene, r.model.options.gap_penalty,
       [&](int step, double inc, const ContactStatic<M, P, F>& c) {
         // Every solve of the increment (Newton, Uzawa, split points), not only its last.
         const auto& t  = c.fe().total_timings();
@@ -148,10 +148,10 @@ void run_contact(const RunRequest& r, RunResult& times) {
           times.closed += st.closed, summary.slipping += st.closed && st.slipping;
         summary.closed = times.closed;
         if constexpr (F::kFriction)
-          note_cone(times, summary, step, inc, r.scene.gaps.pairs, c.states(), r.deck.options.friction,
+          note_cone(times, summary, step, inc, r.scene.gaps.pairs, c.states(), r.model.options.friction,
                     outline);
         if constexpr (!M::Material::kLinear) {
-          note_relaxation(times, r.deck, step, inc, c.fe().states(), c.fe().problem().subdomain.get());
+          note_relaxation(times, r.model, step, inc, c.fe().states(), c.fe().problem().subdomain.get());
           summary.plastic_points = c.fe().report().plastic_points;
           times.time_error       = std::max(times.time_error, c.fe().report().time_error);
         }

@@ -11,18 +11,17 @@
 
 #include "gapfe/app/plan.hpp"
 #include "gapfe/app/run_result.hpp"
-#include "gapfe/input/deck.hpp"
-#include "gapfe/input/deck_scene.hpp"
+#include "gapfe/input/scene.hpp"
 #include "gapfe/output/step_files.hpp"
 #include "gapfe/post/gather.hpp"
-#include "gapfe/run/deck_run.hpp"
+#include "gapfe/run/scene_run.hpp"
 
 namespace gapfe::app {
 
 /// What a run needs: the model, its plan, where to write and how to speak.
 struct RunRequest {
-  const Deck& deck;
-  const DeckScene& scene;
+  const ModelDescription& model;
+  const Scene& scene;
   const Plan& plan;
   std::string dir;
   std::ostream& err;
@@ -30,14 +29,14 @@ struct RunRequest {
   std::vector<std::string> pictures;  ///< fields drawn for the last increment (StepFiles::draw_fields)
   PlotUnits units;
   /// A partitioned run (solver = petsc): this process's part of the scene; nullptr: the whole scene here.
-  const DeckPart* part = nullptr;
+  const ScenePart* part = nullptr;
   /// Whether this process writes the files (rank 0 of a partitioned run, which gathers the results).
   bool writes = true;
 };
 
 /// The log's progress line.
 inline void progress_line(const RunRequest& r, int step) {
-  if (r.progress) r.err << "\rstep " << step << "/" << r.deck.steps() << std::flush;
+  if (r.progress) r.err << "\rstep " << step << "/" << r.model.steps() << std::flush;
 }
 inline void progress_done(const RunRequest& r) {
   if (r.progress) r.err << "\r" << std::string(32, ' ') << "\r" << std::flush;
@@ -92,10 +91,10 @@ void write_increment(const RunRequest& r, RunResult& times, RunFiles& files, int
 inline RunFiles step_files(const RunRequest& r) {
   RunFiles files;
   if (!r.writes) return files;
-  files.emplace(r.dir, r.scene, r.deck.step_time(), r.deck.options.output_csv, r.deck.options.output_vtu);
+  files.emplace(r.dir, r.scene, r.model.step_time(), r.model.options.output_csv, r.model.options.output_vtu);
   files->draw_fields(r.pictures, r.units);
-  files->keep_history(r.deck.steps(), {r.plan.key.friction != FrictionChoice::none,
-                                       r.plan.key.kinematics == VariantChoice::saga});
+  files->keep_history(r.model.steps(), {r.plan.key.friction != FrictionChoice::none,
+                                        r.plan.key.kinematics == VariantChoice::saga});
   return files;
 }
 
@@ -113,7 +112,7 @@ struct FinishFiles {
     progress_done(r);
     if (!files) return;
     const auto start = std::chrono::steady_clock::now();
-    files->finish(r.deck.title);
+    files->finish(r.model.title);
     times.pictures = files->pictures_written(), times.pictures_skipped = files->pictures_skipped();
     times.write += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }

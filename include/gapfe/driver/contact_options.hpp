@@ -16,7 +16,7 @@ struct ContactOptions {
   double friction              = 0;     ///< mu >= 0 (models other than NoFriction)
   /// Laws that estimate a time error (StepReport::time_error): an increment longer than the smallest piece
   /// (kSmallestTimePiece of a load step) whose estimate exceeds this is not accepted: accept() throws
-  /// TimeErrorExceeded (run_deck_contact restarts and repeats the piece in halves). 0: off.
+  /// TimeErrorExceeded (run_scene_contact restarts and repeats the piece in halves). 0: off.
   double time_tolerance = 0;
   /// Coulomb: k_t / adjacent stiffness; 0: the normal penalty factor (k_t = k). Proportional and
   /// Extended take theirs from the seed (mu k and k).

@@ -4,7 +4,7 @@
 namespace gapfe {
 
 /// The smallest piece of a load step (in load factor) that the drivers cut a rate-dependent law's steps to
-/// by their time error (StepReport::time_error; run_deck_plastic, ContactStatic).
+/// by their time error (StepReport::time_error; run_scene_plastic, ContactStatic).
 inline constexpr double kSmallestTimePiece = 1.0 / 1024;
 
 /// Newton's stopping rule and starting point.

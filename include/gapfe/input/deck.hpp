@@ -18,7 +18,7 @@
 //
 // Extensions (options the seed's input lacks) are lines `$ key = value` before the first card; a
 // line that is only `$` or `$ text` without `=` is a comment. The same keys can be set from the
-// command line (gapfe --set key=value), so legacy decks stay untouched. See DeckOptions.
+// command line (gapfe --set key=value), so legacy decks stay untouched. See ModelOptions.
 #include "gapfe/input/deck_cards.hpp"
 #include "gapfe/input/deck_options.hpp"
 #include "gapfe/input/deck_reader.hpp"

@@ -36,7 +36,7 @@ inline void read_extensions(DeckLines& in, Deck& d,
 }
 
 /// Data 0-3: the rate property card (SAAC3 only), the title, the control card, the mesh generation control.
-inline void read_head_cards(DeckLines& in, Deck& d, const DeckLimits& limits) {
+inline void read_head_cards(DeckLines& in, Deck& d, const InputLimits& limits) {
   // ---- Data 0: rate property card (5E12.6), SAAC3 / SAAC3X only
   if (d.options.format == DeckFormat::saac3) {
     const CardImage c = in.take("DATA NO. 0 (rate property card)");
@@ -203,7 +203,7 @@ inline void read_material_cards(DeckLines& in, Deck& d) {
   // ---- Data 10 (+ 11): materials
   for (int m = 1; m <= d.control.nummat; ++m) {
     const CardImage c = in.take(numbered("DATA NO. 10a", "material identification card of material", m));
-    DeckMaterial mat;
+    MaterialInput mat;
     mat.id            = c.integer(1, 5, "material identification number");
     const int ntemp   = c.integer(6, 10, "number of temperatures");
     mat.table.density = c.real(11, 20, 0, "mass density");

@@ -56,7 +56,7 @@ inline std::string numbered(const std::string& data, const std::string& what, in
   return data + " (" + what + " " + std::to_string(k) + ")";
 }
 
-/// The columns of the fields that `fields = wide` widens (DeckOptions::wide_fields). Legacy, as the seed:
+/// The columns of the fields that `fields = wide` widens (ModelOptions::wide_fields). Legacy, as the seed:
 /// line segment cards 3(2I3, 2F8.3), I5 and edge load cards 2I5, F10.0. Wide: line segment cards
 /// 3(2I5, 2F12.3), I5 (grid indices to 99,999 as MAXI and MAXJ on Data 3, coordinates with four more
 /// columns) and edge load cards 2I10, F10.0 (node numbers to 2,147,483,647).

@@ -31,7 +31,7 @@ inline std::array<std::string, 3> unit_names(const std::string& text) {
 }
 
 /// Options a deck sets with `$ key = value` lines or the command line sets with --set key=value.
-struct DeckOptions {
+struct ModelOptions {
   DeckFormat format = DeckFormat::saac;  ///< format = saac | saac3 | elastic
   /// element = auto | legacy (the seed's four-CST quad) | quad4 | quad4bbar (Quad4 with B-bar). auto:
   /// legacy for elastic and gap decks, quad4bbar for decks with yield cards (plain Quad4 locks in

@@ -19,7 +19,7 @@ namespace gapfe {
 /// card, the line, the columns and what was expected.
 inline Deck read_deck(std::string_view text,
                       const std::vector<std::pair<std::string, std::string>>& overrides = {},
-                      const DeckLimits& limits                                          = {}) {
+                      const InputLimits& limits                                         = {}) {
   Deck d;
   detail::DeckLines in(text);
   detail::read_extensions(in, d, overrides);

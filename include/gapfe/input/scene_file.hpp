@@ -2,9 +2,9 @@
 // The scene file: a model in TOML, by name instead of by card column, on a Gmsh mesh or on the
 // seed's I-J grid. It says what a deck says (input/deck.hpp): materials by surface, conditions and loads by
 // curve or surface, load steps and their histories, temperatures, inertia, the rate card, contact between
-// two facing curves, and the deck options. read_scene turns it into the Deck and DeckScene a deck becomes,
-// so everything after it (run/deck_run.hpp, the command, output/step_files.hpp) is one path for decks and
-// scenes, and one model given both ways gives the same answers.
+// two facing curves, and the deck options. read_scene turns it into the ModelDescription and Scene a deck
+// also becomes, so everything after it (run/scene_run.hpp, the command, output/step_files.hpp) is one path
+// for decks and scenes, and one model given both ways gives the same answers.
 //
 // Needs toml++ (Debian's libtomlplusplus-dev; CMake target gapfe::scene), so gapfe.hpp does not include
 // it. The keys, their units and defaults are in README "Scene files" and examples/scenes/; in short:
@@ -64,10 +64,10 @@
 
 #include "gapfe/contact/facing_faces.hpp"
 #include "gapfe/contact/gap_pairs.hpp"
-#include "gapfe/input/deck.hpp"
-#include "gapfe/input/deck_scene.hpp"
 #include "gapfe/input/gmsh_reader.hpp"
 #include "gapfe/input/input_file.hpp"
+#include "gapfe/input/model_description.hpp"
+#include "gapfe/input/scene.hpp"
 #include "gapfe/input/scene_materials.hpp"
 #include "gapfe/input/scene_mesh.hpp"
 #include "gapfe/input/scene_table.hpp"
@@ -84,11 +84,11 @@ namespace detail {
 /// other: options and steps, the mesh and its cells, materials, conditions, loads, temperature, contact.
 class SceneBuilder {
  public:
-  SceneBuilder(const SceneTable& top, const DeckLimits& limits) : top_(top), limits_(limits) {}
+  SceneBuilder(const SceneTable& top, const InputLimits& limits) : top_(top), limits_(limits) {}
 
   SceneModel build(const SceneMeshLoader& load_mesh,
                    const std::vector<std::pair<std::string, std::string>>& overrides) {
-    model_.deck.title = top_.text("title", std::string("untitled scene"));
+    model_.description.title = top_.text("title", std::string("untitled scene"));
     options(overrides);
     steps();
     mesh(load_mesh);
@@ -97,7 +97,7 @@ class SceneBuilder {
     loads();
     temperature();
     contact();
-    finish_scene(model_.deck, model_.scene);
+    finish_scene(model_.description, model_.scene);
     return std::move(model_);
   }
 
@@ -133,16 +133,16 @@ class SceneBuilder {
                        before->second.second + " set it to '" + before->second.first + "'; a run has one " +
                        name);
     try {
-      model_.deck.options.set(name, value.str());
+      model_.description.options.set(name, value.str());
     } catch (const InputError& e) {
       throw InputError("scene: " + where + ": " + e.what());
     }
   }
 
-  /// [options] through DeckOptions::set, [[contact]]'s options, then [rate] (card 0: SAAC3's format), then
+  /// [options] through ModelOptions::set, [[contact]]'s options, then [rate] (card 0: SAAC3's format), then
   /// the command line's.
   void options(const Overrides& overrides) {
-    Deck& d = model_.deck;
+    ModelDescription& d = model_.description;
     if (const toml::node* o = top_.get("options")) {
       if (!o->is_table()) top_.fail("options", "a table of deck options");
       for (auto&& [key, node] : *o->as_table()) {
@@ -173,8 +173,8 @@ class SceneBuilder {
   }
 
   void steps() {
-    Deck& d         = model_.deck;
-    d.program.steps = 1;
+    ModelDescription& d = model_.description;
+    d.program.steps     = 1;
     if (const auto s = top_.table("steps", {"count", "time"})) {
       const int most = limits_.max_load_steps;
       const double n = s->number("count", 1.0);
@@ -241,7 +241,7 @@ class SceneBuilder {
   int amplitude(const SceneTable& t) {
     const toml::node* node = t.get("amplitude");
     if (!node) return -1;
-    const int steps            = model_.deck.steps();
+    const int steps            = model_.description.steps();
     const std::string expected = "[[step, factor], ...]: whole steps from 0 to the last, " +
                                  std::to_string(steps) + ", increasing, with finite factors";
     const toml::array* a = node->as_array();
@@ -256,15 +256,15 @@ class SceneBuilder {
         t.fail("amplitude", expected);
       amp.points.emplace_back(static_cast<int>(*step), *factor);
     }
-    model_.deck.program.amplitudes.push_back(std::move(amp));
-    return static_cast<int>(model_.deck.program.amplitudes.size()) - 1;
+    model_.description.program.amplitudes.push_back(std::move(amp));
+    return static_cast<int>(model_.description.program.amplitudes.size()) - 1;
   }
 
   /// [materials.NAME] on their surfaces: material numbers (given, or the next free in name order), the
   /// deck's materials, each cell's tag; every cell must get one.
   void materials() {
-    Deck& d                 = model_.deck;
-    DeckScene& s            = model_.scene;
+    ModelDescription& d     = model_.description;
+    Scene& s                = model_.scene;
     const toml::node* table = top_.get("materials");
     if (!table || !table->is_table() || table->as_table()->empty())
       throw InputError("scene: no [materials.NAME] table: each physical surface needs a material");
@@ -277,7 +277,7 @@ class SceneBuilder {
                    {"surfaces", "number", "E", "nu", "G", "alpha", "rows", "density", "thermal", "beta",
                     "helix", "yield", "hardening"});
       SceneMaterial m = scene_material(name, t);
-      if (m.has_number && !numbers.insert(m.deck.id).second)
+      if (m.has_number && !numbers.insert(m.input.id).second)
         t.fail("number", "a number no other material has");
       read.emplace_back(std::move(m), std::move(t));
     }
@@ -285,9 +285,9 @@ class SceneBuilder {
     for (auto& [m, t] : read) {
       if (!m.has_number) {
         while (numbers.count(next)) ++next;
-        numbers.insert(m.deck.id = next);
+        numbers.insert(m.input.id = next);
       }
-      d.materials.push_back(m.deck);
+      d.materials.push_back(m.input);
     }
     // Per cell, the material (index into read) and surface that gave it one: a cell in two surface groups
     // (a surface in "steel" and in "all") may be named by both, for one material only.
@@ -307,11 +307,11 @@ class SceneBuilder {
                              read[static_cast<std::size_t>(first)].first.name +
                              "]: a cell takes one material, so two materials may not name it");
           first = static_cast<int>(k), first_surface = &surface;
-          s.material_id[e] = m.deck.id;
+          s.material_id[e] = m.input.id;
           tag(e)           = cell_tag;
         }
       if (m.helix_deg != 0)
-        s.needs.theta.push_back("helix = " + number_text(m.helix_deg) + " in " + m.deck.ref.where());
+        s.needs.theta.push_back("helix = " + number_text(m.helix_deg) + " in " + m.input.ref.where());
     }
     for (std::size_t e = 0; e < s.material_id.size(); ++e)
       if (s.material_id[e] == 0)
@@ -338,7 +338,7 @@ class SceneBuilder {
   void contact();
 
   const SceneTable& top_;
-  DeckLimits limits_;
+  InputLimits limits_;
   SceneModel model_;
   std::string mesh_name_;
   std::unique_ptr<SceneMesh> mesh_;
@@ -350,10 +350,10 @@ class SceneBuilder {
 
 /// Read a scene file's text; `load_mesh` reads the mesh it names (read_scene_file: a file beside the
 /// scene). `overrides` are option settings (the command's --set) applied after the scene's [options];
-/// `limits` bound the grid and the load steps as a deck's (input/deck_cards.hpp).
+/// `limits` bound the grid and the load steps as a deck's (InputLimits, input/model_description.hpp).
 inline SceneModel read_scene(std::string_view text, const SceneMeshLoader& load_mesh,
                              const std::vector<std::pair<std::string, std::string>>& overrides = {},
-                             const DeckLimits& limits                                          = {}) {
+                             const InputLimits& limits                                         = {}) {
   toml::table root;
   try {
     root = toml::parse(text);

@@ -6,12 +6,12 @@
 namespace gapfe::detail {
 
 inline void SceneBuilder::boundary() {
-  DeckScene& s                          = model_.scene;
+  Scene& s                              = model_.scene;
   const std::array<const char*, 3> dirs = {"r", "z", "theta"};
   for (const SceneTable& b :
        top_.tables("boundary", {"groups", "fix", "displacement", "force", "amplitude"})) {
     const int history  = amplitude(b);
-    const double steps = history < 0 ? model_.deck.program.steps : 1.0;
+    const double steps = history < 0 ? model_.description.program.steps : 1.0;
     int code = 0, given = 0;  // prescribed displacements (seed Data 5's code bits); directions given
     std::array<double, 3> value{};
     if (b.has("fix"))
@@ -50,8 +50,8 @@ inline void SceneBuilder::boundary() {
 }
 
 inline void SceneBuilder::loads() {
-  Deck& d         = model_.deck;
-  const IJGrid& g = model_.scene.grid;
+  ModelDescription& d = model_.description;
+  const IJGrid& g     = model_.scene.grid;
   std::set<std::pair<int, int>> ccw;  // every cell side, counterclockwise
   for (const auto& c : g.cells)
     for (int k = 0; k < c.corners; ++k) ccw.insert({c.node[k], c.node[(k + 1) % c.corners]});
@@ -117,8 +117,8 @@ inline void SceneBuilder::loads() {
 }
 
 inline void SceneBuilder::temperature() {
-  Deck& d      = model_.deck;
-  const auto t = top_.table("temperature", {"reference", "value", "points", "amplitude"});
+  ModelDescription& d = model_.description;
+  const auto t        = top_.table("temperature", {"reference", "value", "points", "amplitude"});
   if (!t) return;
   d.program.reference_temperature = t->number("reference", 0.0);
   d.program.temperature_amplitude = amplitude(*t);
@@ -146,7 +146,7 @@ inline void SceneBuilder::temperature() {
 }
 
 inline void SceneBuilder::contact() {
-  DeckScene& s            = model_.scene;
+  Scene& s                = model_.scene;
   const std::size_t cells = s.grid.cells.size();
   std::vector<char> soft(cells, 0);  // 1: a soft cell, 2: one that bridges the faces
   for (const SceneTable& c : contact_tables()) {

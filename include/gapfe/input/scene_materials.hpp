@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "gapfe/input/deck_cards.hpp"
+#include "gapfe/input/model_description.hpp"
 #include "gapfe/input/scene_table.hpp"
 
 namespace gapfe::detail {
@@ -45,7 +45,7 @@ inline ElasticConstants scene_elastic_row(const SceneTable& t, double temperatur
 /// [materials.NAME]: the deck material (its table and yield card) and its surfaces and orientation.
 struct SceneMaterial {
   std::string name;
-  DeckMaterial deck;
+  MaterialInput input;
   std::vector<std::string> surfaces;
   double beta_deg = 0, helix_deg = 0;
   bool has_number = false;
@@ -58,29 +58,29 @@ inline SceneMaterial scene_material(const std::string& name, const SceneTable& t
   if (t.has("number")) {
     const double k = t.number("number");
     if (!(k >= 1 && k <= 1e6 && k == std::floor(k))) t.fail("number", "a whole number from 1 to 1000000");
-    m.deck.id = static_cast<int>(k), m.has_number = true;
+    m.input.id = static_cast<int>(k), m.has_number = true;
   }
-  m.deck.ref           = {"[materials." + name + "]", SceneTable::line(t.raw())};
-  m.deck.table.density = t.number("density", 0.0);
-  if (m.deck.table.density < 0) t.fail("density", "a number >= 0");
+  m.input.ref           = {"[materials." + name + "]", SceneTable::line(t.raw())};
+  m.input.table.density = t.number("density", 0.0);
+  if (m.input.table.density < 0) t.fail("density", "a number >= 0");
   const std::string thermal = t.text("thermal", std::string("coefficients"));
   if (thermal != "coefficients" && thermal != "free-strain")
     t.fail("thermal", "\"coefficients\" or \"free-strain\"");
-  m.deck.table.thermal = thermal == "free-strain" ? ThermalInput::free_strain : ThermalInput::coefficients;
-  m.beta_deg           = t.number("beta", 0.0);
-  m.helix_deg          = t.number("helix", 0.0);
+  m.input.table.thermal = thermal == "free-strain" ? ThermalInput::free_strain : ThermalInput::coefficients;
+  m.beta_deg            = t.number("beta", 0.0);
+  m.helix_deg           = t.number("helix", 0.0);
   if (t.has("rows")) {
     if (t.has("E") || t.has("nu") || t.has("G") || t.has("alpha"))
       throw InputError("scene: " + t.where() + ": give the constants either in [[" + t.path() +
                        ".rows]] (a temperature table) or directly, not both");
     for (const SceneTable& row : t.tables("rows", {"temperature", "E", "nu", "G", "alpha"})) {
       const double T = row.number("temperature");
-      if (!m.deck.table.rows.empty() && !(T > m.deck.table.rows.back().temperature))
+      if (!m.input.table.rows.empty() && !(T > m.input.table.rows.back().temperature))
         row.fail("temperature", "a temperature above the row before's (rows in increasing temperature)");
-      m.deck.table.rows.push_back(scene_elastic_row(row, T));
+      m.input.table.rows.push_back(scene_elastic_row(row, T));
     }
   } else {
-    m.deck.table.rows.push_back(scene_elastic_row(t, 0.0));
+    m.input.table.rows.push_back(scene_elastic_row(t, 0.0));
   }
   if (t.has("yield") || t.has("hardening")) {
     YieldCard card;
@@ -96,9 +96,9 @@ inline SceneMaterial scene_material(const std::string& name, const SceneTable& t
     }
     card.hardening = t.number("hardening", 0.0);
     card.blank     = false;
-    m.deck.yield   = card;
+    m.input.yield  = card;
   } else {
-    m.deck.yield = YieldCard{};  // blank: elastic (a scene is read in a format with yield cards)
+    m.input.yield = YieldCard{};  // blank: elastic (a scene is read in a format with yield cards)
   }
   return m;
 }

@@ -23,10 +23,10 @@
 #include <utility>
 #include <vector>
 
-#include "gapfe/input/deck_cards.hpp"
-#include "gapfe/input/deck_scene.hpp"
 #include "gapfe/input/gmsh_mesh.hpp"
 #include "gapfe/input/gmsh_reader.hpp"
+#include "gapfe/input/model_description.hpp"
+#include "gapfe/input/scene.hpp"
 #include "gapfe/input/scene_table.hpp"
 #include "gapfe/mesh/ij_grid.hpp"
 
@@ -43,7 +43,7 @@ struct SceneEdge {
 class SceneMesh {
  public:
   virtual ~SceneMesh() = default;
-  /// The cells (indices into DeckScene::grid.cells) of a surface group.
+  /// The cells (indices into Scene::grid.cells) of a surface group.
   virtual std::vector<int> surface_cells(const std::string& name) const = 0;
   /// The edges of a curve group, each once.
   virtual std::vector<SceneEdge> curve_edges(const std::string& name) const = 0;
@@ -60,7 +60,7 @@ class SceneMesh {
 
 /// What every scene mesh sets once its grid cells and mesh are in place: the per-cell arrays sized (material
 /// 0: none yet) and each mesh cell's element number.
-inline void size_scene_cells(DeckScene& s) {
+inline void size_scene_cells(Scene& s) {
   const std::size_t cells = s.grid.cells.size();
   s.material_id.assign(cells, 0);
   s.ijdir.assign(cells, 0);
@@ -77,7 +77,7 @@ inline void size_scene_cells(DeckScene& s) {
 /// some cell uses, in file order), physical groups as the names.
 class GmshSceneMesh final : public SceneMesh {
  public:
-  GmshSceneMesh(const std::string& file, std::string_view text, DeckScene& s) : file_(file) {
+  GmshSceneMesh(const std::string& file, std::string_view text, Scene& s) : file_(file) {
     try {
       gmsh_ = read_gmsh(text);
       fe_   = gmsh_fe_mesh<4>(gmsh_);
@@ -173,7 +173,7 @@ class GmshSceneMesh final : public SceneMesh {
 /// type, points = [[I, J, r, z], ...], centre = [r, z] for "arc-centre"), [mesh.groups] NAME = {i, j}.
 class GridSceneMesh final : public SceneMesh {
  public:
-  GridSceneMesh(const SceneTable& mesh, DeckScene& s, const DeckLimits& limits) {
+  GridSceneMesh(const SceneTable& mesh, Scene& s, const InputLimits& limits) {
     const auto size        = mesh.numbers("grid", 2, "[MAXI, MAXJ], the grid's largest I and J");
     const std::string most = std::to_string(limits.max_grid_points);
     if (!(size[0] >= 1 && size[1] >= 1 && size[0] == std::floor(size[0]) && size[1] == std::floor(size[1]) &&

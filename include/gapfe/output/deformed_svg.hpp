@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "gapfe/input/deck_scene.hpp"
+#include "gapfe/input/scene.hpp"
 #include "gapfe/output/field_plot.hpp"
 #include "gapfe/output/grid_arrays.hpp"
 #include "gapfe/output/svg_canvas.hpp"
@@ -20,7 +20,7 @@ inline constexpr std::size_t kSvgCellLimit = 20000;
 /// magnified to 5% of the section (a 1-2-5 factor, printed); gap elements coloured by their state.
 /// Meshes of more than kSvgCellLimit cells: the deformed outline over the undeformed one. `gap_state`: the
 /// GapFile cell array of the increment (empty without gaps).
-inline void write_deformed_svg(const std::string& dir, const DeckScene& scene,
+inline void write_deformed_svg(const std::string& dir, const Scene& scene,
                                const Eigen::Matrix<double, Eigen::Dynamic, 3>& displacement,
                                const std::vector<double>& gap_state, const std::string& title) {
   const IJGrid& g = scene.grid;

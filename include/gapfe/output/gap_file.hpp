@@ -6,7 +6,7 @@
 
 #include "gapfe/contact/gap_pairs.hpp"
 #include "gapfe/contact/pair_state.hpp"
-#include "gapfe/input/deck_scene.hpp"
+#include "gapfe/input/scene.hpp"
 #include "gapfe/output/csv_rows.hpp"
 #include "gapfe/output/output_file.hpp"
 #include "gapfe/output/vtu_writer.hpp"
@@ -21,7 +21,7 @@ namespace gapfe {
 /// extended model: the stick or slip its stress check chose at the increment before).
 class GapFile {
  public:
-  GapFile(const std::string& dir, const DeckScene& scene, bool friction = false, double step_time = 1.0)
+  GapFile(const std::string& dir, const Scene& scene, bool friction = false, double step_time = 1.0)
       : scene_(scene), friction_(friction), step_time_(step_time) {
     out_ = OutputFile(dir + "/gaps.csv");
     out_.append("step,inc,t,element,pair,node_a,node_b,status,gap,f_n,f_t\n");
@@ -61,7 +61,7 @@ class GapFile {
   void close() { out_.close(); }
 
  private:
-  const DeckScene& scene_;
+  const Scene& scene_;
   bool friction_;
   double step_time_ = 1.0;
   OutputFile out_;

@@ -4,7 +4,7 @@
 #include <array>
 #include <vector>
 
-#include "gapfe/input/deck_scene.hpp"
+#include "gapfe/input/scene.hpp"
 #include "gapfe/output/svg_canvas.hpp"
 #include "gapfe/output/vtu_writer.hpp"
 
@@ -17,7 +17,7 @@ inline VtuCells grid_cells(const IJGrid& g) {
 }
 
 /// Cell arrays every VTU of a deck carries: the deck's material number and the element number.
-inline std::vector<VtuField> element_ids(const DeckScene& s) {
+inline std::vector<VtuField> element_ids(const Scene& s) {
   std::vector<VtuField> f{{"material", 1, {}, true}, {"element", 1, {}, true}};
   for (std::size_t e = 0; e < s.grid.cells.size(); ++e)
     f[0].values.push_back(s.material_id[e]), f[1].values.push_back(static_cast<double>(e + 1));

@@ -34,7 +34,7 @@
 
 #include "gapfe/core/error.hpp"
 #include "gapfe/core/text.hpp"
-#include "gapfe/input/deck_scene.hpp"
+#include "gapfe/input/scene.hpp"
 #include "gapfe/output/output_file.hpp"
 #include "gapfe/output/vtu_writer.hpp"
 #include "gapfe/problem/results.hpp"
@@ -55,7 +55,7 @@ struct IncrementSummary {
 
 class HistoryFile {
  public:
-  HistoryFile(const std::string& dir, const DeckScene& scene, int steps, double step_time,
+  HistoryFile(const std::string& dir, const Scene& scene, int steps, double step_time,
               HistoryColumns columns = {})
       : steps_(steps), step_time_(step_time), columns_(columns) {
     // Each card's nodes (each once) and the components it prescribes.

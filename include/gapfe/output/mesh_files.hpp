@@ -5,8 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "gapfe/input/deck.hpp"
-#include "gapfe/input/deck_scene.hpp"
+#include "gapfe/input/scene.hpp"
 #include "gapfe/output/csv_rows.hpp"
 #include "gapfe/output/grid_arrays.hpp"
 #include "gapfe/output/output_file.hpp"
@@ -17,7 +16,7 @@ namespace gapfe {
 
 /// `gapfe mesh`: mesh.svg (the grid with node and element numbers, like the seed's plot option),
 /// mesh_nodes.csv, mesh_elements.csv and mesh.vtu in `dir`.
-inline void write_mesh_files(const std::string& dir, const Deck& d, const DeckScene& s) {
+inline void write_mesh_files(const std::string& dir, const ModelDescription& d, const Scene& s) {
   const IJGrid& g = s.grid;
   {
     std::string t = "node,i,j,r,z,placed\n";

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "gapfe/input/deck_scene.hpp"
+#include "gapfe/input/scene.hpp"
 #include "gapfe/output/csv_rows.hpp"
 #include "gapfe/output/output_file.hpp"
 #include "gapfe/problem/results.hpp"
@@ -12,7 +12,7 @@
 namespace gapfe {
 
 /// The centroid values of deck element e among a driver's centroid_values(): cells first, then triangles.
-inline const PointValues& element_value(const DeckScene& scene, const std::vector<PointValues>& values,
+inline const PointValues& element_value(const Scene& scene, const std::vector<PointValues>& values,
                                         std::size_t e) {
   const GridCell& c = scene.grid.cells[e];
   return values[(c.corners == 4 ? 0 : scene.mesh.cells.size()) + static_cast<std::size_t>(c.group_index)];
@@ -21,7 +21,7 @@ inline const PointValues& element_value(const DeckScene& scene, const std::vecto
 class ResultTables {
  public:
   /// Opens the three tables in `dir` with their header lines; `step_time`: how long a load step lasts.
-  ResultTables(const std::string& dir, const DeckScene& scene, double step_time)
+  ResultTables(const std::string& dir, const Scene& scene, double step_time)
       : scene_(scene), step_time_(step_time) {
     prescribed_.assign(static_cast<std::size_t>(scene.grid.node_count()), 0);
     for (const NodalCondition& c : scene.conditions) {  // later conditions win in what they set (DofMap)
@@ -120,7 +120,7 @@ class ResultTables {
     return element_value(scene_, values, e);
   }
 
-  const DeckScene& scene_;
+  const Scene& scene_;
   double step_time_ = 1.0;
   OutputFile nodes_, elements_, reactions_;
   std::vector<int> prescribed_;  ///< per node: the OR of its BC codes (1 u_r, 2 u_z, 4 u_theta)

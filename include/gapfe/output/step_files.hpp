@@ -24,7 +24,7 @@
 #include <string>
 #include <vector>
 
-#include "gapfe/input/deck_scene.hpp"
+#include "gapfe/input/scene.hpp"
 #include "gapfe/output/deformed_svg.hpp"
 #include "gapfe/output/field_plot.hpp"
 #include "gapfe/output/gap_file.hpp"
@@ -42,11 +42,11 @@ namespace gapfe {
 /// (write_deformed_svg) and the field pictures (write_field_svg).
 class StepFiles {
  public:
-  /// `step_time`: how long a load step lasts (Deck::step_time()), for the t column. `tables` (nodes.csv,
-  /// elements.csv, reactions.csv) and `fields` (the VTU files, result.pvd): every increment, the last one
-  /// (write() keeps it, finish() writes it) or none.
-  StepFiles(std::string dir, const DeckScene& scene, double step_time = 1.0,
-            Increments tables = Increments::all, Increments fields = Increments::all)
+  /// `step_time`: how long a load step lasts (ModelDescription::step_time()), for the t column. `tables`
+  /// (nodes.csv, elements.csv, reactions.csv) and `fields` (the VTU files, result.pvd): every increment, the
+  /// last one (write() keeps it, finish() writes it) or none.
+  StepFiles(std::string dir, const Scene& scene, double step_time = 1.0, Increments tables = Increments::all,
+            Increments fields = Increments::all)
       : dir_(std::move(dir)),
         scene_(scene),
         step_time_(step_time),
@@ -131,7 +131,7 @@ class StepFiles {
 
  private:
   std::string dir_;
-  const DeckScene& scene_;
+  const Scene& scene_;
   double step_time_ = 1.0;
   Increments tables_kind_, fields_kind_;
   std::optional<ResultTables> tables_;

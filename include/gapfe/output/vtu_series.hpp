@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "gapfe/input/deck_scene.hpp"
+#include "gapfe/input/scene.hpp"
 #include "gapfe/output/grid_arrays.hpp"
 #include "gapfe/output/result_tables.hpp"
 #include "gapfe/output/vtu_writer.hpp"
@@ -16,7 +16,7 @@ namespace gapfe {
 
 /// The increment's VTU arrays: displacement and reaction per node; stress, eqps and `extra_cells` per cell
 /// (not the mesh: the files encode theirs once, the pictures take it at the end).
-inline VtuData vtu_arrays(const DeckScene& scene, const Solution& solution,
+inline VtuData vtu_arrays(const Scene& scene, const Solution& solution,
                           const std::vector<PointValues>& values, std::vector<VtuField> extra_cells) {
   const IJGrid& g = scene.grid;
   const auto& u   = solution.displacement;
@@ -41,7 +41,7 @@ inline VtuData vtu_arrays(const DeckScene& scene, const Solution& solution,
 
 class VtuSeries {
  public:
-  VtuSeries(std::string dir, const DeckScene& scene, double step_time)
+  VtuSeries(std::string dir, const Scene& scene, double step_time)
       : dir_(std::move(dir)), scene_(scene), step_time_(step_time) {}
 
   /// A VTU file of the increment. The mesh and the element ids are the same in every file: from the second
@@ -73,7 +73,7 @@ class VtuSeries {
 
  private:
   std::string dir_;
-  const DeckScene& scene_;
+  const Scene& scene_;
   double step_time_   = 1.0;
   int fields_written_ = 0;
   std::optional<VtuMesh> vtu_mesh_;  ///< the VTU files' mesh, from the second file on

@@ -2,7 +2,7 @@
 // Problem<M>: everything an analysis of a compile-time Model needs, as plain data: the mesh, one law per
 // material, the nodal conditions, the loads and the temperature field. Drivers own one (and let the
 // caller change loads, temperatures and materials between solves); the deck layer builds one from a deck
-// (run/deck_run.hpp). Node and material indices are 0-based.
+// (run/scene_run.hpp). Node and material indices are 0-based.
 #include <memory>
 #include <vector>
 

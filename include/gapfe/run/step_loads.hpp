@@ -1,5 +1,5 @@
 #pragma once
-// The loads in force after each load step of a deck's scene (input/deck_scene.hpp): the totals of the step
+// The loads in force after each load step of a scene (input/scene.hpp): the totals of the step
 // increments so far, and the loads between two steps (a split step's). The README's deck section gives the
 // readings: each step adds its BC values, inertia increments and surface load increments to the totals of
 // the steps before; a block given once (INCI = 0, INCF = 0) repeats every step; angular velocities add, so
@@ -17,9 +17,17 @@
 #include <tuple>
 #include <vector>
 
-#include "gapfe/input/deck_scene.hpp"
+#include "gapfe/input/scene.hpp"
 
 namespace gapfe {
+
+/// Loads in force after a load step (totals of the increments so far).
+struct StepTotals {
+  std::vector<NodalCondition> conditions;
+  InertiaLoad inertia;
+  std::vector<EdgeLoad> edge_loads;
+  double thermal_fraction = 0;  ///< Problem::thermal_fraction: the part of the temperature change in force
+};
 
 /// Loads a fraction `f` of the way from totals `a` to totals `b`: every load linear in f. Angular
 /// velocities enter squared (centrifugal load), so omega^2 is what is interpolated. `a` and `b` are two
@@ -56,7 +64,7 @@ inline StepTotals interpolate(const StepTotals& a, const StepTotals& b, double f
 /// and the loaded edges, whatever the step; asked for an earlier step, it sums again from the first block.
 class StepLoads {
  public:
-  StepLoads(const Deck& d, const DeckScene& s) : d_(d), s_(s) {}
+  StepLoads(const ModelDescription& d, const Scene& s) : d_(d), s_(s) {}
 
   /// Loads in force after step `step` (1-based; 0: none).
   StepTotals at(int step) {
@@ -141,8 +149,8 @@ class StepLoads {
       }
   }
 
-  const Deck& d_;
-  const DeckScene& s_;
+  const ModelDescription& d_;
+  const Scene& s_;
   int inertia_summed_ = 0, surface_summed_ = 0;  ///< blocks 1..these are in the sums
   InertiaLoad inertia_;                          ///< the inertia blocks' sum
   /// The surface blocks' cards summed by edge (M, N, 0-based) and load history (-1: none), by kind
@@ -151,7 +159,7 @@ class StepLoads {
 };
 
 /// Loads in force after step `step` (one question; a run asks a StepLoads, which keeps its sums).
-inline StepTotals step_totals(const Deck& d, const DeckScene& s, int step) {
+inline StepTotals step_totals(const ModelDescription& d, const Scene& s, int step) {
   return StepLoads(d, s).at(step);
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// The run layer, above the drivers, input and output: a deck's scene (input/deck_scene.hpp) becomes a Problem
+// The run layer, above the drivers, input and output: a model's scene (input/scene.hpp) becomes a Problem
 // of one compile-time model, and its load steps become a driver's steps. Each step applies the totals of the
 // increments so far. Three runs: linear (the seed's elastic codes: materials and temperatures are fixed
 // from the first step on, so the stiffness is factorized once and each later step costs an assembly of
@@ -7,8 +7,8 @@
 // contact (a policy's stepping). Time in the StepContext is the load factor: 0 at the start, k at the
 // end of load step k.
 //
-// A partitioned run (core/subdomain.hpp) gives each run a DeckPart: the process's part of the scene. Every
-// process builds the whole Problem from the deck and keeps its part (assembly/problem_part.hpp); each step's
+// A partitioned run (core/subdomain.hpp) gives each run a ScenePart: the process's part of the scene. Every
+// process builds the whole Problem from the scene and keeps its part (assembly/problem_part.hpp); each step's
 // totals, in the whole mesh's numbering, go to the part the same way. The drivers do the rest.
 #include <algorithm>
 #include <cmath>
@@ -20,13 +20,13 @@
 #include "gapfe/driver/contact_static.hpp"
 #include "gapfe/driver/linear_static.hpp"
 #include "gapfe/driver/nonlinear_static.hpp"
-#include "gapfe/input/deck_scene.hpp"
+#include "gapfe/input/scene.hpp"
 #include "gapfe/material/hill.hpp"
 #include "gapfe/run/step_loads.hpp"
 
 namespace gapfe {
 
-/// A deck that needs no u_theta (DeckNeeds), run in a 3-DOF variant: u_theta = 0 at every node, its exact
+/// A deck that needs no u_theta (ModelNeeds), run in a 3-DOF variant: u_theta = 0 at every node, its exact
 /// value by symmetry, so that the free rotation about the axis does not make the stiffness singular.
 /// Every card's code gains the u_theta bit (their XT are zero, or the deck would need u_theta), and
 /// nodes without a card get one that prescribes only u_theta = 0.
@@ -42,7 +42,7 @@ inline void fix_theta(std::vector<NodalCondition>& conditions, int nodes) {
 /// Put load totals into `p` (and, in a 3-DOF variant of a deck that needs no u_theta, the u_theta = 0
 /// conditions).
 template <class M>
-void set_loads(Problem<M>& p, StepTotals t, const DeckScene& s) {
+void set_loads(Problem<M>& p, StepTotals t, const Scene& s) {
   if constexpr (M::kDofsPerNode == 3)
     if (!s.needs.needs_theta()) fix_theta(t.conditions, s.mesh.node_count());
   p.inertia          = t.inertia;
@@ -58,7 +58,7 @@ void set_loads(Problem<M>& p, StepTotals t, const DeckScene& s) {
 /// This process's part of a deck's scene in a partitioned run: its cells and nodes (mesh_part of the
 /// scene's mesh, keeping the gap pairs' ends), the gap pairs in its numbering, and the subdomain made from
 /// the part's layout (PetscSubdomain over MPI).
-struct DeckPart {
+struct ScenePart {
   Mesh<4> mesh;
   std::vector<GapPair> pairs;
   std::shared_ptr<const Subdomain> subdomain;
@@ -66,7 +66,7 @@ struct DeckPart {
 
 /// Put the loads in force after `step` into `p`: the totals of the increments so far.
 template <class M>
-void set_step_loads(Problem<M>& p, const Deck& d, const DeckScene& s, int step) {
+void set_step_loads(Problem<M>& p, const ModelDescription& d, const Scene& s, int step) {
   set_loads(p, step_totals(d, s, step), s);
 }
 
@@ -94,7 +94,8 @@ Law deck_law(const Orthotropic& elastic, const std::optional<YieldCard>& card,
 
 /// The Problem of a scene under the loads in force after `step`; with `part`, the part of it (collective).
 template <class M>
-Problem<M> deck_problem(const Deck& d, const DeckScene& s, int step, const DeckPart* part = nullptr) {
+Problem<M> scene_problem(const ModelDescription& d, const Scene& s, int step,
+                         const ScenePart* part = nullptr) {
   static_assert(M::Element::kNodes == 4, "I-J decks make 4-corner cells (LegacyQuad or Quad4)");
   Problem<M> p;
   p.mesh = s.mesh;
@@ -112,9 +113,9 @@ Problem<M> deck_problem(const Deck& d, const DeckScene& s, int step, const DeckP
 /// Run every load step; `on_step(step, inc, const LinearStatic<M>&)` sees each solved step (inc = the
 /// load increments applied so far; whole numbers in a linear run, which never splits a step).
 template <class M, class OnStep>
-void run_deck(const Deck& d, const DeckScene& s, OnStep&& on_step, const DeckPart* part = nullptr,
-              std::unique_ptr<typename M::LinearSolver> solver = nullptr) {
-  LinearStatic<M> fe(deck_problem<M>(d, s, 1, part), {}, std::move(solver));
+void run_scene(const ModelDescription& d, const Scene& s, OnStep&& on_step, const ScenePart* part = nullptr,
+               std::unique_ptr<typename M::LinearSolver> solver = nullptr) {
+  LinearStatic<M> fe(scene_problem<M>(d, s, 1, part), {}, std::move(solver));
   StepLoads loads(d, s);
   for (int step = 1; step <= d.steps(); ++step) {
     if (step > 1) set_loads(fe.problem(), loads.at(step), s);
@@ -138,7 +139,7 @@ constexpr bool time_controlled() {
 /// Run every load step of a deck with yield cards (law with history, NonlinearStatic). A step whose
 /// Newton iterations fail is rejected and cut in halves, down to 1/64 of a step (kSmallestTimePiece under
 /// the time control below; the load factor
-/// interpolates the totals as in run_deck_contact); then a SolveError that names the step and the last
+/// interpolates the totals as in run_scene_contact); then a SolveError that names the step and the last
 /// accepted load factor goes to the caller (whose files then hold every accepted increment). A rate-
 /// dependent law under an iterating scheme is cut in halves too while an increment's estimated time error
 /// (StepReport::time_error) exceeds the deck's time_tolerance, down to kSmallestTimePiece of a step (then
@@ -146,13 +147,13 @@ constexpr bool time_controlled() {
 /// tolerance (the estimate is first order in the piece), and the next step starts from the last piece.
 /// `on_increment(step, inc, const NonlinearStatic<M>&)` sees every accepted increment.
 template <class M, class OnIncrement>
-void run_deck_plastic(const Deck& d, const DeckScene& s, OnIncrement&& on_increment,
-                      const DeckPart* part                             = nullptr,
-                      std::unique_ptr<typename M::LinearSolver> solver = nullptr) {
+void run_scene_plastic(const ModelDescription& d, const Scene& s, OnIncrement&& on_increment,
+                       const ScenePart* part                            = nullptr,
+                       std::unique_ptr<typename M::LinearSolver> solver = nullptr) {
   NewtonOptions newton;
   newton.tolerance      = d.options.newton_tolerance;
   newton.max_iterations = d.options.newton_iterations;
-  NonlinearStatic<M> fe(deck_problem<M>(d, s, 1, part), {}, newton, std::move(solver));
+  NonlinearStatic<M> fe(scene_problem<M>(d, s, 1, part), {}, newton, std::move(solver));
   StepLoads loads(d, s);
   const bool time_control = time_controlled<typename M::Material>() && d.options.time_tolerance > 0;
   const double smallest   = time_control ? kSmallestTimePiece : 1.0 / 64;  // Newton's cuts end here
@@ -205,9 +206,9 @@ void run_deck_plastic(const Deck& d, const DeckScene& s, OnIncrement&& on_increm
 /// `on_increment(step, inc, const ContactStatic<M, P, F>&)` sees every accepted increment, inc = t
 /// (fractional where a step was split).
 template <class M, ContactPolicy P, FrictionModel F = NoFriction, class OnIncrement>
-void run_deck_contact(const Deck& d, const DeckScene& s, double penalty_factor, OnIncrement&& on_increment,
-                      const DeckPart* part                             = nullptr,
-                      std::unique_ptr<typename M::LinearSolver> solver = nullptr) {
+void run_scene_contact(const ModelDescription& d, const Scene& s, double penalty_factor,
+                       OnIncrement&& on_increment, const ScenePart* part = nullptr,
+                       std::unique_ptr<typename M::LinearSolver> solver = nullptr) {
   using Run = ContactStatic<M, P, F>;
   ContactOptions options;
   options.penalty_factor  = penalty_factor;
@@ -217,7 +218,7 @@ void run_deck_contact(const Deck& d, const DeckScene& s, double penalty_factor, 
   const bool time_control = time_controlled<typename M::Material>() && d.options.time_tolerance > 0;
   if (time_control) options.time_tolerance = d.options.time_tolerance;
   if (s.gap_material >= 0) options.gap_materials.push_back(s.gap_material);
-  Run fe(deck_problem<M>(d, s, 1, part), part ? part->pairs : s.gaps.pairs, options, std::move(solver));
+  Run fe(scene_problem<M>(d, s, 1, part), part ? part->pairs : s.gaps.pairs, options, std::move(solver));
   StepLoads loads(d, s);
   StepTotals before, after;
   int cached                           = -1;  // the step whose end totals are in `after`
@@ -233,7 +234,7 @@ void run_deck_contact(const Deck& d, const DeckScene& s, double penalty_factor, 
     on_increment(step, t, c);
   };
   // A rate-dependent law under an iterating scheme advances in pieces of a step sized by the time error,
-  // as run_deck_plastic: an increment past the tolerance throws TimeErrorExceeded out of the policy where
+  // as run_scene_plastic: an increment past the tolerance throws TimeErrorExceeded out of the policy where
   // it would be accepted (those accepted before stay: each met it), and the rest of the piece is repeated
   // in halves. A policy's one split (saac) and the extended model's stick/slip decision then happen per
   // piece.
