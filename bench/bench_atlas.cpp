@@ -1,4 +1,4 @@
-// The element study of the speed/accuracy atlas (bench/atlas.py, issue 15): every element on the
+// The element study of the speed/accuracy atlas (bench/atlas.py): every element on the
 // closed-form elastic problems at a range of refinements, through the library call a user makes
 // (build the Problem, construct LinearStatic, solve). Benchmarks are named problem/element/n; counters:
 //   error  = the larger of the two below, what the atlas plots;
@@ -7,7 +7,7 @@
 //            for the shaft), the values `gapfe run` writes to elements.csv. Nodal values alone can flatter
 //            an element: Quad4's are exact on the shaft (a 1-D problem along z), its stresses are not;
 //   dofs  = nodes x DOFs per node (constrained ones included).
-// Problems (THEORY.md section 10; SI units):
+// Problems (docs/theory.md section 10; SI units):
 //   lame        thick tube a = 0.1, b = 0.2 m, bore pressure 100 MPa, plane strain, nu = 0.3 (V1);
 //               n cells through the wall, 2 rows of square cells.
 //   lame-0.4999 the same with nu = 0.4999 (near-incompressible: volumetric locking shows).

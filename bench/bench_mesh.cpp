@@ -21,7 +21,7 @@ std::vector<gapfe::Segment> square(int n) {
 
 /// A quarter annulus 1 < r < 2 on an ni x nj grid, I along the radius: two straight sides and two arcs
 /// (types 3 and 4). The index aspect follows the geometry (ni = nj / 2), so the Laplace fill does not fold
-/// at the concave inner arc (it does with ni = nj, THEORY.md 9).
+/// at the concave inner arc (it does with ni = nj, docs/theory.md 9).
 std::vector<gapfe::Segment> quarter_annulus(int nj) {
   const int n = nj / 2, m = nj;
   using gapfe::GridPoint;
@@ -49,7 +49,8 @@ void BM_IJGrid(benchmark::State& state) {
 }  // namespace
 
 // Square: the row-wise initial guess is already the answer. Annulus: curved rows, CG does the work; 707 x
-// 1414 is issue 14's curved 1e6-point grid (1000 x 1000 folds at the inner arc).
+// 1414 is the curved 1e6-point grid of BENCHMARKS.md's run-vs-CalculiX cases (1000 x 1000 folds at the inner
+// arc).
 BENCHMARK(BM_IJGrid<false>)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_IJGrid<true>)  // nj; ni = nj / 2
     ->Arg(200)

@@ -1,4 +1,4 @@
-// The plasticity speed/accuracy trade on the thick tube (THEORY.md V6): a = 0.1, b = 0.2 m, Mises
+// The plasticity speed/accuracy trade on the thick tube (docs/theory.md V6): a = 0.1, b = 0.2 m, Mises
 // sigma_y = 400 MPa, E = 200 GPa, nu = 0.49, plane strain, Quad4BBar, 40 graded cells (the mesh of
 // tests/test_plasticity.cpp).
 //   BM_Limit<Integration>/steps: bore displacement ramped to 20 x the first-yield value in `steps` steps;

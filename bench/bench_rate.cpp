@@ -1,10 +1,10 @@
-// The rate-dependent plasticity trade (Drysdale-Zak, SAAC3; material/drysdale_zak.hpp, THEORY.md 8):
+// The rate-dependent plasticity trade (Drysdale-Zak, SAAC3; material/drysdale_zak.hpp, docs/theory.md 8):
 // sigma_0 = 400 MPa, b = 0.05, rate_0 = 1e-3 / s, E = 200 GPa, nu = 0.3, Quad4BBar, time real.
 //   BM_ConstantRate<Integration>/k: a solid bar (one cell, r < 1 mm, 1 mm long) pulled at 1 / s from rest to
-//     a strain of 4e-3, dt = 10^(k - 3) relaxation times (1 / lambda at the steady rate, THEORY.md 8.2);
+//     a strain of 4e-3, dt = 10^(k - 3) relaxation times (1 / lambda at the steady rate, docs/theory.md 8.2);
 //     counter stress_error = the largest |sigma - sigma_ref(t)| / sigma_ss over the steps, sigma_ref from the
 //     1-D ODE sigma' = E (rate - phi(sigma / sigma_0)) by RK4 at 1e-9 s (converged to 1e-9).
-//   BM_Saac3x<Integration>/k: THEORY.md 8.7, the thin-walled tube (0.999..1 m) with tau_0 = sigma_0 /
+//   BM_Saac3x<Integration>/k: docs/theory.md 8.7, the thin-walled tube (0.999..1 m) with tau_0 = sigma_0 /
 //     sqrt 3 held by traction, then u_z = rate L t at 1 / s for 5 ms; the same counter against the ODE
 //     sigma' = E (rate - phi(sigma_bar) sigma / sigma_bar) (the FE wall's shear varies by 0.1% across it).
 //   BM_StepCost/<kind>: one load step of a thick tube (a = 0.1, b = 0.2 m, 400 x 8 cells, 7,218
@@ -28,7 +28,7 @@ const double kShear = kE / (2 * (1 + kNu));
 double plastic_rate_at(double s) {  // phi: the rate at stress ratio s (seed Eq. 17 inverted)
   return s <= 1 ? 0.0 : kRate0 * std::expm1((s - 1) / kB);
 }
-double relaxation_time(double r) {  // 1 / lambda, Mises (THEORY.md 8.2)
+double relaxation_time(double r) {  // 1 / lambda, Mises (docs/theory.md 8.2)
   return kB * kSigma0 / (3 * kShear * (kRate0 + r));
 }
 template <class Integration>

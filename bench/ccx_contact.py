@@ -3,7 +3,7 @@
 
     python3 bench/ccx_contact.py --gapfe build/bench/examples/gapfe
 
-The problem (THEORY.md V5), the same for both codes:
+The problem (docs/theory.md V5), the same for both codes:
 
   * axisymmetric, plane strain: u_z = 0 on every node;
   * inner tube a = 1 <= r <= b = 1.5, outer tube b + delta = 1.5005 <= r <= c = 2 (radial gap

@@ -4,7 +4,7 @@
 For each policy (saac, active-set, augmented-lagrangian) and 5, 10, 20, 50, 100 load steps, run
 `gapfe run` on bench/deckgen.py's two-tube deck (inner 1-1.5, outer 1.5005-2, 40 x 80 cells each, bore
 pressure 100, plane strain) and report the closure-load error, the final contact-pressure error (both
-against THEORY.md V5's closed form), the linear solves and the wall time (median of --repeat runs).
+against docs/theory.md V5's closed form), the linear solves and the wall time (median of --repeat runs).
 Writes contact_tradeoff.csv and, when matplotlib is available, contact_tradeoff.png (error vs time).
 
     python3 bench/contact_tradeoff.py --gapfe build/bench/examples/gapfe

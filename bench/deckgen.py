@@ -141,7 +141,7 @@ def helical_sleeve_deck():
 
 def two_tubes_deck(n=40, nz=80, a=1.0, b=1.5, gap=5e-4, c=2.0, h=None, p=100.0, steps=10, contact="saac",
                    extension=(), sigma_y=None, hardening=0.0, rate=None):
-    """Two tubes across a radial gap (THEORY.md V5, plane strain): inner a..b and outer b + gap..c, n x nz
+    """Two tubes across a radial gap (docs/theory.md V5, plane strain): inner a..b and outer b + gap..c, n x nz
     cells each, one column of gap elements (material 2, IJDIR = 1) between them, bore pressure ramped to
     p in `steps` equal steps (INCF = 0). E = 200000, nu = 0.3; the gap material is 1e-9 as stiff.
     Grid: I = 1..2n + 2 across, J = 1..nz + 1 up; h defaults to square cells of the inner tube.
@@ -182,7 +182,7 @@ def rate_card(dt, b, rate0, strain_rate=0.0, shear_step=0.0):
 
 def plastic_tube_deck(ni=41, a=100.0, b=200.0, p=300.0, steps=15, sigma_y=400.0, plasticity="return-mapping",
                       extension=(), rate=None, nj=2, hardening=0.0):
-    """Thick tube a..b (THEORY.md V6), plane strain, nj - 1 square cells high (default one), Mises (Hill
+    """Thick tube a..b (docs/theory.md V6), plane strain, nj - 1 square cells high (default one), Mises (Hill
     with equal yields, shear sigma_y / sqrt 3), Prager hardening c = `hardening` (card 11's C; 0: perfectly
     plastic), bore pressure ramped to p in `steps` equal steps (INCF = 0). Mises first yield at about 173
     and the limit (2 / sqrt 3) sigma_y ln(b / a) = 320.15 (sigma_y = 400).
@@ -209,11 +209,11 @@ def plastic_tube_deck(ni=41, a=100.0, b=200.0, p=300.0, steps=15, sigma_y=400.0,
 
 def saac3x_deck(ri=999.0, ro=1000.0, length=1.0, dt=5e-5, steps=150, sigma_0=400.0, b=0.05, rate0=1e-3,
                 strain_rate=1.0, shear_step=230.94, plasticity="return-mapping"):
-    """SAAC3X (THEORY.md 8.7; seed section 4.2): a thin-walled tube ri..ro, 0 <= z <= length (mm, MPa, s),
+    """SAAC3X (docs/theory.md 8.7; seed section 4.2): a thin-walled tube ri..ro, 0 <= z <= length (mm, MPa, s),
     one cell, Mises sigma_0 = 400 MPa, b = 0.05, rate_0 = 1e-3 / s, c = 0. Card 0's STRSTEP puts the shear
     stress tau = 230.94 MPa (just below the static shear yield sigma_0 / sqrt 3) on the top face in step 1,
     and STRRATE then pulls the top face at 1 / s (u_z = STRRATE L (t - dt)). No BC or load cards: the
-    command drives both faces (README "SAAC3X"). dt = 5e-5 s is 0.73 relaxation times at the steady state."""
+    command drives both faces (docs/decks.md "SAAC3X"). dt = 5e-5 s is 0.73 relaxation times at the steady state."""
     k = sigma_0 / math.sqrt(3.0)
     lines = [f"$ plasticity = {plasticity}", "$ format = saac3",
              rate_card(dt, b, rate0, strain_rate, shear_step),
@@ -268,7 +268,7 @@ def projectile_deck(steps=10, g_load=20000.0):
 def press_fit_deck(ns=6, nh=8, nz=10, a=12.5, b=25.0, w=0.001, c=50.0, length=50.0, q=75.0, push=0.001,
                    steps=40, mu=0.15, contact="active-set", slip="coulomb", nu=0.0, events=None, ramp=False,
                    twist=None):
-    """A hub clamped on a hollow shaft and pushed along it (issue 12's example; units mm, N, MPa).
+    """A hub clamped on a hollow shaft and pushed along it (the friction example; units mm, N, MPa).
 
     Shaft a..b (ns cells), a column of gap elements b..b + w (material 2, IJDIR = 1), hub b + w..c (nh
     cells), nz rows over the length. Step 1 presses the hub on by the pressure q on its outer surface

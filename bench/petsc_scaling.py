@@ -44,7 +44,7 @@ MPI_ENV = {"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
 
 
 def lame_bore():
-    """Bore u_r of the plane-strain Lame tube (THEORY.md V1)."""
+    """Bore u_r of the plane-strain Lame tube (docs/theory.md V1)."""
     ca = P * A * A / (B * B - A * A)
     cb = ca * B * B
     sr, st, sz = ca - cb / (A * A), ca + cb / (A * A), 2 * NU * ca

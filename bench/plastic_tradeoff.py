@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Plasticity speed/accuracy trade on the thick tube (THEORY.md V6): runs bench_plastic (Google Benchmark)
+"""Plasticity speed/accuracy trade on the thick tube (docs/theory.md V6): runs bench_plastic (Google Benchmark)
 and prints a Markdown table of Tangent vs ReturnMapping at 5-200 steps (limit-pressure error, bore
 displacement error, linear solves, median wall time), the cost of one plastic step against an elastic
 solve of the same mesh, and writes a CSV and, where matplotlib is installed, a PNG of error against time.

@@ -20,7 +20,7 @@ Cases (mm, MPa; a = 100, b = 200; plane strain: u_z = 0 on both ends):
                3c/2 = 15, ccx's *PLASTIC, HARDENING=KINEMATIC slope), bore pressure to 0.9 of the limit
                (2 / sqrt 3) sigma_y ln(b / a) in 20 fixed increments: return-mapping and tangent
   plastic-1e5  the same on 316 x 158 cells, return-mapping
-  contact      bench/ccx_contact.py's two tubes across a radial gap (THEORY.md V5; 40 x 80 cells each,
+  contact      bench/ccx_contact.py's two tubes across a radial gap (docs/theory.md V5; 40 x 80 cells each,
                6,642 equations: u_r only, u_z = 0 on every node; bore pressure 100 in 10 increments):
                gapfe augmented-lagrangian with Quad4 (bilinear, like CAX4), ccx node-to-surface penalty;
                ccx writes its U and S fields (*NODE FILE, *EL FILE) every increment, as gapfe does
@@ -31,7 +31,7 @@ default; the default (print) has ccx print one node's displacement (and the PEEQ
 
 Accuracy is judged against the closed forms, not between the codes: the Lame bore displacement for the
 elastic cases; the contact pressure q against the compound-cylinder closed form for the contact case; for the plastic ones the bore u_r of both codes (and their difference) and the
-elastic-plastic radius against THEORY.md V6's Mises plane-strain formula (valid for nu = 1/2, so a
+elastic-plastic radius against docs/theory.md V6's Mises plane-strain formula (valid for nu = 1/2, so a
 guide to about 1%: p = (2 / sqrt 3) sigma_y [ln(rho / a) + (b^2 - rho^2) / (2 b^2)]).
 
 --write FILE replaces the text between the markers `<!-- run_vs_ccx: begin -->` and
@@ -137,7 +137,7 @@ def lame_bore(p):
 
 
 def plastic_radius_closed_form(p):
-    """rho from p = (2 / sqrt 3) sigma_y [ln(rho / a) + (b^2 - rho^2) / (2 b^2)] (THEORY.md V6), bisection."""
+    """rho from p = (2 / sqrt 3) sigma_y [ln(rho / a) + (b^2 - rho^2) / (2 b^2)] (docs/theory.md V6), bisection."""
     k = 2 / math.sqrt(3) * SIGMA_Y
     lo, hi = A, B
     for _ in range(200):

@@ -1,4 +1,4 @@
-# Optional PETSc over MPI (issue 18): the distributed solver policy (gapfe/solver/petsc.hpp) and the MPI
+# Optional PETSc over MPI: the distributed solver policy (gapfe/solver/petsc.hpp) and the MPI
 # subdomain (gapfe/solver/petsc_subdomain.hpp) for problems partitioned over several processes. PETSc ships no
 # CMake package, so it is found through pkg-config (PETSc.pc; Debian's libpetsc-real-dev, or a cluster's
 # module that puts its PETSc.pc on PKG_CONFIG_PATH), MPI through CMake's FindMPI. gapfe::petsc carries

@@ -1,5 +1,5 @@
 // thick_tube: the Lame thick cylinder under internal pressure (plane strain), solved with a chosen
-// element and compared with the closed form (THEORY.md V1). Writes DIR/thick_tube.vtu for ParaView
+// element and compared with the closed form (docs/theory.md V1). Writes DIR/thick_tube.vtu for ParaView
 // and DIR/radial_profile.csv (centroid r, hoop and radial stress, FE and exact) for plots.
 //
 //   thick_tube [--element quad4|legacy|quad8] [--nr 16] [--nz 4] [--out DIR]

@@ -21,7 +21,7 @@ with a uniform temperature change and a spin in each body) gives
 
 In every run: exit 0 and no warning; no accepted increment has a closed pair (closed, stick or slip) in
 tension, f_n < 0; under the exact policies no open pair overlaps (gap below -1e-6 of the initial gap: they
-locate every closure; saac, the seed's, may close a pair up to a step late, THEORY.md 5.4).
+locate every closure; saac, the seed's, may close a pair up to a step late, docs/theory.md 5.4).
 
 The shrink fit of the issue that asked for this, as a deck: a hub 25.01..50 cooled by 100 (a temperature card
 per node, applied in step 1) onto a solid shaft of 25, spun up over four steps to 0, 0.7 and 1.3 times the
@@ -440,7 +440,7 @@ def projectile():
     ones on the force across each gap (1%), saac on the axial one, which carries the insert (2%: its
     constraint error of 1 / its penalty factor). Across the radial gap, which closes row by row as the insert
     bulges, saac's one split a step declares pairs closed up to a step early, at the gap they had (the seed's
-    rule, THEORY.md 5.4): 3.2 times the exact policies' force at 10 steps, 1.16 at 160; not compared."""
+    rule, docs/theory.md 5.4): 3.2 times the exact policies' force at 10 steps, 1.16 at 160; not compared."""
     runs, totals = 0, {}
     for policy in POLICIES:
         name = f"projectile_{policy}"

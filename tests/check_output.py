@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The command's output read back by real readers (issue 17, items 1 and 4; ctest `output`):
+"""The command's output read back by real readers (ctest `output`):
 
   * every VTU file through meshio (Debian's python3-meshio, a reader independent of gapfe's writer and of its
     input/vtu_reader.hpp): points, cells and every array equal to the CSV tables of the same run, bit for bit;

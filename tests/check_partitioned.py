@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Partitioned runs through the command against the serial CHOLMOD answers (issue 18's must-show):
+"""Partitioned runs through the command against the serial CHOLMOD answers:
 
     python3 tests/check_partitioned.py GAPFE MPIEXEC WORK [RANKS...]
 

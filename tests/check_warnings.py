@@ -6,8 +6,10 @@ plastic tube; the friction cone's warning is checked both ways in tests/check_fr
 
     /usr/bin/python3 tests/check_warnings.py build/release/examples/gapfe WORKDIR
 """
+import os
 import pathlib
 import shutil
+import subprocess
 import sys
 
 root = pathlib.Path(__file__).resolve().parent.parent
@@ -141,6 +143,39 @@ def stalled():
         (fires(name, warnings, "stopped where the residual stopped falling") if warned else silent(name, warnings))
 
 
+OPENMP_BLAS = pathlib.Path("/usr/lib/x86_64-linux-gnu/openblas-openmp")
+
+
+def openmp_blas():
+    """--threads 2 with an OpenBLAS that threads through OpenMP (Debian's libopenblas0-openmp, loaded in place
+    of the default pthread build): the program keeps OpenMP on one thread, so the run goes on one thread and
+    says so; with the default BLAS, two threads and no warning. Same displacements either way."""
+    text = matrix.deck(case(), matrix.Body(False))
+    answers = []
+    for name, env in (("threads_pthread_blas", {}), ("threads_openmp_blas", {"LD_LIBRARY_PATH": str(OPENMP_BLAS)})):
+        if env and not (OPENMP_BLAS / "libblas.so.3").exists():
+            print(f"skipped {name}: {OPENMP_BLAS} is not installed (.ci/setup installs libopenblas0-openmp)")
+            continue
+        folder = work / name
+        folder.mkdir()
+        (folder / "input.deck").write_text(text)
+        gapfe = pathlib.Path(sys.argv[1]).resolve()
+        done = subprocess.run([gapfe, "run", folder / "input.deck", "--out", folder / "out", "--threads", "2"],
+                              capture_output=True, text=True, env={**os.environ, **env})
+        check(done.returncode == 0, f"{name}: exit {done.returncode} ({done.stderr.strip()[:300]})")
+        warnings = [line for line in done.stderr.splitlines() if line.startswith("gapfe: warning:")]
+        threads = [line for line in done.stdout.splitlines() if line.startswith("threads:")]
+        if env:
+            fires(name, warnings, "OpenBLAS threads with OpenMP")
+            check(threads == ["threads: 1"], f"{name}: the log says {threads}, not 'threads: 1'")
+        else:
+            silent(name, warnings)
+            check(threads == ["threads: 2"], f"{name}: the log says {threads}, not 'threads: 2'")
+        answers.append((folder / "out" / "nodes.csv").read_text() if done.returncode == 0 else None)
+    if len(answers) == 2:
+        check(answers[0] == answers[1], "the OpenMP BLAS run's nodes.csv differs from the default's")
+
+
 def main():
     shutil.rmtree(work, ignore_errors=True)
     work.mkdir(parents=True)
@@ -150,6 +185,7 @@ def main():
     seed_residual()
     time_error()
     stalled()
+    openmp_blas()
     finish()
 
 

@@ -1,5 +1,5 @@
 #pragma once
-// Two concentric tubes with a radial clearance (THEORY.md V5), plane strain, as an API scene: the
+// Two concentric tubes with a radial clearance (docs/theory.md V5), plane strain, as an API scene: the
 // fixture of the contact tests and benchmarks.
 #include "press_fit.hpp"
 #include "support.hpp"

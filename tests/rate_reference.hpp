@@ -1,5 +1,5 @@
 #pragma once
-// Closed-form references for the Drysdale-Zak law (seed Eq. 17; THEORY.md 8), shared by the point and
+// Closed-form references for the Drysdale-Zak law (seed Eq. 17; docs/theory.md 8), shared by the point and
 // structure tests (test_plasticity.cpp) and the SAAC3X deck test (test_deck_run.cpp).
 #include <cmath>
 
@@ -14,7 +14,7 @@ struct RateReference {
   /// Its inverse phi: the plastic rate at the equivalent stress ratio s (0 below the static surface).
   double plastic_rate_at(double s) const { return s <= 1 ? 0.0 : rate_0 * std::expm1((s - 1) / b); }
 
-  /// SAAC3X's steady state (THEORY.md 8.7): shear stress tau held, axial strain rate `rate`. sigma
+  /// SAAC3X's steady state (docs/theory.md 8.7): shear stress tau held, axial strain rate `rate`. sigma
   /// solves phi(sigma_bar) sigma / sigma_bar = rate (bisection to round-off), sigma_bar = sqrt(sigma^2 +
   /// 3 tau^2); then the plastic rate phi(sigma_bar) and the (engineering) twist rate 3 tau phi / sigma_bar.
   struct Saac3x {

@@ -11,7 +11,7 @@ inline double rel(double a, double b) {
   return std::abs(a - b) / std::abs(b);
 }
 
-/// Lame thick cylinder (THEORY.md V1): inner pressure p, plane strain.
+/// Lame thick cylinder (docs/theory.md V1): inner pressure p, plane strain.
 struct Lame {
   double a, b, p, E, nu;
   double A() const { return p * a * a / (b * b - a * a); }

@@ -1,5 +1,5 @@
 // Gap elements and contact policies (the gap issue): two concentric tubes against the compound-tube
-// closed form (THEORY.md V5), penalty sweep, an L-shaped gap with a corner, SAAC vs SAAC2, extremes.
+// closed form (docs/theory.md V5), penalty sweep, an L-shaped gap with a corner, SAAC vs SAAC2, extremes.
 #include "contact_support.hpp"
 
 using namespace gapfe;

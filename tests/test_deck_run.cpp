@@ -319,7 +319,7 @@ TEST_CASE("The runner picks the smallest variant and says why; a forced smaller 
 TEST_CASE(
     "Two-tube gap deck: closure pressure from gaps.csv; SAAC (one LGAP) equals SAAC2 (IJDIR per block)") {
   // examples/decks/two_tubes.deck: a = 50, b = 75, gap 0.02, c = 100, E = 200000, nu = 0.3, plane strain,
-  // bore pressure 100 in 20 steps. Closure (THEORY.md V5, plane strain): 36.63.
+  // bore pressure 100 in 20 steps. Closure (docs/theory.md V5, plane strain): 36.63.
   const double a = 50, b = 75, delta = 0.02, E = 200000, nu = 0.3;
   const double pc = delta * E * (b * b - a * a) / (2 * a * a * b * (1 - nu * nu));
   for (const char* policy : {"saac", "active-set", "augmented-lagrangian"}) {
@@ -453,7 +453,7 @@ TEST_CASE("Deck needs: theta loads, transverse shear, angular acceleration and A
 
 TEST_CASE("Plastic tube deck: yield cards run Hill plasticity; eqps in elements.csv; both integrations") {
   // examples/decks/plastic_tube.deck: a = 100, b = 200, Mises sigma_y = 400 (card 11), nu = 0.3, plane
-  // strain, bore pressure to 300 in 15 steps. Closed forms (THEORY.md V6): no yield before p ~ 173 (step
+  // strain, bore pressure to 300 in 15 steps. Closed forms (docs/theory.md V6): no yield before p ~ 173 (step
   // 8 at 20 per step is 160: all elastic), and 300 < p_L = 320.15, so the outer wall stays elastic.
   std::map<std::string, std::vector<std::map<std::string, double>>> bore;
   for (const char* integration : {"return-mapping", "tangent"}) {
@@ -492,7 +492,7 @@ TEST_CASE("Plastic tube deck: yield cards run Hill plasticity; eqps in elements.
     CHECK(rows == 15);
   }
   // The seed's tangent scheme against Newton. Tangent is forward Euler in the load with equilibrium
-  // correction (THEORY.md 7.2), so its difference to the return mapping must fall at least linearly with
+  // correction (docs/theory.md 7.2), so its difference to the return mapping must fall at least linearly with
   // the step size: the same deck in 15, 30 and 60 steps of 300 / n, the ratio of successive differences
   // >= 1.8 (2 for exactly first order, less a margin for the higher-order terms). An earlier version of
   // this test asked for 5% at 15 steps; the difference there is 5.2%, and that check never ran (ctest
@@ -578,8 +578,8 @@ TEST_CASE(
     "A plastic deck loaded past its limit load: a clear error naming the step, exit 2, and every "
     "accepted increment on disk") {
   // examples/decks/plastic_tube.deck with 30 instead of 20 per step: 15 steps to 450 against the limit
-  // p_L = (2 / sqrt 3) 400 ln 2 = 320.15 of the perfectly plastic tube (THEORY.md V6; Mises at nu = 0.3 is
-  // within ~1% of it). Steps 1-10 (to 300) must be accepted; step 11 (330) has no equilibrium: the
+  // p_L = (2 / sqrt 3) 400 ln 2 = 320.15 of the perfectly plastic tube (docs/theory.md V6; Mises at nu = 0.3
+  // is within ~1% of it). Steps 1-10 (to 300) must be accepted; step 11 (330) has no equilibrium: the
   // cut-back halves it down to 1/64 and then gives up past load factor 10 + k / 64, p < p_L.
   const fs::path deck =
       edited_example("plastic_tube.deck", "   42    1      20.0", "   42    1      30.0", "past_the_limit");
@@ -612,7 +612,8 @@ TEST_CASE(
   CHECK(listed == static_cast<int>(rows_per_increment.size()));
 }
 
-TEST_CASE("SAAC3X deck: card 0's STRSTEP then STRRATE drive a thin tube to THEORY.md 8.7's steady state") {
+TEST_CASE(
+    "SAAC3X deck: card 0's STRSTEP then STRRATE drive a thin tube to docs/theory.md 8.7's steady state") {
   // examples/decks/saac3x_tube.deck (bench/deckgen.py saac3x_deck): a tube 999..1000 mm, 1 mm long, one
   // cell, Mises sigma_0 = 400 MPa, b = 0.05, rate_0 = 1e-3 / s; STRSTEP = 230.94 MPa on the top face in
   // step 1, then STRRATE = 1 / s through u_z of the top face, 150 steps of 5e-5 s (lambda dt 0.85 at the
@@ -832,7 +833,7 @@ TEST_CASE("Friction input errors: one line naming the key, a non-zero exit, no r
           {"friction=0.2", "contact=active-set", "slip=coulomb", "plasticity=tangent"}, "return-mapping");
 }
 
-// ------------------------------------------------------------------ Newton and load-step extremes (issue 15)
+// ------------------------------------------------------------------ Newton and load-step extremes
 
 namespace {
 /// `text` with its first `from` replaced by `to` (which must be there).
@@ -1015,7 +1016,7 @@ TEST_CASE(
   }
 }
 
-// Issue 16, wide decks: the seed's fields cap a deck at grid index 999 (line segment cards, I3) and node
+// Wide decks: the seed's fields cap a deck at grid index 999 (line segment cards, I3) and node
 // 99,999 (edge load cards, I5); `$ fields = wide` widens those two and nothing else.
 TEST_CASE("fields = wide: the same tube as a legacy and as a wide deck gives identical files") {
   const std::string legacy = test::lame_tube_deck(9, 3, false), wide = test::lame_tube_deck(9, 3, true);
@@ -1075,7 +1076,7 @@ TEST_CASE("fields = wide: a 1e6-equation tube with its bore pressure as a wide d
   CHECK(bore == n);
 }
 
-// ---- Scene files (issue 16): a Gmsh mesh with a TOML scene, through the same command and the same path as a
+// ---- Scene files: a Gmsh mesh with a TOML scene, through the same command and the same path as a
 // deck. tests/data/scenes/*.msh are the example decks' meshes node for node (make_scenes.py).
 
 #ifdef GAPFE_HAS_SCENE
@@ -1134,7 +1135,7 @@ TEST_CASE(
   const test::Lame lame{100, 200, 100, 200000, 0.3};  // thick tube: Lame within 0.5%
   for (const auto& row : read_csv(scratch("scene_toml_thick_tube.toml") / "nodes.csv"))
     CHECK(test::rel(row.at("u_r"), lame.displacement(row.at("r"))) < 5e-3);
-  {  // two tubes: the closure pressure within 0.5% (THEORY.md V5, plane strain)
+  {  // two tubes: the closure pressure within 0.5% (docs/theory.md V5, plane strain)
     const double a = 50, b = 75, delta = 0.02, E = 200000, nu = 0.3;
     const double pc  = delta * E * (b * b - a * a) / (2 * a * a * b * (1 - nu * nu));
     double last_open = 0, closed_at = -1;
@@ -1144,7 +1145,7 @@ TEST_CASE(
     }
     CHECK(std::abs(closed_at / 20 * 100 - pc) / pc < 5e-3);
   }
-  // plastic tube (THEORY.md V6): elastic through step 8 (160 < 173), the bore yielded and the outer wall
+  // plastic tube (docs/theory.md V6): elastic through step 8 (160 < 173), the bore yielded and the outer wall
   // elastic at 300 < p_L = 320.15.
   for (const auto& row : read_csv(scratch("scene_toml_plastic_tube.toml") / "elements.csv")) {
     if (row.at("step") <= 8) CHECK(row.at("eqps") == 0);
@@ -1437,13 +1438,13 @@ TEST_CASE(
 }
 #endif
 
-// ---- Pictures, history.csv and the command line (issue 17). tests/check_output.py reads the same kinds of
+// ---- Pictures, history.csv and the command line. tests/check_output.py reads the same kinds of
 // files with meshio and Python's XML parser.
 
 TEST_CASE("[history] the plastic tube past its limit: history.csv's load climbs to p_L and flattens there") {
   // examples/decks/plastic_tube.deck at 30 per step to 450 (as the past-the-limit test): the run fails in
-  // step 11 and keeps the history of every accepted increment. Closed form (THEORY.md V6): p_L = (2 / sqrt 3)
-  // 400 ln 2 = 320.15 for the perfectly plastic tube, Mises at nu = 0.3 within ~1% of it.
+  // step 11 and keeps the history of every accepted increment. Closed form (docs/theory.md V6): p_L = (2 /
+  // sqrt 3) 400 ln 2 = 320.15 for the perfectly plastic tube, Mises at nu = 0.3 within ~1% of it.
   const fs::path deck =
       edited_example("plastic_tube.deck", "   42    1      20.0", "   42    1      30.0", "history_limit");
   const fs::path out = scratch("history_limit");

@@ -43,7 +43,7 @@ TEST_CASE("[element] zero-energy modes: axial translation (2 DOF), plus rigid sp
   CHECK(zero_modes<Axisym3, Tri3>(t) == 3);
 }
 
-TEST_CASE("[element] legacy quad: condensed stiffness has rank 10 in 3 DOF (THEORY.md 2 item 5)") {
+TEST_CASE("[element] legacy quad: condensed stiffness has rank 10 in 3 DOF (docs/theory.md 2 item 5)") {
   Mat<4, 2> q;
   q << 0.5, 0.0, 1.5, 0.1, 1.4, 0.9, 0.6, 1.2;
   CHECK(zero_modes<Axisym3, LegacyQuad>(q) == 2);  // 12 - 10

@@ -1,4 +1,4 @@
-// Friction at gap pairs (issue 12; contact/friction.hpp, THEORY.md 6): the push-out and the slip torque of
+// Friction at gap pairs (contact/friction.hpp, docs/theory.md 6): the push-out and the slip torque of
 // a press fit against their closed forms, no spurious friction, the seed's two models, Newton's
 // convergence with the unsymmetric tangent, the tangential penalty sweep and friction with plasticity.
 #include <algorithm>
@@ -396,7 +396,7 @@ TEST_CASE_TEMPLATE("friction: tangential penalty sweep 1e1 to 1e12 x the adjacen
   MESSAGE(table);
 }
 
-// Issue 15 (extremes): the seed's two friction models under SAAC across the normal penalty, whose factor
+// Extremes: the seed's two friction models under SAAC across the normal penalty, whose factor
 // sets their tangential springs too (Proportional mu k, Extended k in stick). Each factor gives the law's
 // springs exactly, every pair closed and finite displacements, or a SolveError (a penalty so large the
 // stiffness is numerically singular: refused, never a wrong answer) and only at 1e9 and above.
@@ -522,7 +522,7 @@ namespace gapfe::test {
 TEST_CASE_TEMPLATE("exact contact policies over the plastic driver: V5's closure and contact pressure",
                    Policy, ActiveSet, AugmentedLagrangian) {
   // Two tubes, plane strain, a Hill law whose yield stress is never reached: the plastic driver with
-  // Newton and the event search must give the frictionless elastic closed form (THEORY.md V5).
+  // Newton and the event search must give the frictionless elastic closed form (docs/theory.md V5).
   using M = Model<Axisym2, Quad4BBar, Hill<ReturnMapping>, EigenLdlt>;
   TwoTubes tubes;
   std::vector<GapPair> pairs;

@@ -1,4 +1,4 @@
-// Material laws: rotations (THEORY.md 3.2-3.3), orthotropic compliance, temperature tables, thermal
+// Material laws: rotations (docs/theory.md 3.2-3.3), orthotropic compliance, temperature tables, thermal
 // strain, validation. References are closed forms written out here, not the code's own output.
 #include "support.hpp"
 
@@ -26,7 +26,7 @@ TEST_CASE("[material] T_eps = T_sigma^-T and both are orthogonal-like for any BE
     }
 }
 
-TEST_CASE("[material] explicit ALPHA = 0 strain rotation (THEORY.md 3.3)") {
+TEST_CASE("[material] explicit ALPHA = 0 strain rotation (docs/theory.md 3.3)") {
   const double beta = 0.37, s = std::sin(beta), c = std::cos(beta);
   const Mat66 te = strain_rotation(stress_rotation(material_axes({beta, 0.0})));
   Vec6 e;
@@ -92,7 +92,7 @@ TEST_CASE("[material] temperature table: linear interpolation, constant outside,
   CHECK(m.localize({}, 120, 20).thermal_strain(voigt::rz) == 0.0);
 }
 
-TEST_CASE("[material] orthotropic thermal strain maps to global axes with shear parts (THEORY.md 3.4)") {
+TEST_CASE("[material] orthotropic thermal strain maps to global axes with shear parts (docs/theory.md 3.4)") {
   const double beta = 0.5, s = std::sin(beta), c = std::cos(beta), dT = 100;
   const auto p    = Orthotropic::constant(fibre()).localize({beta, 0.0}, dT, 0);
   const double aN = -0.5e-6 * dT, aT = 28e-6 * dT, aS = 30e-6 * dT;

@@ -1,4 +1,4 @@
-// The I-J mesh generator (seed Data 3-4, THEORY.md 9): arcs on their circles, the Laplace fill of a
+// The I-J mesh generator (seed Data 3-4, docs/theory.md 9): arcs on their circles, the Laplace fill of a
 // rectangle is the uniform grid, boundary diagonals make triangles, numbering as the issue specifies.
 #include <cmath>
 

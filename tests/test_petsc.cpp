@@ -1,4 +1,4 @@
-// Partitioned runs over MPI with the PETSc solver policy (issue 18), run by ctest under mpirun on 1, 2 and 3
+// Partitioned runs over MPI with the PETSc solver policy, run by ctest under mpirun on 1, 2 and 3
 // ranks (tests/mpi_main.cpp). Each problem is solved twice: whole, on this process, with the serial solvers
 // (Eigen's LDL^T or LU), and cut into one part per rank with PetscSolver; the parts' answers, gathered,
 // must equal the whole one to 1e-8 relative (to the largest value of the field), and the whole one meets
@@ -215,8 +215,8 @@ TEST_CASE_TEMPLATE("[petsc] two tubes across a gap: the parts close the same pai
 
 namespace {
 
-/// The plane-strain plastic tube of the serial tests (test_plasticity.cpp, THEORY.md V6): Mises, perfectly
-/// plastic, a..b graded towards the bore, four cells high; stresses in MPa.
+/// The plane-strain plastic tube of the serial tests (test_plasticity.cpp, docs/theory.md V6): Mises,
+/// perfectly plastic, a..b graded towards the bore, four cells high; stresses in MPa.
 template <class M>
 Problem<M> plastic_tube(double pressure) {
   Problem<M> p;

@@ -1,6 +1,6 @@
 // Hill plasticity (material/hill.hpp) and the Newton driver (driver/nonlinear_static.hpp), against
 // closed forms: uniaxial and shear yield, von Mises equivalence, the Bauschinger shift, the thick tube
-// (first yield, elastic-plastic radius, limit pressure, THEORY.md V6), the fully plastic shaft, and
+// (first yield, elastic-plastic radius, limit pressure, docs/theory.md V6), the fully plastic shaft, and
 // Newton's quadratic rate.
 #include <cmath>
 #include <sstream>
@@ -212,7 +212,7 @@ TEST_CASE("ReturnMapping's consistent tangent matches finite differences") {
   CHECK((fd - r.tangent).norm() / r.tangent.norm() < 1e-6);
 }
 
-TEST_CASE("Hill's return-map modes diagonalize E P, with one zero mode (HillModes, THEORY.md 7.3)") {
+TEST_CASE("Hill's return-map modes diagonalize E P, with one zero mode (HillModes, docs/theory.md 7.3)") {
   HillYield y        = anisotropic_yield();
   y.hardening        = 5e3;
   const auto p       = hill<ReturnMapping>(y).localize({0.3, 0.2}, 0.0, 0.0);
@@ -655,11 +655,11 @@ TEST_CASE("SAAC = SAGAEP + gaps: a plastic tube pressed across a gap onto an ela
 }  // namespace
 }  // namespace gapfe::test
 
-// ---- Rate-dependent plasticity (Drysdale-Zak, SAAC3; material/drysdale_zak.hpp, THEORY.md 8)
+// ---- Rate-dependent plasticity (Drysdale-Zak, SAAC3; material/drysdale_zak.hpp, docs/theory.md 8)
 namespace gapfe::test {
 namespace {
 
-// THEORY.md 8.4 and 8.7: sigma_0 = 400 MPa, b = 0.05, eps_0' = 1e-3 / s, E = 200 GPa, nu = 0.3.
+// docs/theory.md 8.4 and 8.7: sigma_0 = 400 MPa, b = 0.05, eps_0' = 1e-3 / s, E = 200 GPa, nu = 0.3.
 constexpr double kSigma0 = 400, kRateB = 0.05, kRate0 = 1e-3, kShearModulus = kE / (2 * (1 + kNu));
 
 template <class Integration>
@@ -675,13 +675,13 @@ double rate_level(double r, double b = kRateB) {
 double plastic_rate_at(double s, double b = kRateB) {
   return RateReference{kSigma0, b, kRate0}.plastic_rate_at(s);
 }
-/// The law's relaxation time 1 / lambda at plastic rate r, Mises (THEORY.md 8.2): b sigma_0 / (3 G
+/// The law's relaxation time 1 / lambda at plastic rate r, Mises (docs/theory.md 8.2): b sigma_0 / (3 G
 /// (eps_0' + r)).
 double relaxation_time(double r, double b = kRateB) {
   return b * kSigma0 / (3 * kShearModulus * (kRate0 + r));
 }
 
-/// SAAC3X's steady state (THEORY.md 8.7) for these constants.
+/// SAAC3X's steady state (docs/theory.md 8.7) for these constants.
 RateReference::Saac3x saac3x_steady(double tau, double rate) {
   return RateReference{kSigma0, kRateB, kRate0}.saac3x_steady(tau, rate);
 }
@@ -790,7 +790,7 @@ TEST_CASE_TEMPLATE(
     "Drysdale-Zak with kinematic hardening at a constant strain rate, against a converged 1-D "
     "integration",
     Integration, ReturnMapping, Tangent) {
-  // Uniaxial stress, Prager c: the surface's centre moves by 3/2 c eps_p along the axis (THEORY.md 8.1),
+  // Uniaxial stress, Prager c: the surface's centre moves by 3/2 c eps_p along the axis (docs/theory.md 8.1),
   // so sigma' = E (rate - eps_p'), eps_p' = phi((sigma - 1.5 c eps_p) / sigma_0). Reference: classical
   // RK4 at dt = 1e-8 s (stable: the uniaxial lambda is below 2e4 / s), converged: dt / 2 changes it by
   // less than 1e-7 anywhere on the path.
@@ -836,7 +836,7 @@ TEST_CASE_TEMPLATE(
 
 TEST_CASE_TEMPLATE(
     "SAAC3X: torsion held at yield, then a constant axial strain rate: monotone rise to the steady "
-    "state (THEORY.md 8.7)",
+    "state (docs/theory.md 8.7)",
     Integration, ReturnMapping, Tangent) {
   // A point of the thin-walled tube: tau_0 = sigma_0 / sqrt(3) held on z-theta, then eps_zz' = rate.
   // Exact: sigma' = E (rate - phi(sigma_bar) sigma / sigma_bar), sigma_bar = sqrt(sigma^2 + 3 tau_0^2),
@@ -944,7 +944,7 @@ TEST_CASE_TEMPLATE(
     ReturnMapping, Tangent) {
   // The structural version of the point test above: one Quad4BBar cell of a tube 0.999..1 m, 1 mm long;
   // the bottom held in z and theta, the top face carries the theta traction tau_0 and is moved along z at
-  // the constant rate (THEORY.md 8.7); time is real (the StepContext's dt), lambda dt = 1 at the steady
+  // the constant rate (docs/theory.md 8.7); time is real (the StepContext's dt), lambda dt = 1 at the steady
   // state. Checked against the ODE's steady state: axial stress and twist rate within 1%, every step's
   // stress below the steady value (no overshoot).
   using M         = Model<Axisym3, Quad4BBar, DrysdaleZak<Integration>>;

@@ -120,7 +120,7 @@ TEST_CASE(
   // The same order through EigenLdlt::analyze(K, order): the solution AMD gives. Operations (George: ND is
   // O(n^1.5), the natural band order O(n^2)): far below the band's; at this size (1e4 unknowns) minimum
   // degree is still a little ahead (1.59e7 against 1.31e7, deterministic); the dissection's lead shows at
-  // scale: a third of AMD's flops at 1e6 equations (BENCHMARKS.md, issue 14).
+  // scale: a third of AMD's flops at 1e6 equations (BENCHMARKS.md, "Levers, each measured").
   const SpMat a = grid_laplacian(nx, ny);
   const VecX b  = VecX::LinSpaced(a.rows(), -1.0, 2.0);
   EigenLdlt given;

@@ -1,4 +1,4 @@
-// Closed-form verification (THEORY.md section 10): Lame, spinning tube, torsion, angular acceleration,
+// Closed-form verification (docs/theory.md section 10): Lame, spinning tube, torsion, angular acceleration,
 // SAGA vs SAAS, helical orthotropic tube, free thermal expansion. Tolerances are the issue's. Last, the
 // unsymmetric-ready solver policy (EigenLu, full storage) against LDL^T through the linear and Newton
 // drivers.
@@ -200,8 +200,9 @@ TEST_CASE_TEMPLATE(
   CHECK(rel(-torque, G * J * phi / L) < 0.01);
 }
 
-TEST_CASE_TEMPLATE("[verification] solid shaft under angular acceleration (THEORY.md V4): twist and torque",
-                   M, Model<Axisym3, Quad4, Isotropic>, Model<Axisym3, LegacyQuad, Isotropic>) {
+TEST_CASE_TEMPLATE(
+    "[verification] solid shaft under angular acceleration (docs/theory.md V4): twist and torque", M,
+    Model<Axisym3, Quad4, Isotropic>, Model<Axisym3, LegacyQuad, Isotropic>) {
   const double c = 0.05, L = 0.5, wdot = 1e4, G = kE / (2 * (1 + kNu));
   Problem<M> p;
   // Nodes on the axis. The legacy quad's CSTs converge more slowly in the theta shear: twice as fine.
@@ -313,7 +314,7 @@ TEST_CASE_TEMPLATE("[verification] uniform temperature rise on a free tube: zero
     CHECK(std::abs(s.displacement(n, 1) - alpha * dT * m.nodes[n](1)) < 1e-9 * alpha * dT * 0.2);
   }
   for (const auto& v : fe.point_values()) CHECK(v.stress.norm() < 1e-9 * kE * alpha * dT);
-  // THEORY.md V8 example: alpha 12e-6 /K, dT 100 K, r = 0.1 m gives u_r = 0.12 mm.
+  // docs/theory.md V8 example: alpha 12e-6 /K, dT 100 K, r = 0.1 m gives u_r = 0.12 mm.
   CHECK(rel(s.displacement(nearest_node(m, 0.1, 0.0), 0), 0.12e-3) < 1e-9);
 }
 
@@ -322,7 +323,7 @@ TEST_CASE_TEMPLATE(
     "closed form (the stiffness re-assembled only when a law or a temperature changed)",
     M, Model<Axisym2, LegacyQuad, Isotropic>, Model<Axisym2, Quad4, Isotropic>) {
   // Plane-strain tube a = 0.1, b = 0.2 m, height h, u_z prescribed on both end planes. Closed forms:
-  // bore pressure p gives Lame's u_r (THEORY.md V1); a uniform rise dT with free radial surfaces and an
+  // bore pressure p gives Lame's u_r (docs/theory.md V1); a uniform rise dT with free radial surfaces and an
   // imposed axial strain eps_z gives sigma_r = sigma_theta = 0, sigma_z = E (eps_z - alpha dT), so
   // u_r = [(1 + nu) alpha dT - nu eps_z] r; the three superpose.
   const int nr = 8, nz = 2;
@@ -363,8 +364,8 @@ TEST_CASE_TEMPLATE(
 }
 
 namespace {
-/// For the EigenLu checks: a plane-strain tube r in [0.1, 0.2] under bore pressure p [Pa] (Lame, THEORY.md
-/// V1), on 16 x 2 cells.
+/// For the EigenLu checks: a plane-strain tube r in [0.1, 0.2] under bore pressure p [Pa] (Lame,
+/// docs/theory.md V1), on 16 x 2 cells.
 template <class M>
 Problem<M> lu_tube(typename M::Material law, double p) {
   Problem<M> prob;
@@ -427,7 +428,7 @@ TEST_CASE(
   CHECK_THROWS_WITH_AS(fe.solve(), doctest::Contains("singular"), SolveError);
 }
 
-// ------------------------------------------------------------------------------------ extremes (issue 15)
+// ------------------------------------------------------------------------------------ extremes
 
 namespace {
 

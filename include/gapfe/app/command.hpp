@@ -3,7 +3,7 @@
 // parses the arguments, reads the deck or scene, makes the plan, runs it and reports, and maps the outcome to
 // an exit code; the program (examples/gapfe/main.cpp) only sets up the process around it. Declared here,
 // defined in app/command_impl.hpp, which one translation unit includes (the gapfe::app target's,
-// cmake/app.cmake), so that the tests run the command in-process. README "Running decks".
+// cmake/app.cmake), so that the tests run the command in-process. docs/decks.md "Running decks".
 #include <functional>
 #include <iosfwd>
 #include <string>

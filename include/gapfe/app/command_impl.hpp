@@ -47,7 +47,7 @@ inline double since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
-/// Scene files are TOML (README "Scene files"); anything else is read as a card deck.
+/// Scene files are TOML (docs/scenes.md "Scene files"); anything else is read as a card deck.
 inline bool is_scene_file(const std::string& path) {
   return std::filesystem::path(path).extension() == ".toml";
 }
@@ -140,11 +140,14 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
   const auto [launch_rank, launch_size] = launcher_ranks();
   check_process(a, plan, launch_size, process.start_mpi);
   check_plan(plan, d, s);
+  check_compiled(plan);
   std::optional<ScenePart> part;
   const int rank = plan.solver == SolverChoice::petsc ? partition(a, s, process.start_mpi, part, log) : 0;
   log << "solver: " << solver_text(plan) << "; element " << name_of(plan.key.element) << "\n";
-  set_solver_threads(a.threads);  // CHOLMOD's OpenMP and OpenBLAS; one thread unless asked (threads.hpp)
-  log << "threads: " << a.threads << (a.threads == 1 ? " (--threads N for more)" : "") << "\n";
+  // CHOLMOD's OpenMP and OpenBLAS; one thread unless asked, and one with an OpenMP-built BLAS (threads.hpp)
+  const SolverThreads threads = set_solver_threads(a.threads);
+  if (!threads.limited.empty()) err << "gapfe: warning: " << threads.limited << "\n";
+  log << "threads: " << threads.threads << (a.threads == 1 ? " (--threads N for more)" : "") << "\n";
   const RunRequest request{d,
                            s,
                            plan,

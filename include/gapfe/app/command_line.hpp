@@ -50,7 +50,8 @@ inline constexpr OptionSpec kOptions[] = {
     {"--variant", "saas|saga", "run mesh info",
      "force a model variant (default: the smallest the deck needs)"},
     {"--set", "KEY=VALUE", "run mesh info",
-     "a deck option (README \"Deck options\": format, element, solver, contact, friction, units, ...)"},
+     "a deck option (docs/decks.md \"Deck options\": format, element, solver, contact, friction, units, "
+     "...)"},
     {"--format", "F", "run mesh info", "shorthand for --set format=F"},
     {"--element", "E", "run mesh info", "shorthand for --set element=E (legacy, quad4, quad4bbar)"},
     {"--solver", "S", "run mesh info",
@@ -149,7 +150,8 @@ inline std::string help_text(const std::string& command) {
       if (std::string_view(c.name) == "run" || std::string_view(c.name) == "mesh") head += " --out DIR";
       s += head + std::string(head.size() < 32 ? 32 - head.size() : 1, ' ') + c.summary + "\n";
     }
-    s += "DECK: a card deck (BRL-CR-670 Appendix A) or a scene file NAME.toml (README \"Scene files\")\n"
+    s += "DECK: a card deck (BRL-CR-670 Appendix A) or a scene file NAME.toml (docs/scenes.md \"Scene "
+         "files\")\n"
          "gapfe --version: the version\n";
     return s;
   }

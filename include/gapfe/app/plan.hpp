@@ -41,7 +41,7 @@ struct Plan {
   bool unsymmetric() const { return key.friction == FrictionChoice::coulomb; }
 };
 
-/// Whether this build has CHOLMOD, UMFPACK and PETSc (the optional solvers; README "Solvers").
+/// Whether this build has CHOLMOD, UMFPACK and PETSc (the optional solvers; docs/library.md "Solvers").
 #ifdef GAPFE_HAS_CHOLMOD
 inline constexpr bool kHasCholmod = true;
 #else
@@ -110,7 +110,7 @@ inline void check_solver_built(SolverChoice solver) {
     throw InputError("solver = cholmod: this gapfe was built without CHOLMOD (SuiteSparse)");
   if (solver == SolverChoice::petsc && !kHasPetsc)
     throw InputError(
-        "solver = petsc: this gapfe was built without PETSc (cmake -DGAPFE_WITH_PETSC=ON; README "
+        "solver = petsc: this gapfe was built without PETSc (cmake -DGAPFE_WITH_PETSC=ON; docs/cluster.md "
         "\"Past one machine\")");
 }
 

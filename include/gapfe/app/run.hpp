@@ -3,6 +3,7 @@
 // (app/plan.hpp). The rows are compiled elsewhere: link the gapfe::app target (cmake/app.cmake), or
 // include app/variant_shards.hpp in one translation unit and instantiate run_shard<0>.
 #include <cstddef>
+#include <stdexcept>
 #include <utility>
 
 #include "gapfe/app/plan.hpp"
@@ -19,6 +20,7 @@ namespace gapfe::app {
 /// (the files then hold the increments accepted).
 inline RunResult run(const RunRequest& r) {
   check_plan(r.plan, r.model, r.scene);
+  check_compiled(r.plan);
   if (r.plan.solver == SolverChoice::petsc && !r.part)
     throw InputError(
         "solver = petsc runs a partitioned model: each process's part (RunRequest::part) on PETSc and MPI, "
@@ -30,14 +32,7 @@ inline RunResult run(const RunRequest& r) {
     return (run_shard<Shard>(r, result) || ...);
   }
   (std::make_index_sequence<GAPFE_APP_SHARDS>{});
-  if (!done) {
-    const VariantKey& k = r.plan.key;
-    throw InputError("no compiled variant for " + std::string(name_of(k.kinematics)) +
-                     ", element = " + std::string(name_of(k.element)) +
-                     ", plasticity = " + std::string(name_of(k.integration)) + ", contact " +
-                     std::string(name_of(k.contact)) + ", friction " + std::string(name_of(k.friction)) +
-                     " (app/variant_table.hpp lists them)");
-  }
+  if (!done) throw std::logic_error("app::run: the plan's row is compiled but no shard ran it");
   return result;
 }
 

@@ -46,7 +46,7 @@ double cell_temperature(const VecX& temperature, double reference, const std::ar
   return t / static_cast<double>(NPC);
 }
 
-/// Body force per unit volume of a material of `density` under the frame's motion (THEORY.md 4.1).
+/// Body force per unit volume of a material of `density` under the frame's motion (docs/theory.md 4.1).
 inline BodyForce body_force(const InertiaLoad& inertia, double density) {
   return {density * inertia.angular_velocity * inertia.angular_velocity,
           -density * inertia.axial_acceleration, -density * inertia.angular_acceleration};

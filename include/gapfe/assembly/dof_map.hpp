@@ -4,7 +4,7 @@
 // DOFs get -1 and keep their value in `prescribed`.
 //
 // Nodes on the axis (r = 0 within 1e-9 of the mesh size) get u_r = u_theta = 0: a smooth field needs
-// it, and the exact stiffness of u_r there is infinite (THEORY.md 1.3). A card that prescribes a
+// it, and the exact stiffness of u_r there is infinite (docs/theory.md 1.3). A card that prescribes a
 // non-zero u_r or u_theta there, or loads those components, is an input error.
 #include <cmath>
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// Consistent nodal forces of an edge traction (seed Data 13-15; THEORY.md 4.2), full ring:
+// Consistent nodal forces of an edge traction (seed Data 13-15; docs/theory.md 4.2), full ring:
 //   F_a = int N_a t 2 pi r ds,   t = -p n + s d (in r, z),   t_theta = q,
 // d the unit tangent from M to N, n = (d_z, -d_r) the outward normal (element on the left).
 // For a straight 2-node edge and uniform p this gives F_M = 2 pi p L (2 r_M + r_N) / 6: the heavier

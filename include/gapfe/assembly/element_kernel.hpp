@@ -14,7 +14,7 @@
 
 namespace gapfe {
 
-/// Body force per unit volume from rigid-body motion of the frame (THEORY.md 4.1, seed Data 12):
+/// Body force per unit volume from rigid-body motion of the frame (docs/theory.md 4.1, seed Data 12):
 /// b = rho (omega^2 r, -a_z, -omega_dot r) in (r, z, theta), d'Alembert inertia.
 struct BodyForce {
   double radial_per_r = 0.0;  ///< rho omega^2 [force / length^4]
@@ -113,7 +113,7 @@ struct ElementKernel {
     return stiffness_rows<0, kShapeDofs>(x, D);
   }
   /// Rows [First, First + Rows) of shape_stiffness: recovery's expand() needs the interior DOFs' rows only
-  /// (for the legacy quad 2 of 10, a third of the products; issue 14).
+  /// (for the legacy quad 2 of 10, a third of the products).
   template <int First, int Rows>
   static Mat<Rows, kShapeDofs> stiffness_rows(const Coords& x, const StrainMatrix& D) {
     Mat<Rows, kShapeDofs> k  = Mat<Rows, kShapeDofs>::Zero();
@@ -123,14 +123,15 @@ struct ElementKernel {
       const StrainDisplacement b   = point_B(g, mean);
       const StrainDisplacement d_b = D * b;
       // lazyProduct: Eigen sends a fixed 8 x 4 by 4 x 8 product (and larger) to its blocked GEMM, whose
-      // packing costs more than the product; coefficient-based, it unrolls (BENCHMARKS.md, issue 14).
+      // packing costs more than the product; coefficient-based, it unrolls (BENCHMARKS.md, "Levers, each
+      // measured").
       k.noalias() += g.weight * b.template middleCols<Rows>(First).transpose().lazyProduct(d_b);
     }
     return k;
   }
 
   /// f_s = int N^T b dV (load points) + int B^T D eps_th dV (stiffness points, the same rule as K so
-  /// that a free uniform expansion is reproduced with zero stress; THEORY.md 3.4 and V8).
+  /// that a free uniform expansion is reproduced with zero stress; docs/theory.md 3.4 and V8).
   static ShapeVector shape_load(const Coords& x, const StrainMatrix& D, const StrainVector& eps_th,
                                 const BodyForce& body) {
     ShapeVector f = ShapeVector::Zero();
@@ -157,7 +158,7 @@ struct ElementKernel {
     return f;
   }
 
-  /// Static condensation of interior DOFs (THEORY.md 2 item 3):
+  /// Static condensation of interior DOFs (docs/theory.md 2 item 3):
   /// K* = Kcc - Kci Kii^-1 Kic,  F* = Fc - Kci Kii^-1 Fi. A no-op copy without interior nodes.
   static void condense(const ShapeMatrix& ks, const ShapeVector& fs, Matrix& k, Vector& f) {
     if constexpr (kInner == 0) {

@@ -1,6 +1,6 @@
 #pragma once
 // Node links: two-node springs on the relative displacement u_b - u_a of a node pair. Every contact
-// policy reduces a closed gap pair to one (THEORY.md 5.2: the seed's "large number" set in N, T, S and
+// policy reduces a closed gap pair to one (docs/theory.md 5.2: the seed's "large number" set in N, T, S and
 // transformed back is the same as adding a penalty spring k n n^T along the closure direction n), and
 // a tangential (friction) spring is one more term of the same 3 x 3 stiffness.
 //

@@ -1,7 +1,7 @@
 #pragma once
 // Quad4Axisym2Batch: the Quad4 2-DOF stiffness of W elements at once, in structure-of-arrays form, so
 // the compiler vectorizes across elements. Same mathematics as ElementKernel<Axisym2, Quad4>
-// (THEORY.md 1.2, 2x2 Gauss, full ring), but B is never formed: its zero structure is written out.
+// (docs/theory.md 1.2, 2x2 Gauss, full ring), but B is never formed: its zero structure is written out.
 //
 // DATA LAYOUT ASSUMPTIONS (lane l = element within the batch, fastest index):
 //   r[a][l], z[a][l]        nodal coordinates, a = 0..3 counterclockwise

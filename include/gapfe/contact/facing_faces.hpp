@@ -1,5 +1,5 @@
 #pragma once
-// Gap elements from two facing faces (issue 16): where a mesh gives the two sides of a gap as curves (a
+// Gap elements from two facing faces: where a mesh gives the two sides of a gap as curves (a
 // scene file's [[contact]] faces) instead of a deck's column of material-2 cells, the node pairs come from
 // the faces' positions, and each edge of face A with its two partners is one gap element of the seed's kind
 // (gap_pairs.hpp: corners IX1..IX4 = a, partner(a), partner(b), b with gap direction 1, so Eq. 1-3 give its

@@ -1,5 +1,5 @@
 #pragma once
-// Friction models at closed gap pairs (seed section 3, Eq. 12-15; THEORY.md 6): a compile-time policy of
+// Friction models at closed gap pairs (seed section 3, Eq. 12-15; docs/theory.md 6): a compile-time policy of
 // ContactStatic next to the contact policy, so a scene without friction instantiates none of it.
 //
 // Every model is a tangential spring on the pair's slide s = (T . d, S . d) [length], d = u_b - u_a in
@@ -21,7 +21,7 @@
 //                 The status is decided at every accepted increment from the stresses of the real
 //                 elements around the pair (ContactStatic::decide_stick_slip) and used in the next step:
 //                 a one-step lag, and the force a slipping pair carries is kept, not returned to mu P.
-//   Coulomb       the exact law |t| <= mu P with a return mapping (THEORY.md 6, third item): stick
+//   Coulomb       the exact law |t| <= mu P with a return mapping (docs/theory.md 6, third item): stick
 //                 t = t_trial; slip t = mu P t_trial / |t_trial|. P, the pair's normal force, is taken at
 //                 the current iterate, so slip couples t to the normal gap: the consistent tangent is
 //                 unsymmetric, and the driver iterates (Newton) within every solve.
@@ -139,7 +139,7 @@ struct Coulomb {
       return out;
     }
     // Slip: back to the cone along the trial direction nu. dt/ds = (mu P / |t_trial|) (I - nu nu^T)
-    // (-k_t), dt/dP = mu nu (THEORY.md 6). With P <= 0 the pair carries nothing and stiffens nothing.
+    // (-k_t), dt/dP = mu nu (docs/theory.md 6). With P <= 0 the pair carries nothing and stiffens nothing.
     out.slipping = true;
     out.excess   = std::max(size - limit, 0.0);
     if (limit <= 0) return out;

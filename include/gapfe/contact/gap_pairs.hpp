@@ -1,5 +1,5 @@
 #pragma once
-// Gap elements and their node pairs (seed section 2.2-2.3, Eq. 1-7; THEORY.md 5.1).
+// Gap elements and their node pairs (seed section 2.2-2.3, Eq. 1-7; docs/theory.md 5.1).
 //
 // A gap element is a cell of soft material (material 2 in a deck) between two bodies. Its principal gap
 // direction (the seed's LGAP in SAAC, IJDIR per material block in SAAC2) says which corners face each

@@ -1,6 +1,6 @@
 #pragma once
-// The penalties of gap pairs (THEORY.md 5.4): a pair's k is kappa times the stiffness of the structure next
-// to it along its closure direction, max(n^T K_aa n, n^T K_bb n), K_aa node a's diagonal block of the
+// The penalties of gap pairs (docs/theory.md 5.4): a pair's k is kappa times the stiffness of the structure
+// next to it along its closure direction, max(n^T K_aa n, n^T K_bb n), K_aa node a's diagonal block of the
 // structural (non-gap) elements; and the tolerances a contact run decides statuses with.
 #include <algorithm>
 #include <cstdio>

@@ -1,5 +1,5 @@
 #pragma once
-// Contact policies: how a load step treats the gap pairs (THEORY.md 5.3-5.5). A policy is a type with
+// Contact policies: how a load step treats the gap pairs (docs/theory.md 5.3-5.5). A policy is a type with
 // a name, whether it acts on the pairs at all, its default penalty factor, and a step function that
 // drives a Stepper (driver/contact_stepper.hpp) from the accepted load factor to the step's end:
 //
@@ -81,7 +81,7 @@ concept ContactPolicy = requires {
 namespace detail {
 
 /// Fraction of the interval from the accepted state to the last solve at which open pair p closes:
-/// f = g_start / (g_start - g_end), exact while the response is linear (THEORY.md 5.4); 0 when it
+/// f = g_start / (g_start - g_end), exact while the response is linear (docs/theory.md 5.4); 0 when it
 /// already touched at the start.
 template <class S>
 double closure_fraction(const S& s, int p) {
@@ -127,7 +127,7 @@ struct Saac {
   static void step(S& s, double t_end) {
     const double t0 = s.load_factor();
     s.solve_at(t_end);
-    // The seed (THEORY.md 5.4) splits the step once, at the first closure: an open pair that overlaps
+    // The seed (docs/theory.md 5.4) splits the step once, at the first closure: an open pair that overlaps
     // closes at f = g_start / (g_start - g_end). A step that only unloads is split likewise where its
     // first closed pair goes into tension, f = P_start / (P_start - P_end) ("unloading could separate the
     // gap"). Whatever load moves them (pressure, temperature, inertia, a prescribed displacement), the

@@ -1,7 +1,7 @@
 #pragma once
 // The augmented-Lagrangian (Uzawa) updates of a contact solve (contact/policies.hpp, AugmentedLagrangian):
 // lambda <- lambda - k g on closed pairs, re-solved with the same factorization, until every closed pair's
-// |g| <= penetration_tolerance x max |u| (THEORY.md 5.5 item 2). With friction the tangential force gets
+// |g| <= penetration_tolerance x max |u| (docs/theory.md 5.5 item 2). With friction the tangential force gets
 // its own multiplier, t_base <- t, until every sticking pair's slide in the step is within the same
 // tolerance (exact stick without a huge k_t).
 #include <algorithm>

@@ -1,6 +1,6 @@
 #pragma once
-// The run's choices as types. Every deck option with a fixed set of values (README "Deck options") is an
-// enum here, and its words are one table per enum (ChoiceWords): the deck reader, the scene reader and the
+// The run's choices as types. Every deck option with a fixed set of values (docs/decks.md "Deck options") is
+// an enum here, and its words are one table per enum (ChoiceWords): the deck reader, the scene reader and the
 // command line parse through it (choice_named), the log and `gapfe info` print through it (name_of), so the
 // words cannot drift apart and no code compares an option against a string literal.
 #include <array>

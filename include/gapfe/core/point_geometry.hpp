@@ -1,6 +1,6 @@
 #pragma once
 // What the kinematics needs at one integration point: shape values N (for the hoop term u_r / r),
-// their spatial gradients, the radius and the full-ring volume weight 2 pi r |J| w (THEORY.md 1.2, 1.4).
+// their spatial gradients, the radius and the full-ring volume weight 2 pi r |J| w (docs/theory.md 1.2, 1.4).
 // Elements produce it (element/point_maps.hpp), kinematics consume it: the one type both contracts
 // in core/concepts.hpp name.
 #include "gapfe/core/types.hpp"

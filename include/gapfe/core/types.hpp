@@ -1,5 +1,5 @@
 #pragma once
-// Vocabulary types and the conventions every other header relies on (THEORY.md section 0).
+// Vocabulary types and the conventions every other header relies on (docs/theory.md section 0).
 //
 // Coordinates: (r, z, theta), r >= 0; everything is a function of (r, z) only.
 // Units: any consistent set; the library never converts (SI in the examples). Angles are radians

@@ -14,7 +14,7 @@
 // Loads are given as a function loads_at(Problem&, t) that puts the loads at load factor t into the
 // problem; the response between two solves is linear in t while no pair changes status, which is what
 // step splitting relies on. The penalty of a pair is k = kappa max(n^T K_aa n, n^T K_bb n), K_aa the
-// node's diagonal block of the structural (non-gap) elements (THEORY.md 5.4).
+// node's diagonal block of the structural (non-gap) elements (docs/theory.md 5.4).
 //
 // Friction (contact/friction.hpp) is the third parameter; the pair force and its tangent are
 // GapPairSet's. The Coulomb slip term of the tangent is unsymmetric: a solver with full storage (EigenLu,

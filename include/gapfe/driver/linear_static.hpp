@@ -147,7 +147,7 @@ class LinearStatic {
     return recover(assembler_, p_, u_, ElasticStress<Law>{}, false);
   }
   /// Strain and stress at every cell's centroid (LegacyQuad: the r-bar A weighted mean of its four
-  /// sub-triangles, THEORY.md 2 item 4).
+  /// sub-triangles, docs/theory.md 2 item 4).
   /// `what`: Recovered::stress leaves strain and the material-axes values out (post/recovery.hpp).
   std::vector<PointValues> centroid_values(Recovered what = Recovered::all) const {
     return recover(assembler_, p_, u_, ElasticStress<Law>{}, true, what);
@@ -182,8 +182,8 @@ class LinearStatic {
   /// Reactions and the equilibrium residual. The free rows come from the assembled system, node links
   /// included, K_ff u_f - rhs_f = F_int,f - F_ext,f (a sparse product), and only the cells with a
   /// prescribed DOF are visited for the reactions (the links' forces are added at every DOF): a pass over
-  /// the boundary, not the mesh (issue 14: the full pass was 4% of a 1e6-equation run and, with links,
-  /// 10% of the two-tube contact run).
+  /// the boundary, not the mesh (BENCHMARKS.md "Levers, each measured": the full pass was 4% of a
+  /// 1e6-equation run and, with links, 10% of the two-tube contact run).
   void reactions() const {
     const auto& dofs = assembler_.dofs();
     // The global balance's terms no nodal vector holds: the body forces (element loads) and the links'

@@ -315,9 +315,9 @@ class NonlinearStatic {
   /// C = r / r_before^2 from that pair; without them, when this is the first correction and the last
   /// step needed one (an elastic step; with extrapolation such steps need none, see newton()). Then that
   /// evaluation computes F_int without the tangent, which only a further iteration would factorize.
-  /// Every step ends with such an evaluation: the plastic tube of BENCHMARKS.md (issue 14) skips 19 of its
-  /// 47 tangents. A wrong guess costs the state's evaluation once more, with the tangent; the iterates,
-  /// and so the answers, are the same either way.
+  /// Every step ends with such an evaluation: the plastic tube of BENCHMARKS.md ("`gapfe run` against
+  /// CalculiX") skips 19 of its 47 tangents. A wrong guess costs the state's evaluation once more, with the
+  /// tangent; the iterates, and so the answers, are the same either way.
   bool converged_next(int solves, double before_last, double last) const {
     if (!options_.predict_convergence) return false;
     if (before_last > 0 && last >= 0 && last < before_last) {

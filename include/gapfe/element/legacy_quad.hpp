@@ -1,6 +1,6 @@
 #pragma once
 // LegacyQuad: the SAAS-family quadrilateral (Wilson 1965), four constant-strain ring triangles around
-// a centre node that is condensed out (THEORY.md 2). Kept faithful so legacy answers can be compared:
+// a centre node that is condensed out (docs/theory.md 2). Kept faithful so legacy answers can be compared:
 //
 //   3 ------- 2      corners 0..3 counterclockwise (0-based), centre node 4 at the corner average;
 //   | \  2  / |      sub-triangles (0,1,4), (1,2,4), (2,3,4), (3,0,4), each a CST whose hoop term
@@ -23,7 +23,7 @@ struct LegacyQuad {
   static constexpr int kEdgeNodes       = 2;
   static constexpr std::array<std::array<int, 2>, 4> kEdges{{{0, 1}, {1, 2}, {2, 3}, {3, 0}}};
   static constexpr std::array<std::array<int, 3>, 4> kTriangles{{{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}}};
-  using Degenerate = Tri3;  // a 3-corner cell is a single CST: no centre node (THEORY.md 2 item 7)
+  using Degenerate = Tri3;  // a 3-corner cell is a single CST: no centre node (docs/theory.md 2 item 7)
 
   /// Corners plus the centre node at their average.
   static Mat<5, 2> shape_coords(const Mat<4, 2>& x) {
@@ -42,7 +42,7 @@ struct LegacyQuad {
     return cst_point<5>(shape_coords(x), kTriangles[q / 6], p.point[k][0], p.point[k][1], p.weight[k], det);
   }
   // No centroid_point: the element's centroid stress is the r-bar-A weighted mean of its four
-  // sub-triangle stresses (THEORY.md 2 item 4); the post-processor does that when this is absent.
+  // sub-triangle stresses (docs/theory.md 2 item 4); the post-processor does that when this is absent.
 };
 
 }  // namespace gapfe

@@ -28,7 +28,7 @@ inline PointGeometry<NN> isoparametric_point(const Mat<NN, 2>& x, const Vec<NN>&
 /// Linear (constant-strain) triangle on nodes `tri` of an NN-node shape set, evaluated at area
 /// coordinates (L2, L3) with reference weight w (the reference triangle has area 1/2). The
 /// gradients are constant: dN_i/dr = b_i / 2A, dN_i/dz = c_i / 2A with b_i = z_j - z_k,
-/// c_i = r_k - r_j, (i, j, k) cyclic (THEORY.md 2 item 2).
+/// c_i = r_k - r_j, (i, j, k) cyclic (docs/theory.md 2 item 2).
 template <int NN>
 inline PointGeometry<NN> cst_point(const Mat<NN, 2>& x, const std::array<int, 3>& tri, double L2, double L3,
                                    double rule_weight, double& two_area) {

@@ -1,5 +1,5 @@
 #pragma once
-// Quad4: 4-node bilinear isoparametric quadrilateral, 2x2 Gauss (THEORY.md 1.2).
+// Quad4: 4-node bilinear isoparametric quadrilateral, 2x2 Gauss (docs/theory.md 1.2).
 //
 //   4 ---- 3     eta        nodes counterclockwise from the corner nearest the origin
 //   |      |      ^         (seed Fig. 1: IX(N,1..4) = (I,J), (I+1,J), (I+1,J+1), (I,J+1))

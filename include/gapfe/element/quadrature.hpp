@@ -1,6 +1,6 @@
 #pragma once
 // Constexpr quadrature tables. Gauss points lie strictly inside an element, so r > 0 at every point
-// even when element nodes sit on the axis (THEORY.md 1.3: never use Lobatto or nodal rules).
+// even when element nodes sit on the axis (docs/theory.md 1.3: never use Lobatto or nodal rules).
 #include <array>
 
 namespace gapfe {
@@ -54,7 +54,7 @@ namespace triangle_rule {
 /// Area coordinates (L2, L3) on the reference triangle (0,0), (1,0), (0,1); weights sum to 1/2.
 inline constexpr Rule<1> kCentroid{{{{1.0 / 3.0, 1.0 / 3.0}}}, {0.5}};
 /// Strang-Fix 6-point rule, exact to degree 4 (all weights positive); used for body loads whose
-/// integrand N_a r^2 is cubic on a straight triangle (THEORY.md 4.1).
+/// integrand N_a r^2 is cubic on a straight triangle (docs/theory.md 4.1).
 inline constexpr Rule<6> kDegree4{
     {{{0.445948490915965, 0.445948490915965},
       {0.445948490915965, 0.108103018168070},

@@ -1,8 +1,8 @@
 #pragma once
 // Tri3: 3-node constant-strain ring triangle, for the 3-corner cells a structured grid leaves along
-// boundary diagonals (THEORY.md 2 item 7). The hoop term N/r is taken at the centroid, the classical
+// boundary diagonals (docs/theory.md 2 item 7). The hoop term N/r is taken at the centroid, the classical
 // one-point CST (the same approximation as each sub-triangle of LegacyQuad). Body loads use a
-// degree-4 rule, exact for N_a r^2 (THEORY.md 4.1).
+// degree-4 rule, exact for N_a r^2 (docs/theory.md 4.1).
 //
 //   2            local 0-based nodes 0, 1, 2, counterclockwise
 //   |  .

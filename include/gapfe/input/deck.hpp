@@ -3,7 +3,7 @@
 // input/deck_options.hpp (the `$ key = value` extensions), input/deck_cards.hpp (the cards as data) and
 // input/deck_reader.hpp (read_deck); input/deck_scene.hpp builds the mesh and checks what refers to it.
 //
-// Readings of what the seed leaves open (also in the README's deck section):
+// Readings of what the seed leaves open (also in docs/decks.md):
 //  * Deck formats: `saac` (default; SAAC/SAAC2: a yield card, card 11, follows each material's
 //    property cards; an all-blank yield card keeps that material elastic), `saac3` (SAAC3/SAAC3X: as
 //    saac with the rate card, card 0, first) and `elastic` (SAAS/SAGA decks: no yield cards). In the

@@ -29,9 +29,9 @@ struct ModelNeeds {
   bool needs_theta() const { return !theta.empty(); }
 };
 
-/// SAAC3X's constant-strain-rate test (card 0's STRRATE and STRSTEP; seed section 4.2, THEORY.md 8.7),
-/// driven through the faces of the mesh at its least and greatest z (README "SAAC3X"): load step 1 ramps
-/// the theta traction STRSTEP onto the top face and then holds it; from step 2 on the top face moves
+/// SAAC3X's constant-strain-rate test (card 0's STRRATE and STRSTEP; seed section 4.2, docs/theory.md 8.7),
+/// driven through the faces of the mesh at its least and greatest z (docs/decks.md "SAAC3X"): load step 1
+/// ramps the theta traction STRSTEP onto the top face and then holds it; from step 2 on the top face moves
 /// along z at u_z = STRRATE L (t - delta t), L the length between the faces, so every later step adds
 /// STRRATE L delta t; the bottom face is held at u_z = u_theta = 0 throughout.
 struct StrainRateTest {

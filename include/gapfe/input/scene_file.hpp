@@ -7,7 +7,7 @@
 // for decks and scenes, and one model given both ways gives the same answers.
 //
 // Needs toml++ (Debian's libtomlplusplus-dev; CMake target gapfe::scene), so gapfe.hpp does not include
-// it. The keys, their units and defaults are in README "Scene files" and examples/scenes/; in short:
+// it. The keys, their units and defaults are in docs/scenes.md "Scene files" and examples/scenes/; in short:
 //
 //   title = "..."
 //   [mesh]        file = "part.msh" (relative to the scene file; physical groups name its parts), or

@@ -1,6 +1,6 @@
 #pragma once
 // Axisym2 (SAAS): 2 DOF per node (u_r, u_z); strains [rr, zz, hoop, rz] = global Voigt slots 0..3
-// (THEORY.md 1.1-1.2). B for node a (columns u_r, u_z):
+// (docs/theory.md 1.1-1.2). B for node a (columns u_r, u_z):
 //   [ N_a,r    0    ]
 //   [ 0        N_a,z]
 //   [ N_a / r  0    ]   hoop; r > 0 at every integration point (Gauss points are interior)

@@ -1,5 +1,5 @@
 #pragma once
-// Axisym3 (SAGA): 3 DOF per node (u_r, u_z, u_theta); all six strains (THEORY.md 1.1-1.2):
+// Axisym3 (SAGA): 3 DOF per node (u_r, u_z, u_theta); all six strains (docs/theory.md 1.1-1.2):
 //   z-theta = u_theta,z,  theta-r = u_theta,r - u_theta / r.
 // B for node a (columns u_r, u_z, u_theta), rows [rr, zz, hoop, rz, z-theta, theta-r]:
 //   [ N_a,r    0      0             ]

@@ -1,13 +1,13 @@
 #pragma once
-// Rate-dependent plasticity of Drysdale and Zak (1983): SAAC3's law (seed section 4, Eq. 16-18; THEORY.md 8),
-// on the Hill machinery of material/hill.hpp. The yield surface grows with the effective plastic strain
-// rate r [1/time]:
+// Rate-dependent plasticity of Drysdale and Zak (1983): SAAC3's law (seed section 4, Eq. 16-18;
+// docs/theory.md 8), on the Hill machinery of material/hill.hpp. The yield surface grows with the effective
+// plastic strain rate r [1/time]:
 //
 //     sqrt(f(sigma - alpha)) = level(r) = 1 + b ln(1 + r / rate_0)        (seed Eq. 17)
 //
 // with f Hill's function of card 11 scaled so that f = 1 is the static surface (its yield stresses are
 // the static sigma_0 per direction), Prager kinematic hardening d alpha = c H d eps_p (card 11's C) and b,
-// rate_0 from card 0. Convention (THEORY.md 8.1, fixed here): a tensile test along a card axis yields at
+// rate_0 from card 0. Convention (docs/theory.md 8.1, fixed here): a tensile test along a card axis yields at
 // sigma_0 level(r), the rate-dependent yield stress; its uniaxial plastic modulus is 3c/2 (Mises). The
 // effective plastic strain rate is work-conjugate, r = (sigma - alpha) : eps_p' / (X sqrt f) (= the Mises
 // equivalent plastic strain rate sqrt(2/3 eps_p' : eps_p') for Mises; hill.hpp's eqps is its integral).
@@ -15,24 +15,24 @@
 //
 // The step's dt comes from the StepContext [model time unit]. Integration, the existing policy names:
 //   * `Tangent`: the seed's SAAC3 scheme (Eq. 18). While a point yields, r relaxes toward A, the plastic
-//     rate the rate-independent law would give, as r' = lambda (A - r) (THEORY.md 8.2), integrated
+//     rate the rate-independent law would give, as r' = lambda (A - r) (docs/theory.md 8.2), integrated
 //     exactly over the step with A and lambda frozen at its start: r_1 = r_0 + (A - r_0)(1 - exp(-lambda
 //     dt)). So r never overshoots A, for any lambda dt. The surface then moves to level(r_1)^2, from
-//     where the point is (the secant form of THEORY.md 8.4, and no drift carried over: dK = level(r_1)^2 -
-//     f(xi_0)), and the flow that takes it there is added to EPLSS's: d lambda = a . C d eps / H + x,
-//     x the root of f(xi_0 - x E a) = f(xi_0) + dK nearest 0 (-dK / H to first order: Eq. 18's second
-//     term; solved exactly along the flow, as a tensile test's surface grows radially and the linear
-//     term would leave it off by dK^2). The stress changes by C_ep d eps - x C a: EPLSS's continuum
-//     tangent, which the assembler gets, plus the surface's term, which the driver's equilibrium
-//     correction applies as the equivalent body force of section 4.2 (at the assembler's query, d eps =
-//     0, it is the surface's relaxation) and the next step's residual carries the rest of. One solve
-//     per step. A comes from the step's own strain increment, where SAAC3 took the last step's rates: with
-//     stress-controlled components (SAAC3X's held torque) that lag feeds back through the strain rate and
-//     the stress oscillates about the steady state at lambda dt ~ 1 (measured: +-3% of sigma, r between
-//     1.27 and 1.69 / s against 1.47), which is what the seed rewrote EPLSS to avoid.
-//   * `ReturnMapping`: the fully implicit consistency return (THEORY.md 8.6): backward Euler with the
+//     where the point is (the secant form of docs/theory.md 8.4, and no drift carried over: dK = level(r_1)^2
+//     - f(xi_0)), and the flow that takes it there is added to EPLSS's: d lambda = a . C d eps / H + x, x the
+//     root of f(xi_0 - x E a) = f(xi_0) + dK nearest 0 (-dK / H to first order: Eq. 18's second term; solved
+//     exactly along the flow, as a tensile test's surface grows radially and the linear term would leave it
+//     off by dK^2). The stress changes by C_ep d eps - x C a: EPLSS's continuum tangent, which the assembler
+//     gets, plus the surface's term, which the driver's equilibrium correction applies as the equivalent body
+//     force of section 4.2 (at the assembler's query, d eps = 0, it is the surface's relaxation) and the next
+//     step's residual carries the rest of. One solve per step. A comes from the step's own strain increment,
+//     where SAAC3 took the last step's rates: with stress-controlled components (SAAC3X's held torque) that
+//     lag feeds back through the strain rate and the stress oscillates about the steady state at lambda dt ~
+//     1 (measured: +-3% of sigma, r between 1.27 and 1.69 / s against 1.47), which is what the seed rewrote
+//     EPLSS to avoid.
+//   * `ReturnMapping`: the fully implicit consistency return (docs/theory.md 8.6): backward Euler with the
 //     yield condition f(xi_1) = level(r)^2, r = d eqps / dt, and its consistent tangent, for Newton.
-// r is monotone in both for every lambda dt (THEORY.md 8.4): exponential, and backward Euler. The
+// r is monotone in both for every lambda dt (docs/theory.md 8.4): exponential, and backward Euler. The
 // tangent scheme's flow direction is the step's start's: where a step turns the loading away from it
 // (SAAC3X's first axial step from pure shear, a . C d eps = 0) one large step would go elastic and
 // overshoot (30 times the steady stress at lambda dt = 1e3). So a step whose end is off the surface by
@@ -148,7 +148,7 @@ struct DrysdaleZak {
            (p.reference_yield * (1 + now.relaxation));
   }
 
-  /// lambda dt at a yielding point (THEORY.md 8.2): lambda = H / (m K'), H = a.(C + cH) a, m = 2 s / X
+  /// lambda dt at a yielding point (docs/theory.md 8.2): lambda = H / (m K'), H = a.(C + cH) a, m = 2 s / X
   /// (r = lambda' m), K' = d level^2 / d r. Reported as 0 when b = 0 (lambda is infinite there: the
   /// rate-independent limit).
   static double relaxation(const Local& p, const Vec6& xi, double r, const detail::RateTerm& term) {
@@ -161,7 +161,7 @@ struct DrysdaleZak {
   }
 
  private:
-  /// How far a piece of the seed's scheme ended from where the model keeps a point (THEORY.md 8.1: F =
+  /// How far a piece of the seed's scheme ended from where the model keeps a point (docs/theory.md 8.1: F =
   /// 0 while yielding): a yielding point off its surface sqrt f = level(r), relative; an elastic one
   /// pushed further above the static surface than it started (it would have flowed).
   static double off_surface(const Local& p, const State& start, const PointResponse<State>& end,
@@ -233,10 +233,11 @@ struct DrysdaleZak {
       const double slope     = 2 * term.level(r0) * term.slope(r0);  // K'(r_0)
       lambda_dt              = modulus / (m * slope) * tau;
       rate_end               = target + (r0 - target) * std::exp(-lambda_dt);
-      // The surface moves to level(r_1)^2 from where the point is, f (secant, and no drift kept: THEORY.md
-      // 8.4): dK = level(r_1)^2 - f. Flow along E a = (C + cH) a changes f by -H x + q x^2, q = (E a)^T P
-      // (E a), so the multiplier is the root of q x^2 - H x - dK = 0 nearest 0 (-dK / H to first order, the
-      // seed's linear term), or where f is least along the flow when the surface shrinks out of reach.
+      // The surface moves to level(r_1)^2 from where the point is, f (secant, and no drift kept:
+      // docs/theory.md 8.4): dK = level(r_1)^2 - f. Flow along E a = (C + cH) a changes f by -H x + q x^2, q
+      // = (E a)^T P (E a), so the multiplier is the root of q x^2 - H x - dK = 0 nearest 0 (-dK / H to first
+      // order, the seed's linear term), or where f is least along the flow when the surface shrinks out of
+      // reach.
       const double level = term.level(rate_end), dk = level * level - f;
       const Vec6 flow   = (p.stiffness + p.hardening_matrix) * a;
       const double q    = flow.dot(p.yield_matrix * flow);

@@ -1,5 +1,5 @@
 #pragma once
-// Linear elasticity with temperature-dependent constants (seed Data 10; THEORY.md 3).
+// Linear elasticity with temperature-dependent constants (seed Data 10; docs/theory.md 3).
 //
 // Orthotropic: nine engineering constants in (N, S, T) axes, Jones' convention
 // nu_ij = -eps_j / eps_i under uniaxial sigma_i, reciprocity nu_ij / E_i = nu_ji / E_j, rotated to the
@@ -39,7 +39,7 @@ struct ElasticConstants {
     return {temperature, E, E, E, nu, nu, nu, G, G, G, alpha, alpha, alpha};
   }
 
-  /// Compliance in material Voigt order [NN, SS, TT, NS, ST, TN] (THEORY.md 3.1).
+  /// Compliance in material Voigt order [NN, SS, TT, NS, ST, TN] (docs/theory.md 3.1).
   Mat66 compliance() const {
     Mat66 s = Mat66::Zero();
     s(0, 0) = 1 / E_N, s(1, 1) = 1 / E_S, s(2, 2) = 1 / E_T;

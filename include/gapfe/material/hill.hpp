@@ -1,6 +1,6 @@
 #pragma once
 // Hill (1948) anisotropic plasticity with Prager kinematic hardening: SAGAEP's law (seed section 2.1,
-// Appendix B subroutine EPLSS; THEORY.md 7), on top of the orthotropic elastic law.
+// Appendix B subroutine EPLSS; docs/theory.md 7), on top of the orthotropic elastic law.
 //
 // Yield function in material axes (N, S, T), xi = sigma - alpha (tensor shears), yield at f = 1:
 //   f = xi_NN^2/X^2 + xi_SS^2/Y^2 + xi_TT^2/Z^2 + (1/Z^2 - 1/X^2 - 1/Y^2) xi_NN xi_SS
@@ -11,7 +11,7 @@
 // Flow is associated, d eps_p = d lambda a (a is conjugate to engineering shear strain), and Prager's
 // rule d alpha = c H d eps_p moves the centre. H = I is EPLSS's choice (`PragerShear::legacy`, which
 // doubles the shear back-stress rate of the tensorial rule); H = diag(1, 1, 1, 1/2, 1/2, 1/2) is the
-// tensorial rule (`PragerShear::tensor`). Uniaxial answers agree; shear answers do not (THEORY.md 7.2).
+// tensorial rule (`PragerShear::tensor`). Uniaxial answers agree; shear answers do not (docs/theory.md 7.2).
 //
 // Everything is evaluated in global axes with P_g = T_s^T P T_s and H_g = T_e^T H T_e (T_s, T_e the
 // stress and strain rotations): the dual pairings are invariant, so the update formulas keep their form.
@@ -22,7 +22,7 @@
 //     elastic-plastic tangent C_ep of EPLSS at the yield point, once. The tangent it gives the assembler
 //     is C_ep at the start of the step for points that ended the last step plastic (the seed's IFGPL
 //     flag), so one linear solve per increment is the seed's method. Stresses drift off the surface.
-//   * `ReturnMapping`: backward-Euler closest-point projection onto the surface (THEORY.md 7.3) with
+//   * `ReturnMapping`: backward-Euler closest-point projection onto the surface (docs/theory.md 7.3) with
 //     the algorithmically consistent tangent, for Newton equilibrium iterations: no drift.
 // Both detect loading, unloading and reloading from the elastic trial state.
 //

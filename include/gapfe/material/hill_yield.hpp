@@ -1,7 +1,7 @@
 #pragma once
-// Hill's yield criterion with kinematic hardening (SAGAEP, THEORY.md 7): the yield stresses and hardening
-// (HillYield), a point's state (HillState), the law at a point (HillPoint) and the integration schemes' tags
-// (Tangent, ReturnMapping). material/hill.hpp is the law.
+// Hill's yield criterion with kinematic hardening (SAGAEP, docs/theory.md 7): the yield stresses and
+// hardening (HillYield), a point's state (HillState), the law at a point (HillPoint) and the integration
+// schemes' tags (Tangent, ReturnMapping). material/hill.hpp is the law.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -18,7 +18,7 @@
 
 namespace gapfe {
 
-/// How the back stress follows the plastic strain (THEORY.md 7.2).
+/// How the back stress follows the plastic strain (docs/theory.md 7.2).
 enum class PragerShear { legacy, tensor };
 
 /// Seed Data 11: yield stresses in material axes and the kinematic hardening parameter.
@@ -93,7 +93,7 @@ struct HillState {
 
 /// The return map's matrix A(dl) = I + 2 dl E P (E = C + cH) taken apart once per law and element,
 /// so that a yielding point inverts it mode by mode instead of factorizing a 6 x 6 matrix per iteration
-/// (THEORY.md 7.3). With E = L L^T (Cholesky) and L^T P L = Q diag(lambda) Q^T (symmetric, positive
+/// (docs/theory.md 7.3). With E = L L^T (Cholesky) and L^T P L = Q diag(lambda) Q^T (symmetric, positive
 /// semi-definite), the modes V = L Q and W = V^-1 = Q^T L^-1 give
 ///   E P = V diag(lambda) W,   A(dl)^-1 = V diag(1 / (1 + 2 dl lambda)) W,   V^T P V = diag(lambda),
 /// so with y = W xi_trial the yield function along the return is f(dl) = sum lambda_i y_i^2 /

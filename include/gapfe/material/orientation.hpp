@@ -1,5 +1,5 @@
 #pragma once
-// Material axes and the 6x6 Voigt transformations (THEORY.md 3.2-3.3; seed Data 6 and Fig. 4).
+// Material axes and the 6x6 Voigt transformations (docs/theory.md 3.2-3.3; seed Data 6 and Fig. 4).
 //
 // Material axes are indexed (N, S, T) = (0, 1, 2), the card order of E_N, E_S, E_T. BETA turns N in
 // the meridian plane, measured from +z toward +r; ALPHA (helical) turns N out of the meridian plane

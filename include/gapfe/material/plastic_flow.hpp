@@ -1,7 +1,7 @@
 #pragma once
 // The plastic flow of the Hill laws (material/hill.hpp, material/drysdale_zak.hpp): the plastic modulus and
-// continuum tangent (THEORY.md 7.2), the elastic fraction of an increment that crosses the surface, and the
-// return mapping onto the yield surface with its consistent tangent (backward Euler), shared by the
+// continuum tangent (docs/theory.md 7.2), the elastic fraction of an increment that crosses the surface, and
+// the return mapping onto the yield surface with its consistent tangent (backward Euler), shared by the
 // rate-independent and the rate-dependent law.
 #include <algorithm>
 #include <cmath>
@@ -22,12 +22,12 @@ namespace gapfe {
 
 namespace detail {
 
-/// 1 / D of EPLSS: a^T C a + a^T cH a, the denominator of d lambda and of C_ep (THEORY.md 7.2).
+/// 1 / D of EPLSS: a^T C a + a^T cH a, the denominator of d lambda and of C_ep (docs/theory.md 7.2).
 inline double plastic_modulus(const Mat66& c, const Mat66& ch, const Vec6& a) {
   return a.dot(c * a) + a.dot(ch * a);
 }
 
-/// EPLSS's continuum elastic-plastic tangent C - (C a)(C a)^T / (a^T C a + a^T cH a) (THEORY.md 7.2).
+/// EPLSS's continuum elastic-plastic tangent C - (C a)(C a)^T / (a^T C a + a^T cH a) (docs/theory.md 7.2).
 inline Mat66 continuum_tangent(const Mat66& c, const Mat66& ch, const Vec6& a) {
   const Vec6 ca = c * a;
   return c - ca * ca.transpose() / plastic_modulus(c, ch, a);
@@ -146,8 +146,8 @@ PointResponse<State> hill_forward_euler(const HillPoint& p, const Vec6& strain, 
   return r;
 }
 
-/// Backward-Euler closest-point projection (Hill<ReturnMapping>, THEORY.md 7.3), onto the surface
-/// f = level(r)^2 of `rate` with r = d eqps / dt = 2 dl sqrt(f) / (X dt) (THEORY.md 8.6; level 1 for
+/// Backward-Euler closest-point projection (Hill<ReturnMapping>, docs/theory.md 7.3), onto the surface
+/// f = level(r)^2 of `rate` with r = d eqps / dt = 2 dl sqrt(f) / (X dt) (docs/theory.md 8.6; level 1 for
 /// the rate-independent law), with its consistent tangent. A(dl) is inverted in E P's modes (HillModes):
 /// one scalar equation in dl, no matrix factorization per iteration. Without `tangent` (a residual pass,
 /// StepContext::tangent) the consistent tangent, about half the work at a yielding point, is skipped.
@@ -212,7 +212,7 @@ PointResponse<State> hill_return_map(const HillPoint& p, const Vec6& strain, con
   r.state.plastic = true;
   r.yielded       = true;
   if (!tangent) return r;
-  // Consistent tangent (THEORY.md 7.3, with the rate term of 8.6): d dl = g^T d eps,
+  // Consistent tangent (docs/theory.md 7.3, with the rate term of 8.6): d dl = g^T d eps,
   // g = kappa C A^-T a / (kappa a^T A^-1 E a + h), kappa = 1 - 2 level' dl / (X dt),
   // h = 4 s^2 level' / (X dt) (kappa = 1, h = 0 without rate dependence);
   // d xi / d eps = A^-1 (C - E a g^T), d eps_p / d eps = a g^T + 2 dl P d xi / d eps, D = C (I - ...).

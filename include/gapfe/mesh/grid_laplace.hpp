@@ -1,5 +1,5 @@
 #pragma once
-// The I-J generator's Laplace fill (THEORY.md 9) solved on the index lattice: conjugate gradients
+// The I-J generator's Laplace fill (docs/theory.md 9) solved on the index lattice: conjugate gradients
 // preconditioned by one geometric multigrid V-cycle. The seed relaxes point by point, which needs
 // O(n) sweeps of O(n) work; a sparse direct solve needs O(n^1.5) work and several seconds at
 // 1000 x 1000 (BENCHMARKS.md). Multigrid on the lattice needs O(n) work for any grid size.
@@ -19,10 +19,10 @@
 //
 // Precision: CG runs in double (its residual is what the tolerance measures); the V-cycle, a
 // preconditioner, in single precision. The V-cycle is memory-bound, so halving its arrays halves its
-// cost (BENCHMARKS.md, issue 14), and a preconditioner needs only to reduce the error by a good factor:
-// the operator's coefficients (0 to 4, 1/deg) are the same, and CG, measuring in double, still reaches
-// 1e-13. The symmetry CG needs holds in exact arithmetic; single-precision rounding in it is far below
-// the reduction per cycle.
+// cost (BENCHMARKS.md, "I-J mesh generator"), and a preconditioner needs only to reduce the error by a good
+// factor: the operator's coefficients (0 to 4, 1/deg) are the same, and CG, measuring in double, still
+// reaches 1e-13. The symmetry CG needs holds in exact arithmetic; single-precision rounding in it is far
+// below the reduction per cycle.
 #include <algorithm>
 #include <array>
 #include <cmath>

@@ -1,5 +1,5 @@
 #pragma once
-// The I-J mesh generator (seed section 2.4, THEORY.md 9): the segment cards' points placed, the nodes
+// The I-J mesh generator (seed section 2.4, docs/theory.md 9): the segment cards' points placed, the nodes
 // numbered row by row, the interior filled by the discrete Laplace equation, the cells built and checked.
 // Included at the end of mesh/ij_grid.hpp, whose types it fills.
 #include <algorithm>

@@ -1,6 +1,6 @@
 #pragma once
 // The seed's structured I-J mesh generator (MESH, POINTS, MNIMX, ANGLE, CIRCLE; Appendix A Data 3-4;
-// THEORY.md 9), usable without a deck.
+// docs/theory.md 9), usable without a deck.
 //
 // Line-segment cards place grid points (I, J) at (r, z): a point (type 0), straight lines (1; 2 an
 // internal diagonal; 5 and 6 boundary diagonals on the row-minimum and row-maximum side) with points

@@ -29,7 +29,7 @@
 namespace gapfe {
 
 /// Unit names for labels: the deck option `units = LENGTH,FORCE,STRESS` (e.g. mm,N,MPa); generic words when
-/// the deck does not say (gapfe never converts units: THEORY.md 0).
+/// the deck does not say (gapfe never converts units: docs/theory.md 0).
 struct PlotUnits {
   std::string length = "length", force = "force", stress = "stress";
 };

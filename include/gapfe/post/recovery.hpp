@@ -6,7 +6,7 @@
 //   StoredStress   a law with history: the stresses the last evaluation left at the stiffness points
 //                  (and their eqps); centroids are the volume-weighted mean of the cell's points.
 // The LegacyQuad has no centroid point either: its centroid is the r-bar-A weighted mean of its four
-// sub-triangles (THEORY.md 2 item 4).
+// sub-triangles (docs/theory.md 2 item 4).
 #include <algorithm>
 #include <cmath>
 #include <type_traits>

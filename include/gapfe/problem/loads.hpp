@@ -8,7 +8,7 @@
 namespace gapfe {
 
 /// Boundary-condition card (Data 5) for one node. `code` is the bit mask of prescribed
-/// displacement components, 1 = u_r, 2 = u_z, 4 = u_theta (codes 0-7 of the seed, THEORY.md 9);
+/// displacement components, 1 = u_r, 2 = u_z, 4 = u_theta (codes 0-7 of the seed, docs/theory.md 9);
 /// the other components of `value` are nodal forces (total ring force; theta: force, so torque = XT r).
 struct NodalCondition {
   int node = 0;

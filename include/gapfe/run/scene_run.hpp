@@ -175,7 +175,7 @@ void run_scene_plastic(const ModelDescription& d, const Scene& s, OnIncrement&& 
           m << "load step " << step << " fails even when cut to 1/" << std::lround(1 / smallest)
             << ", past load factor " << step - 1 + done << " (the last accepted increment): " << e.what();
           // After accepted increments a singular tangent is rarely a missing constraint: a perfectly
-          // plastic part loaded beyond its limit load has no equilibrium (THEORY.md V6's tube: p_L).
+          // plastic part loaded beyond its limit load has no equilibrium (docs/theory.md V6's tube: p_L).
           if (step > 1 || done > 0)
             m << ". Past accepted increments this usually means the loads exceed the limit (collapse) load "
                  "of "

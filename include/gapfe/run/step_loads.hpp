@@ -1,6 +1,6 @@
 #pragma once
 // The loads in force after each load step of a scene (input/scene.hpp): the totals of the step
-// increments so far, and the loads between two steps (a split step's). The README's deck section gives the
+// increments so far, and the loads between two steps (a split step's). docs/decks.md gives the
 // readings: each step adds its BC values, inertia increments and surface load increments to the totals of
 // the steps before; a block given once (INCI = 0, INCF = 0) repeats every step; angular velocities add, so
 // the centrifugal load goes with the square of their sum; the temperature field is a load of the first

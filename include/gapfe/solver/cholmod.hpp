@@ -110,11 +110,11 @@ class CholmodLlt {
   /// most nrelax[0] columns (any zeros), nrelax[1] (a zrelax[0] fraction of zeros), nrelax[2] (zrelax[1])
   /// or any size (zrelax[2]). Bigger supernodes mean fewer, larger BLAS calls and fewer of CHOLMOD's
   /// per-supernode passes, paid for with explicit zeros in L. On the tube stiffness with the coordinate
-  /// dissection (one thread, BENCHMARKS.md issue 14) CHOLMOD's defaults {4, 16, 48} factorize 1e4
-  /// equations in 13.8 ms and 1e5 in 185 ms; {16, 64, 256} takes 7.7 ms and 127 ms for 1.5x the
-  /// factor's memory, and is the best of the settings tried. Past kLargeSystem equations the factor's
-  /// memory is what limits a run, so the moderate {8, 32, 96} (1.1x memory; 1e6 equations 4.0 s instead
-  /// of 4.7 s) is used there.
+  /// dissection (one thread, BENCHMARKS.md "Levers, each measured") CHOLMOD's defaults {4, 16, 48} factorize
+  /// 1e4 equations in 13.8 ms and 1e5 in 185 ms; {16, 64, 256} takes 7.7 ms and 127 ms for 1.5x the factor's
+  /// memory, and is the best of the settings tried. Past kLargeSystem equations the factor's memory is what
+  /// limits a run, so the moderate {8, 32, 96} (1.1x memory; 1e6 equations 4.0 s instead of 4.7 s) is used
+  /// there.
   static constexpr Eigen::Index kLargeSystem = 250000;
   void relax_supernodes(Eigen::Index equations) {
     cholmod_common& c = llt_.cholmod();

@@ -5,8 +5,8 @@
 // which recurse. On an I-J grid the cut falls between two grid lines and the separator is one line, the
 // ordering George (1973) proved optimal for the 5- and 9-point grid: O(n log n) fill and O(n^1.5) work.
 //
-// Why it exists (BENCHMARKS.md, issue 14): on the 1e6-equation tube CHOLMOD's AMD needs 1.8e11 flops and
-// 1.64e8 entries of L; METIS needs 5.7e10 and 1.05e8 but takes 4.6 s to find them, as long as the
+// Why it exists (BENCHMARKS.md, "Levers, each measured"): on the 1e6-equation tube CHOLMOD's AMD needs 1.8e11
+// flops and 1.64e8 entries of L; METIS needs 5.7e10 and 1.05e8 but takes 4.6 s to find them, as long as the
 // factorization it saves. The coordinates make the same cuts in a few hundredths of a second.
 //
 // Input: node coordinates and the node adjacency (CSR: neighbours of n are adj[ptr[n] .. ptr[n + 1]));
