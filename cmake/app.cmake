@@ -2,15 +2,26 @@
 # tests that run it in-process. The headers are the library's; what is compiled here is the variant table
 # (app/variant_table.hpp), its rows instantiated explicitly, each once, in GAPFE_APP_SHARDS generated
 # translation units that build in parallel, and the command's definitions (app/command_impl.hpp).
-set(GAPFE_APP_SHARDS 6 CACHE STRING "Translation units the variant table of gapfe::app is spread over")
-# all: every combination the library runs (160 rows; what the tests run). decks: the rows a deck reaches with
-# the default options (24; the README's first command, a build several times faster); a run past them is
-# refused, before it starts, with this setting named (app/variant_table.hpp, check_compiled).
+#
+# GAPFE_VARIANTS=all: every combination the library runs (160 rows; what the tests run). decks: the rows a
+# deck reaches with the default options (24; the README's first command); a run past them is refused, before
+# it starts, with this setting named (app/variant_table.hpp, check_compiled).
 set(GAPFE_VARIANTS all CACHE STRING "The variant table gapfe::app compiles: all or decks")
 set_property(CACHE GAPFE_VARIANTS PROPERTY STRINGS all decks)
 if(NOT GAPFE_VARIANTS MATCHES "^(all|decks)$")
   message(FATAL_ERROR "GAPFE_VARIANTS=${GAPFE_VARIANTS}: choose all or decks")
 endif()
+# Each shard compiles, besides its rows, its own copy of what every row uses (the output writers, the
+# solvers), so the best count grows with the table: 6 for all of it, 2 for the 24 deck rows on 2 cores
+# (a clean build of the command 101 s, against 150 s with 3 and 173 s with 6; BENCHMARKS.md "A first
+# result in three minutes").
+if(GAPFE_VARIANTS STREQUAL "decks")
+  set(gapfe_default_shards 2)
+else()
+  set(gapfe_default_shards 6)
+endif()
+set(GAPFE_APP_SHARDS ${gapfe_default_shards} CACHE STRING
+    "Translation units the variant table of gapfe::app is spread over")
 
 set(gapfe_app_sources)
 math(EXPR gapfe_last_shard "${GAPFE_APP_SHARDS} - 1")
@@ -41,8 +52,8 @@ gapfe_warnings(gapfe_app)
 if(CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
   # clang instantiates the templates a precompiled header uses while building it (CMake's
   # PCH_INSTANTIATE_TEMPLATES), so what every shard instantiates alike (the solvers, the deck output, the
-  # sparse kernels) is compiled once: 73 -> 55 s per shard at -O1 (BENCHMARKS.md, "CI time"). g++ keeps
-  # only the parse in a PCH, a tenth of its time here, so it is left without one.
+  # sparse kernels) is instantiated once (BENCHMARKS.md, "CI time"). g++ keeps only the parse in a PCH, a
+  # tenth of its time here, so it is left without one.
   target_precompile_headers(gapfe_app PRIVATE <gapfe/app/variant_shards.hpp>)
   # Only the shards: a file that calls run_shard<K> and sees its definition would instantiate every row.
   set_source_files_properties(${gapfe_app_command} PROPERTIES SKIP_PRECOMPILE_HEADERS ON)

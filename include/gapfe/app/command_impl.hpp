@@ -218,6 +218,9 @@ inline int execute(const Args& a, std::ostream& out, std::ostream& err, const Pr
   const Scene& s            = model.scene;
   const Plan plan           = make_plan(d, s, a.variant);
   explain_plan(log, plan, d, s);
+  if (!compiled(plan.key))
+    log << "  not compiled into this gapfe (built with -DGAPFE_VARIANTS=decks): run refuses it; "
+           "-DGAPFE_VARIANTS=all compiles it\n";
   if (a.command == "info") return ok;
   if (a.command == "mesh") {
     if (launcher_ranks().first != 0) return ok;

@@ -152,7 +152,12 @@ inline std::string help_text(const std::string& command) {
     }
     s += "DECK: a card deck (BRL-CR-670 Appendix A) or a scene file NAME.toml (docs/scenes.md \"Scene "
          "files\")\n"
-         "gapfe --version: the version\n";
+         "gapfe --version: the version\n"
+         "exit status: 0 done; 1 the input or the model is wrong; 2 a load step cannot be solved; 3 a file "
+         "cannot be read or written, or memory ran out; 64 a bad command line\n"
+         "environment (docs/process.md): GAPFE_OPENMP_INLINE=0 gives OpenMP regions their teams, "
+         "GAPFE_KEEP_MEMORY=0 leaves malloc's thresholds alone, GAPFE_HUGE_PAGES=0 skips the re-execution "
+         "with huge pages for large models\n";
     return s;
   }
   for (const CommandSpec& c : kCommands)
