@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Speed/accuracy trade of the contact policies on the two-tube problem (the gap issue's table).
+"""Speed/accuracy trade of the contact policies on the two-tube problem (BENCHMARKS.md "Contact").
 
 For each policy (saac, active-set, augmented-lagrangian) and 5, 10, 20, 50, 100 load steps, run
 `gapfe run` on bench/deckgen.py's two-tube deck (inner 1-1.5, outer 1.5005-2, 40 x 80 cells each, bore

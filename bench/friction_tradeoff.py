@@ -24,7 +24,7 @@ the push in each of the 40 steps, so pairs close while the fit slides; mu = 0.2 
 test, tests/check_friction_family.py). For every model, with events = locate and step-end for Coulomb: the
 push-out force against the push (examples/decks/push_while_pressing.png) and a table of the final force
 against F and mu sum f_n, the largest |f_t| / (mu f_n) of a closed pair (history.csv's cone_ratio), the
-linear solves and the median wall time (BENCHMARKS.md, "Friction under combined loading").
+linear solves and the median wall time (docs/verification.md, "Friction under combined loading").
 """
 import argparse
 import csv

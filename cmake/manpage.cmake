@@ -6,8 +6,9 @@ function(gapfe_help out)
   if(NOT code EQUAL 0)
     message(FATAL_ERROR "manpage.cmake: ${GAPFE} ${ARGN} exited with ${code}")
   endif()
-  # roff: a backslash is \e; a line starting with . or ' would be a request
+  # roff: a backslash is \e, an option's dash \-; a line starting with . or ' would be a request
   string(REPLACE "\\" "\\e" text "${text}")
+  string(REPLACE "-" "\\-" text "${text}")  # a minus, not a hyphen: options stay searchable and copyable
   string(REGEX REPLACE "(^|\n)([.'])" "\\1\\\\&\\2" text "${text}")
   set(${out} "${text}" PARENT_SCOPE)
 endfunction()

@@ -23,7 +23,7 @@ In every run: exit 0 and no warning; no accepted increment has a closed pair (cl
 tension, f_n < 0; under the exact policies no open pair overlaps (gap below -1e-6 of the initial gap: they
 locate every closure; saac, the seed's, may close a pair up to a step late, docs/theory.md 5.4).
 
-The shrink fit of the issue that asked for this, as a deck: a hub 25.01..50 cooled by 100 (a temperature card
+The shrink fit that asked for this, as a deck: a hub 25.01..50 cooled by 100 (a temperature card
 per node, applied in step 1) onto a solid shaft of 25, spun up over four steps to 0, 0.7 and 1.3 times the
 closed-form lift-off speed (3,893 rad/s): p = 95.6 cold, 48.8 at 0.7 of lift-off, open above it, where it lifts
 off at the closed form's load factor. An axial gap closed by an axial acceleration (a block falling onto a
@@ -312,7 +312,7 @@ def radial_family():
 
 
 def shrink_fit():
-    """The issue's shrink fit as a deck: a hub 25.01..50 cooled by 100 (in step 1) onto a solid shaft of 25,
+    """The shrink fit as a deck: a hub 25.01..50 cooled by 100 (in step 1) onto a solid shaft of 25,
     spun up over four steps to 0, 0.7 and 1.3 times the closed-form lift-off speed."""
     shaft_at = lambda omega: annulus(0.0, 25.0, omega=omega)
     hub_at = lambda omega: annulus(25.01, 50.0, dT=-100.0, omega=omega)

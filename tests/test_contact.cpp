@@ -1,4 +1,4 @@
-// Gap elements and contact policies (the gap issue): two concentric tubes against the compound-tube
+// Gap elements and contact policies: two concentric tubes against the compound-tube
 // closed form (docs/theory.md V5), penalty sweep, an L-shaped gap with a corner, SAAC vs SAAC2, extremes.
 #include "contact_support.hpp"
 

@@ -1042,7 +1042,7 @@ TEST_CASE("fields = wide: a 1000 x 500 grid with its bore pressure meshes; the l
     const int code = gapfe::app::command({"info", write_deck(text, name).string()}, o, e);
     return Info{code, o.str(), e.str()};
   };
-  // The issue's report: index 1000 in I3 reads as 100, so the grid's corners go missing.
+  // The reported fault: index 1000 in I3 reads as 100, so the grid's corners go missing.
   const Info legacy = info(test::lame_tube_deck(1000, 500, false), "grid_legacy");
   CHECK(legacy.code != 0);
   CHECK(legacy.err.find("error in") != std::string::npos);

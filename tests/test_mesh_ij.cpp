@@ -1,5 +1,5 @@
 // The I-J mesh generator (seed Data 3-4, docs/theory.md 9): arcs on their circles, the Laplace fill of a
-// rectangle is the uniform grid, boundary diagonals make triangles, numbering as the issue specifies.
+// rectangle is the uniform grid, boundary diagonals make triangles, numbering as the seed specifies.
 #include <cmath>
 
 #include <doctest/doctest.h>

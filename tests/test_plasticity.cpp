@@ -881,7 +881,7 @@ TEST_CASE_TEMPLATE(
       // meets it, and so does the seed's explicit scheme up to lambda dt = 1. At 1e3 the explicit flow
       // direction lags the turn from shear to tension: cut into pieces (material/drysdale_zak.hpp) it
       // reaches 7.3e-5 (rate 0.01) and 1.3e-5 (rate 1), down from 30 times the steady stress in one
-      // piece; the bound below is what it reaches, not the requirement (reported in the issue).
+      // piece; the bound below is what it reaches, not the requirement (BENCHMARKS.md).
       const bool lagging   = std::is_same_v<Integration, Tangent> && lambda_dt > 1;
       const double allowed = lagging ? 1e-4 : 1e-6;
       CHECK(overshoot <= allowed);

@@ -83,11 +83,11 @@ class Mpi {
 }  // namespace
 
 int main(int argc, char** argv) {
-  gapfe::process::keep_freed_memory();
+  program::keep_freed_memory();
   std::vector<std::string> args(argv + 1, argv + argc);
   gapfe::app::Process process;
   process.progress    = isatty(STDERR_FILENO) != 0;
-  process.large_model = [argv] { gapfe::process::use_huge_pages(argv); };
+  process.large_model = [argv] { program::use_huge_pages(argv); };
 #ifdef GAPFE_HAS_PETSC
   Mpi mpi(argv[0]);
   process.start_mpi = [&](const std::vector<std::string>& options) { return mpi.start(options); };

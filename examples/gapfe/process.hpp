@@ -3,7 +3,7 @@
 // measured gain). Each is a property of the process, not of the library: a program of one's own that
 // includes the headers gets none of them, and each has a switch in the environment that turns it off:
 //
-//   GAPFE_OPENMP_INLINE=0  OpenMP parallel regions get their teams again (inline_openmp below)
+//   GAPFE_OPENMP_INLINE=0  OpenMP parallel regions get their teams again (openmp_teams, GOMP_parallel below)
 //   GAPFE_KEEP_MEMORY=0    malloc keeps glibc's default thresholds (keep_freed_memory)
 //   GAPFE_HUGE_PAGES=0     no re-execution with huge pages for large models (use_huge_pages)
 //
@@ -14,7 +14,7 @@
 #include <string>
 #include <unistd.h>
 
-namespace gapfe::process {
+namespace program {
 
 /// Whether the environment switch `name` is off ("0"); every switch is on when unset.
 inline bool switched_off(const char* name) {
@@ -67,9 +67,11 @@ inline OpenMpParallel openmp_teams() {
   return real;
 }
 
-}  // namespace gapfe::process
+}  // namespace program
 
-// OpenMP parallel regions run inline. The command keeps every OpenMP region on the calling thread
+// OpenMP parallel regions run inline: those that enter libgomp through GOMP_parallel, as `#pragma omp
+// parallel` and CHOLMOD's do (GOMP_parallel_loop_* and GOMP_parallel_sections keep their teams). The command
+// keeps every OpenMP region on the calling thread
 // (gapfe/solver/threads.hpp: CHOLMOD's regions are memory-bound copies and clears, and OpenBLAS gets the
 // threads; an OpenMP-built BLAS is held to one thread, with a warning), yet libgomp still builds a team for
 // each region and ends it with a futex wake-up system call. CHOLMOD's supernodal factorization opens a few
@@ -81,7 +83,7 @@ extern "C" {
 __attribute__((visibility("default"))) void GOMP_parallel(void (*body)(void*), void* data, unsigned threads,
                                                           unsigned flags);
 void GOMP_parallel(void (*body)(void*), void* data, unsigned threads, unsigned flags) {
-  if (const gapfe::process::OpenMpParallel teams = gapfe::process::openmp_teams())
+  if (const program::OpenMpParallel teams = program::openmp_teams())
     teams(body, data, threads, flags);
   else
     body(data);

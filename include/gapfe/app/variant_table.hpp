@@ -29,8 +29,8 @@
 #ifndef GAPFE_APP_SHARDS
 #define GAPFE_APP_SHARDS 1
 #endif
-/// Whether the table holds every supported row (1, the default) or only those a deck reaches with the
-/// default options (0: the gapfe::app target of a GAPFE_VARIANTS=decks build).
+/// Whether the table holds every supported row (1, the default) or only those the default options reach
+/// (0: the gapfe::app target of a GAPFE_VARIANTS=defaults build).
 #ifndef GAPFE_APP_ALL_VARIANTS
 #define GAPFE_APP_ALL_VARIANTS 1
 #endif
@@ -50,13 +50,13 @@ using Laws =
 using Policies  = Axis<NoContact, Saac, ActiveSet, AugmentedLagrangian>;
 using Frictions = Axis<NoFriction, Proportional, Extended, Coulomb>;
 
-/// The rows a deck reaches with the default options: the element `auto` picks (the legacy quad for elastic
-/// models, quad4bbar for plastic ones), plasticity = return-mapping, and contact = saac with either of the
-/// seed's slip models or none. A build with GAPFE_VARIANTS=decks (GAPFE_APP_ALL_VARIANTS 0) compiles only
-/// these, 24 rows of the 160, for a first build in a fraction of the time; options past them are refused
-/// before the run with the cmake setting that compiles them.
+/// The rows the default options reach: the element `auto` picks (the legacy quad for elastic models,
+/// quad4bbar for plastic ones), plasticity = return-mapping, and contact = saac with the seed's slip models
+/// or none; so every deck of the seed's codes (SAAS to SAAC3X) runs. A build with GAPFE_VARIANTS=defaults
+/// (GAPFE_APP_ALL_VARIANTS 0) compiles only these, 24 rows of the 160, for a first build in a fraction of the
+/// time; options past them are refused before the run, naming the cmake setting that compiles them.
 template <class Elem, class Law, class Policy, class Friction>
-constexpr bool deck_default_row() {
+constexpr bool default_options_row() {
   const Combination c = combination_of<Law, Elem, Policy, Friction>();
   const bool element  = c.history ? std::is_same_v<Elem, Quad4BBar> : std::is_same_v<Elem, LegacyQuad>;
   return element && (!c.history || c.iterates) &&
@@ -65,11 +65,11 @@ constexpr bool deck_default_row() {
 
 /// The rows: every point of the axes' product the library runs (kSupported, core/combinations.hpp), so the
 /// command offers every combination the library supports and refuses the rest with the library's reason;
-/// in a GAPFE_VARIANTS=decks build, those of them a deck reaches with the default options.
+/// in a GAPFE_VARIANTS=defaults build, those the default options reach.
 template <class Kin, class Elem, class Law, class Policy, class Friction>
 using RowIf =
     std::conditional_t<kSupported<Law, Elem, Policy, Friction> &&
-                           (GAPFE_APP_ALL_VARIANTS || deck_default_row<Elem, Law, Policy, Friction>()),
+                           (GAPFE_APP_ALL_VARIANTS || default_options_row<Elem, Law, Policy, Friction>()),
                        std::tuple<Variant<Kin, Elem, Law, Policy, Friction>>, std::tuple<>>;
 template <class... T>
 using Joined = decltype(std::tuple_cat(std::declval<T>()...));
@@ -151,18 +151,19 @@ inline bool compiled(const VariantKey& key) {
 }
 
 /// The plan's row compiled into this build, or an InputError naming the options and the cmake setting
-/// that compiles it (a GAPFE_VARIANTS=decks build lacks the rows past the deck defaults).
+/// that compiles it (a GAPFE_VARIANTS=defaults build lacks the rows past the default options).
 inline void check_compiled(const Plan& p) {
   if (compiled(p.key)) return;
   const VariantKey& k = p.key;
-  throw InputError(std::string(name_of(k.kinematics)) + ", element = " + std::string(name_of(k.element)) +
-                   ", plasticity = " + std::string(name_of(k.integration)) + ", contact = " +
-                   std::string(name_of(k.contact)) + ", slip = " + std::string(name_of(k.friction)) +
-                   (GAPFE_APP_ALL_VARIANTS ? std::string(": not compiled into this gapfe")
-                                           : std::string(": this gapfe was built with the deck defaults only "
-                                                         "(cmake -DGAPFE_VARIANTS=decks); configure with "
-                                                         "-DGAPFE_VARIANTS=all and build again for every "
-                                                         "combination")));
+  throw InputError(
+      std::string(name_of(k.kinematics)) + ", element = " + std::string(name_of(k.element)) +
+      ", plasticity = " + std::string(name_of(k.integration)) +
+      ", contact = " + std::string(name_of(k.contact)) + ", slip = " + std::string(name_of(k.friction)) +
+      (GAPFE_APP_ALL_VARIANTS ? std::string(": not compiled into this gapfe")
+                              : std::string(": this gapfe was built with the default options' rows only "
+                                            "(cmake -DGAPFE_VARIANTS=defaults); configure with "
+                                            "-DGAPFE_VARIANTS=all and build again for every "
+                                            "combination")));
 }
 
 /// Runs the request when this shard holds the row of its plan's key; false otherwise. Defined in

@@ -1,10 +1,11 @@
 #pragma once
 // EigenLu: Eigen's SparseLU (supernodal, COLAMD column ordering) on the full matrix, the header-only
 // solver for unsymmetric stiffnesses, next to the symmetric EigenLdlt and CHOLMOD: what a tangent that
-// loses symmetry needs (friction's slip, docs/theory.md 6; STYLE.md 5 asks to measure it against a
-// symmetrised tangent). It reads full storage (kStorage), so a model with it assembles every entry.
-// analyze() once per pattern, factorize() per matrix. A singular matrix is detected from U's pivots, as
-// EigenLdlt does from D's: factorize() returns false and failure() says why, never a NaN solution.
+// loses symmetry needs (friction's slip, docs/theory.md 6; measured against a symmetrised tangent in
+// BENCHMARKS.md "Unsymmetric against symmetrized tangent"). It reads full storage (kStorage), so a model with
+// it assembles every entry. analyze() once per pattern, factorize() per matrix. A singular matrix is detected
+// from U's pivots, as EigenLdlt does from D's: factorize() returns false and failure() says why, never a NaN
+// solution.
 #include <cmath>
 #include <string>
 
