@@ -1,6 +1,6 @@
 // Closed-form verification (docs/theory.md section 10): Lame, spinning tube, torsion, angular acceleration,
-// SAGA vs SAAS, helical orthotropic tube, free thermal expansion. Tolerances are the specification's. Last, the
-// unsymmetric-ready solver policy (EigenLu, full storage) against LDL^T through the linear and Newton
+// SAGA vs SAAS, helical orthotropic tube, free thermal expansion. Tolerances are the specification's. Last,
+// the unsymmetric-ready solver policy (EigenLu, full storage) against LDL^T through the linear and Newton
 // drivers.
 #include <fstream>
 #include <iterator>
