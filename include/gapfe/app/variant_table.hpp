@@ -6,6 +6,7 @@
 // shard, kShardOfRow), so the compile time is the table's size spread over the cores, and offering a new
 // law, element or contact policy is one more entry on an axis. The solver is not a column: RunSolver picks
 // it at run time, except that the Coulomb rows use RunLuSolver (their tangent is unsymmetric).
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <stdexcept>
@@ -131,23 +132,25 @@ constexpr VariantKey key_of(Variant<Kin, Elem, Law, Policy, Friction>) {
           *choice_named<FrictionChoice>(Friction::kName)};
 }
 
-/// Whether every row has its own key: a plan names one row or none.
-inline constexpr bool kKeysUnique = []<std::size_t... I>(std::index_sequence<I...>) {
-  const std::array<VariantKey, kVariantCount> keys{key_of(std::tuple_element_t<I, VariantTable>{})...};
-  for (std::size_t a = 0; a < keys.size(); ++a)
-    for (std::size_t b = a + 1; b < keys.size(); ++b)
-      if (keys[a] == keys[b]) return false;
-  return true;
+/// Every row's key, in the table's order.
+inline constexpr std::array<VariantKey, kVariantCount> kVariantKeys =
+    []<std::size_t... I>(std::index_sequence<I...>) {
+  return std::array<VariantKey, kVariantCount>{key_of(std::tuple_element_t<I, VariantTable>{})...};
 }
 (std::make_index_sequence<kVariantCount>{});
+
+/// Whether every row has its own key: a plan names one row or none.
+inline constexpr bool kKeysUnique = [] {
+  for (std::size_t a = 0; a < kVariantKeys.size(); ++a)
+    for (std::size_t b = a + 1; b < kVariantKeys.size(); ++b)
+      if (kVariantKeys[a] == kVariantKeys[b]) return false;
+  return true;
+}();
 static_assert(kKeysUnique, "two rows of the variant table have one key");
 
 /// Whether the table has a row for `key`.
 inline bool compiled(const VariantKey& key) {
-  return []<std::size_t... I>(const VariantKey& k, std::index_sequence<I...>) {
-    return ((key_of(std::tuple_element_t<I, VariantTable>{}) == k) || ...);
-  }
-  (key, std::make_index_sequence<kVariantCount>{});
+  return std::find(kVariantKeys.begin(), kVariantKeys.end(), key) != kVariantKeys.end();
 }
 
 /// The plan's row compiled into this build, or an InputError naming the options and the cmake setting
