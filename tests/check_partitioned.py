@@ -129,7 +129,8 @@ def main():
         with open(decks[name], "w") as f:
             f.write(text)
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-               OMPI_MCA_rmaps_base_oversubscribe="1")
+               OMPI_MCA_rmaps_base_oversubscribe="1",
+               OMPI_MCA_mpi_yield_when_idle="1")  # a waiting rank gives its core to the others
     failures = []
     for name, deck in decks.items():
         serial = os.path.join(work, name + "_cholmod")
