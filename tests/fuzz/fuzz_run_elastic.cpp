@@ -1,7 +1,9 @@
-// fuzz_run.hpp: the elastic model's runs.
+// fuzz_run.hpp: the elastic model's runs, and the run files' definitions (compiled in the gapfe::app target,
+// which the fuzzer does not link: it compiles its own two models' runs).
 #include <sstream>
 
 #include "gapfe/app/run_loops.hpp"
+#include "gapfe/app/run_output_impl.hpp"
 #include "gapfe/material/elastic.hpp"
 #include "gapfe/problem/model.hpp"
 

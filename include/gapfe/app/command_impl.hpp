@@ -21,6 +21,8 @@
 #include "gapfe/app/plot_command.hpp"
 #include "gapfe/app/report.hpp"
 #include "gapfe/app/run.hpp"
+#include "gapfe/app/run_output_impl.hpp"
+#include "gapfe/app/run_solver_impl.hpp"
 #include "gapfe/core/text.hpp"
 #include "gapfe/input/deck.hpp"
 #include "gapfe/input/deck_scene.hpp"

@@ -52,7 +52,7 @@ void note_relaxation(RunResult& times, const ModelDescription& d, int step, doub
 
 template <class M>
 void run_linear(const RunRequest& r, RunResult& times) {
-  RunFiles files = step_files(r);
+  RunFiles files(r);
   FinishFiles finish{r, times, files};
   run_scene<M>(
       r.model, r.scene,
@@ -67,7 +67,7 @@ void run_linear(const RunRequest& r, RunResult& times) {
 
 template <class M>
 void run_plastic(const RunRequest& r, RunResult& times) {
-  RunFiles files = step_files(r);
+  RunFiles files(r);
   FinishFiles finish{r, times, files};
   PlasticityFile record(r.writes ? &r.dir : nullptr, r.model.step_time());  // plasticity.csv
   int last_step = 0;
@@ -123,7 +123,7 @@ inline void note_cone(RunResult& times, IncrementSummary& summary, int step, dou
 
 template <class M, ContactPolicy P, FrictionModel F = NoFriction>
 void run_contact(const RunRequest& r, RunResult& times) {
-  RunFiles files = step_files(r);
+  RunFiles files(r);
   FinishFiles finish{r, times, files};
   std::optional<GapFile> gaps;
   if (r.writes) gaps.emplace(r.dir, r.scene, F::kFriction, r.model.step_time());

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <optional>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -34,6 +34,29 @@ struct RunRequest {
   bool writes = true;
 };
 
+/// The result files of a run (output/step_files.hpp): on the process that writes them (every process of a
+/// whole run; rank 0 of a partitioned one), none elsewhere. Its members are only declared here and compiled
+/// once, with the command's definitions (app/run_output_impl.hpp): the writers and the pictures do not
+/// depend on the variant, and had been a tenth of every variant shard's code (BENCHMARKS.md "CI time").
+class RunFiles {
+ public:
+  /// The deck's output options and the pictures it asks for, on the process that writes (r.writes).
+  explicit RunFiles(const RunRequest& r);
+  ~RunFiles();
+  RunFiles(const RunFiles&)            = delete;
+  RunFiles& operator=(const RunFiles&) = delete;
+  explicit operator bool() const { return files_ != nullptr; }
+  /// One increment (StepFiles::write).
+  void write(int step, double inc, const Solution& solution, const std::vector<PointValues>& values,
+             std::vector<VtuField> extra_cells, const IncrementSummary& summary);
+  /// The end of the run (StepFiles::finish): the held increment, deformed.svg and the pictures, recorded in
+  /// `times` (RunResult::pictures, pictures_skipped).
+  void finish(const std::string& title, RunResult& times);
+
+ private:
+  std::unique_ptr<StepFiles> files_;
+};
+
 /// The log's progress line.
 inline void progress_line(const RunRequest& r, int step) {
   if (r.progress) r.err << "\rstep " << step << "/" << r.model.steps() << std::flush;
@@ -41,10 +64,6 @@ inline void progress_line(const RunRequest& r, int step) {
 inline void progress_done(const RunRequest& r) {
   if (r.progress) r.err << "\r" << std::string(32, ' ') << "\r" << std::flush;
 }
-
-/// The result files of a run: on the process that writes them (every process of a whole run; rank 0 of a
-/// partitioned one), empty elsewhere.
-using RunFiles = std::optional<StepFiles>;
 
 /// `per_step[step - 1]` becomes the largest of it and `value` (a figure per load step: its worst increment).
 inline void keep_largest(std::vector<double>& per_step, int step, double value) {
@@ -77,25 +96,13 @@ void write_increment(const RunRequest& r, RunResult& times, RunFiles& files, int
   if (const Subdomain* part = fe.problem().subdomain.get()) {
     const Solution whole = gather_solution(*part, fe.solution());
     auto values          = gather_cells(*part, fe.centroid_values(Recovered::stress), Recovered::stress);
-    if (files) files->write(step, inc, whole, values, std::move(extra_cells), summary);
+    if (files) files.write(step, inc, whole, values, std::move(extra_cells), summary);
   } else if (files) {
-    files->write(step, inc, fe.solution(), fe.centroid_values(Recovered::stress), std::move(extra_cells),
-                 summary);
+    files.write(step, inc, fe.solution(), fe.centroid_values(Recovered::stress), std::move(extra_cells),
+                summary);
   }
   times.write += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   progress_line(r, step);
-}
-
-/// The result files of a run (the deck's output options and the pictures it asks for), on the process that
-/// writes them.
-inline RunFiles step_files(const RunRequest& r) {
-  RunFiles files;
-  if (!r.writes) return files;
-  files.emplace(r.dir, r.scene, r.model.step_time(), r.model.options.output_csv, r.model.options.output_vtu);
-  files->draw_fields(r.pictures, r.units);
-  files->keep_history(r.model.steps(), {r.plan.key.friction != FrictionChoice::none,
-                                        r.plan.key.kinematics == VariantChoice::saga});
-  return files;
 }
 
 /// The end of a run, however it ends: the held increment (output = last), deformed.svg and the pictures,
@@ -112,8 +119,7 @@ struct FinishFiles {
     progress_done(r);
     if (!files) return;
     const auto start = std::chrono::steady_clock::now();
-    files->finish(r.model.title);
-    times.pictures = files->pictures_written(), times.pictures_skipped = files->pictures_skipped();
+    files.finish(r.model.title, times);
     times.write += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   ~FinishFiles() {
