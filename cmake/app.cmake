@@ -12,10 +12,10 @@ set_property(CACHE GAPFE_VARIANTS PROPERTY STRINGS all defaults)
 if(NOT GAPFE_VARIANTS MATCHES "^(all|defaults)$")
   message(FATAL_ERROR "GAPFE_VARIANTS=${GAPFE_VARIANTS}: choose all or defaults")
 endif()
-# Each shard compiles, besides its rows, its own copy of what every row uses (the output writers, the
-# solvers), so the best count grows with the table: 6 for all of it, 2 for the 24 default rows on 2 cores
-# (a clean build of the command 101 s, against 150 s with 3 and 173 s with 6; BENCHMARKS.md "A first
-# result in three minutes").
+# Each shard compiles, besides its rows, its own copy of what the rows' models share (the assembly, the
+# drivers' loops; the run's files and solvers are compiled once, in command.cpp: app/run_output_impl.hpp,
+# app/run_solver_impl.hpp), so the best count grows with the table: 6 for all of it, 2 for the 24 default
+# rows on 2 cores (BENCHMARKS.md "A first result in three minutes").
 set(GAPFE_APP_SHARDS "" CACHE STRING
     "Translation units the variant table of gapfe::app is spread over (empty: 2 for defaults, 6 for all)")
 set(gapfe_app_shards ${GAPFE_APP_SHARDS})
@@ -55,9 +55,9 @@ endforeach()
 gapfe_warnings(gapfe_app)
 if(CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
   # clang instantiates the templates a precompiled header uses while building it (CMake's
-  # PCH_INSTANTIATE_TEMPLATES), so what every shard instantiates alike (the solvers, the deck output, the
-  # sparse kernels) is instantiated once (BENCHMARKS.md, "CI time"). g++ keeps only the parse in a PCH, a
-  # tenth of its time here, so it is left without one.
+  # PCH_INSTANTIATE_TEMPLATES), so what the headers instantiate alike (the dense decompositions of the laws'
+  # inline functions, the sparse kernels) is instantiated once (BENCHMARKS.md, "CI time"). g++ keeps only the
+  # parse in a PCH, a tenth of its time here, so it is left without one.
   target_precompile_headers(gapfe_app PRIVATE <gapfe/app/variant_shards.hpp>)
   # Only the shards: a file that calls run_shard<K> and sees its definition would instantiate every row.
   set_source_files_properties(${gapfe_app_command} PROPERTIES SKIP_PRECOMPILE_HEADERS ON)

@@ -1,7 +1,8 @@
 #pragma once
 // A plan run on its compiled variant: the call the command and a C++ user make after make_plan
 // (app/plan.hpp). The rows are compiled elsewhere: link the gapfe::app target (cmake/app.cmake), or
-// include app/variant_shards.hpp in one translation unit and instantiate run_shard<0>.
+// include app/variant_shards.hpp, app/run_output_impl.hpp and app/run_solver_impl.hpp in one translation unit
+// and instantiate run_shard<0>.
 #include <cstddef>
 #include <stdexcept>
 #include <utility>

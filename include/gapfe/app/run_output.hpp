@@ -37,7 +37,7 @@ struct RunRequest {
 /// The result files of a run (output/step_files.hpp): on the process that writes them (every process of a
 /// whole run; rank 0 of a partitioned one), none elsewhere. Its members are only declared here and compiled
 /// once, with the command's definitions (app/run_output_impl.hpp): the writers and the pictures do not
-/// depend on the variant, and had been a tenth of every variant shard's code (BENCHMARKS.md "CI time").
+/// depend on the variant, and had been 8% of every variant shard's machine code (BENCHMARKS.md "CI time").
 class RunFiles {
  public:
   /// The deck's output options and the pictures it asks for, on the process that writes (r.writes).

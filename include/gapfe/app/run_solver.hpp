@@ -6,7 +6,7 @@
 //
 // Its members are only declared here and compiled once, with the command's definitions
 // (app/run_solver_impl.hpp): a variant shard that sees only declarations compiles none of the solvers' code
-// (Eigen's sparse factorizations, the CHOLMOD, UMFPACK and PETSc wrappers), which had been a fifth of every
+// (Eigen's sparse factorizations, the CHOLMOD, UMFPACK and PETSc wrappers), which had been 10% of every
 // shard's (BENCHMARKS.md "CI time").
 #include <cstddef>
 #include <memory>
