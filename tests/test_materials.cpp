@@ -117,6 +117,39 @@ TEST_CASE("[material] validation names the material and the problem") {
   CHECK_THROWS_WITH_AS(unsorted.validate("m"), doctest::Contains("increase"), InputError);
 }
 
+TEST_CASE(
+    "[material] validation refuses exactly the Poisson's ratios whose compliance is not positive definite") {
+  // The reference: the normal block's smallest eigenvalue, from Eigen's eigen-solver, against validate()'s
+  // closed-form condition, over a sweep of ratios on the fibre's moduli and on equal moduli (isotropic:
+  // nu in (-1, 0.5) is admissible, 0.5 itself is not).
+  int refused = 0, accepted = 0;
+  for (const double e_ratio : {1.0, 14.0})
+    for (double a = -0.95; a < 1.0; a += 0.25)
+      for (double b = -0.95; b < 1.0; b += 0.25)
+        for (double c = -0.95; c < 1.0; c += 0.25) {
+          ElasticConstants m = fibre();
+          m.E_S = m.E_T = m.E_N / e_ratio;
+          m.nu_NS = a, m.nu_NT = b, m.nu_ST = c;
+          const Mat33 normal    = m.compliance().topLeftCorner<3, 3>();
+          const double smallest = Eigen::SelfAdjointEigenSolver<Mat33>(normal).eigenvalues().minCoeff();
+          if (std::abs(smallest) < 1e-9 * normal.norm()) continue;  // on the boundary: round-off decides
+          bool threw = false;
+          try {
+            m.validate("m");
+          } catch (const InputError&) {
+            threw = true;
+          }
+          CHECK_MESSAGE(threw == (smallest < 0), "nu = ", a, ", ", b, ", ", c, ", E_N / E_S = ", e_ratio);
+          (threw ? refused : accepted) += 1;
+        }
+  CHECK(refused > 50);
+  CHECK(accepted > 50);
+  CHECK_THROWS_AS(Isotropic::constant(200e9, 0.5).validate("m"), InputError);  // the limit itself
+  CHECK_NOTHROW(Isotropic::constant(200e9, -0.9).validate("m"));
+  // The stiffness is the compliance's inverse.
+  CHECK((fibre().stiffness() * fibre().compliance() - Mat66::Identity()).norm() < 1e-13);
+}
+
 TEST_CASE("[material] temperature field from (r, z, T) points: exact at nodes, bounded, constant") {
   const auto m = rectangle_mesh<4>(0.1, 0.2, 0, 0.1, 2, 2);
   std::vector<TemperaturePoint> at_nodes;

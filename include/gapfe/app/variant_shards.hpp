@@ -10,6 +10,11 @@
 
 namespace gapfe::app {
 
+/// The shards run the plastic laws: naming the Hill modes' computation here (outside any template) has the
+/// shards' precompiled header instantiate its 6 x 6 decompositions once for all of them (cmake/app.cmake),
+/// which the laws' headers leave to the units that use them (material/hill_yield.hpp).
+inline constexpr auto kShardsHillModes = &HillPoint::modes<0>;
+
 /// Run the request on one variant: the NoContact rows run models without gap elements (LinearStatic, or
 /// NonlinearStatic for laws with history) and models whose gap elements stay soft (contact = none, through
 /// ContactStatic's NoContact stepping); the other rows run ContactStatic under their policy.

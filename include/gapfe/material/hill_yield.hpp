@@ -106,7 +106,11 @@ struct HillModes {
 };
 
 /// E P's modes from C, cH and P (global axes); E = C + cH must be positive definite (C is).
-inline HillModes hill_modes(const Mat66& c, const Mat66& ch, const Mat66& p) {
+/// A template, like HillPoint::modes() below, so that Eigen's 6 x 6 Cholesky and eigen-solver are compiled
+/// only in the units that run a plastic law, not in every unit that includes the laws (about 4 s each;
+/// BENCHMARKS.md "CI time").
+template <class Matrix>
+HillModes hill_modes(const Matrix& c, const Matrix& ch, const Matrix& p) {
   const Eigen::LLT<Mat66> e(c + ch);
   const Mat66 l = e.matrixL();
   const Eigen::SelfAdjointEigenSolver<Mat66> s(Mat66(l.transpose() * p * l));
@@ -127,6 +131,7 @@ struct HillPoint : ElasticPoint {
   /// E P's modes, computed at the first yielding point that asks (most cells of most steps have none,
   /// and a temperature field resolves every cell anew); valid while stiffness, hardening_matrix and
   /// yield_matrix stay as they were then (a point's thermal strain may change).
+  template <int = 0>  // instantiated where a plastic law is run (hill_modes)
   const HillModes& modes() const {
     if (!modes_) modes_ = hill_modes(stiffness, hardening_matrix, yield_matrix);
     return *modes_;
