@@ -55,9 +55,9 @@ endforeach()
 gapfe_warnings(gapfe_app)
 if(CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
   # clang instantiates the templates a precompiled header uses while building it (CMake's
-  # PCH_INSTANTIATE_TEMPLATES), so what the headers instantiate alike (the dense decompositions of the laws'
-  # inline functions, the sparse kernels) is instantiated once (BENCHMARKS.md, "CI time"). g++ keeps only the
-  # parse in a PCH, a tenth of its time here, so it is left without one.
+  # PCH_INSTANTIATE_TEMPLATES), so what the shards instantiate alike (Hill's modes, which app/variant_shards.hpp
+  # names for it, the sparse kernels) is instantiated once (BENCHMARKS.md, "CI time"). g++ keeps only the parse
+  # in a PCH, a tenth of its time here, so it is left without one.
   target_precompile_headers(gapfe_app PRIVATE <gapfe/app/variant_shards.hpp>)
   # Only the shards: a file that calls run_shard<K> and sees its definition would instantiate every row.
   set_source_files_properties(${gapfe_app_command} PROPERTIES SKIP_PRECOMPILE_HEADERS ON)

@@ -16,7 +16,6 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Cholesky>
 #include <Eigen/LU>
 
 #include "gapfe/core/concepts.hpp"
@@ -59,11 +58,15 @@ struct ElasticConstants {
   Vec3 expansion() const { return {alpha_N, alpha_S, alpha_T}; }
   bool operator==(const ElasticConstants&) const = default;
 
-  /// Throws InputError naming `where` unless E, G > 0, |nu_ij| < sqrt(E_i / E_j) and S is positive definite.
+  /// Throws InputError naming `where` unless E, G > 0 and finite, |nu_ij| < sqrt(E_i / E_j) and S is positive
+  /// definite.
   void validate(const std::string& where) const {
-    const auto fail = [&](const std::string& what) { throw InputError(where + ": " + what); };
-    if (!(E_N > 0 && E_S > 0 && E_T > 0)) fail("Young's moduli E_N, E_S, E_T must be positive");
-    if (!(G_NS > 0 && G_ST > 0 && G_TN > 0)) fail("shear moduli G_NS, G_ST, G_TN must be positive");
+    const auto fail     = [&](const std::string& what) { throw InputError(where + ": " + what); };
+    const auto positive = [](double v) { return v > 0 && std::isfinite(v); };
+    if (!(positive(E_N) && positive(E_S) && positive(E_T)))
+      fail("Young's moduli E_N, E_S, E_T must be positive and finite");
+    if (!(positive(G_NS) && positive(G_ST) && positive(G_TN)))
+      fail("shear moduli G_NS, G_ST, G_TN must be positive and finite");
     if (!(std::abs(nu_NS) < std::sqrt(E_N / E_S) && std::abs(nu_NT) < std::sqrt(E_N / E_T) &&
           std::abs(nu_ST) < std::sqrt(E_S / E_T)))
       fail("a Poisson's ratio violates |nu_ij| < sqrt(E_i / E_j)");

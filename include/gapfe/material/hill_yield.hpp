@@ -111,9 +111,9 @@ struct HillModes {
 /// BENCHMARKS.md "CI time").
 template <class Matrix>
 HillModes hill_modes(const Matrix& c, const Matrix& ch, const Matrix& p) {
-  const Eigen::LLT<Mat66> e(c + ch);
+  const Eigen::LLT<Matrix> e(c + ch);
   const Mat66 l = e.matrixL();
-  const Eigen::SelfAdjointEigenSolver<Mat66> s(Mat66(l.transpose() * p * l));
+  const Eigen::SelfAdjointEigenSolver<Matrix> s(Matrix(l.transpose() * p * l));
   HillModes m;
   m.lambda    = s.eigenvalues().cwiseMax(0.0);  // P is semi-definite: a round-off negative is a zero
   m.modes     = l * s.eigenvectors();
