@@ -180,10 +180,11 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
   try {
     const RunResult result = run(request);
     // setup: the Problem, DOF map, sparsity pattern, symbolic analysis and stress recovery.
-    const double setup = since(t0) - result.assemble - result.factorize - result.solve - result.write;
+    const double setup =
+        since(t0) - result.assemble - result.factorize - result.solve - result.estimate - result.write;
     log << "time [s]: read " << t_read << ", mesh " << t_mesh << ", setup " << setup << ", assemble "
-        << result.assemble << ", factorize " << result.factorize << ", solve " << result.solve << ", write "
-        << result.write << "\n";
+        << result.assemble << ", factorize " << result.factorize << ", solve " << result.solve
+        << ", estimate " << result.estimate << ", write " << result.write << "\n";
     report_run(log, err, plan, d, result);
     list_files(a, plan, d, result, log);
   } catch (const std::exception& e) {  // the manifest says the files stop short, and why

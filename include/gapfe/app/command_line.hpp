@@ -78,7 +78,7 @@ inline constexpr OptionSpec kOptions[] = {
      "run wrote is always replaced whole)"},
     {"--field", "FIELD", "plot",
      "the field to draw (repeat for more; default mises): u, u_r, u_z, u_t, s_rr, s_zz, s_tt, s_rz, s_rt, "
-     "s_zt, mises, eqps, gap_state, contact_force, material"},
+     "s_zt, mises, eqps, gap_state, contact_force, material, error_estimate"},
     {"--step", "K", "plot", "the load step to draw (default: the last one written)"},
     {"--x", "COLUMN", "plot", "with --y: draw history.csv's column Y against column X"},
     {"--y", "COLUMN", "plot", "with --x: the curve's vertical column"},

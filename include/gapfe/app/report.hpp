@@ -177,6 +177,21 @@ inline void report_balance(std::ostream& log, std::ostream& err, const RunResult
                 "inaccurate\n");
 }
 
+/// The recovery estimate of the discretization error (post/error_estimate.hpp; docs/accuracy.md) in the log:
+/// per load step and at the end, with the element that holds the largest share.
+inline void report_error_estimate(std::ostream& log, const RunResult& r) {
+  log_per_step(log,
+               "error estimate per load step (the relative energy-norm error of the recovered stresses, the "
+               "largest of its increments)",
+               r.step_error);
+  if (r.step_error.empty()) return;
+  log << "error estimate at the end: " << 100 * r.error << "% in the energy norm";
+  if (r.error_element >= 0)
+    log << ", the largest share in element " << r.error_element + 1 << " at r = " << r.error_element_at(0)
+        << ", z = " << r.error_element_at(1) << " (the VTU cell array error_estimate)";
+  log << "; it measures the mesh, not the load steps or a gap's penalty (docs/accuracy.md)\n";
+}
+
 /// The run's figures after it ends: residuals per step, equilibrium, global balance, the plastic and contact
 /// work, the friction cone and the rate-dependent increments in the log; the warnings their limits call for.
 inline void report_run(std::ostream& log, std::ostream& err, const Plan& p, const ModelDescription& d,
@@ -200,6 +215,7 @@ inline void report_run(std::ostream& log, std::ostream& err, const Plan& p, cons
   const bool seed = plastic && p.key.integration == PlasticityChoice::tangent;
   report_balance(log, err, r, d, p.key.kinematics == VariantChoice::saga, p.gaps, plastic,
                  seed && warn_seed_residual(err, r));
+  report_error_estimate(log, r);
   if (plastic && !p.gaps)
     log << "plasticity: " << name_of(d.options.plasticity) << "; " << r.increments << " increments ("
         << r.cut_steps << " from cut steps), " << r.newton_iterations << " linear solves ("

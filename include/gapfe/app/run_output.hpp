@@ -72,8 +72,43 @@ inline void keep_largest(std::vector<double>& per_step, int step, double value) 
   worst         = std::max(worst, value);
 }
 
-/// One accepted increment: refuse a non-finite solution, write the files (timed; a partitioned run gathers
-/// the whole mesh's results to the writing rank first), show progress.
+/// The recovery estimate of an accepted increment's discretization error (post/error_estimate.hpp), timed:
+/// recorded in `times` (per load step and the last) and returned as the VTU cell array `error_estimate`, one
+/// value per deck element (gap elements 0), on the process that writes; empty elsewhere.
+template <class Fe>
+VtuField estimate_increment(const RunRequest& r, RunResult& times, int step, const Fe& fe) {
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<int> gap_materials;
+  if (r.scene.gap_material >= 0) gap_materials.push_back(r.scene.gap_material);
+  ErrorEstimate estimate = fe.error_estimate(gap_materials);
+  keep_largest(times.step_error, step, estimate.relative());
+  times.error           = estimate.relative();
+  const Subdomain* part = fe.problem().subdomain.get();
+  const std::vector<double> cells =
+      part ? gather_cell_values(*part, estimate.cell) : std::move(estimate.cell);
+  VtuField field{"error_estimate", 1, {}};
+  if (!cells.empty()) {
+    const IJGrid& g = r.scene.grid;
+    field.values.resize(g.cells.size());
+    for (std::size_t e = 0; e < g.cells.size(); ++e) {
+      const GridCell& c = g.cells[e];
+      field.values[e] =
+          cells[(c.corners == 4 ? 0 : r.scene.mesh.cells.size()) + static_cast<std::size_t>(c.group_index)];
+    }
+    const auto worst = std::max_element(field.values.begin(), field.values.end());
+    if (worst != field.values.end()) {
+      const GridCell& c      = g.cells[static_cast<std::size_t>(worst - field.values.begin())];
+      times.error_element    = static_cast<int>(worst - field.values.begin());
+      times.error_element_at = Vec2::Zero();
+      for (int k = 0; k < c.corners; ++k) times.error_element_at += g.nodes[c.node[k]] / c.corners;
+    }
+  }
+  times.estimate += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return field;
+}
+
+/// One accepted increment: refuse a non-finite solution, estimate its error, write the files (timed; a
+/// partitioned run gathers the whole mesh's results to the writing rank first), show progress.
 template <class Fe>
 void write_increment(const RunRequest& r, RunResult& times, RunFiles& files, int step, double inc,
                      const Fe& fe, std::vector<VtuField> extra_cells = {},
@@ -92,7 +127,8 @@ void write_increment(const RunRequest& r, RunResult& times, RunFiles& files, int
   keep_largest(times.step_balance, step, balance.relative());
   if (balance.relative() > times.balance) times.balance = balance.relative(), times.balance_step = step;
   times.last_balance = balance;
-  const auto start   = std::chrono::steady_clock::now();
+  extra_cells.push_back(estimate_increment(r, times, step, fe));
+  const auto start = std::chrono::steady_clock::now();
   if (const Subdomain* part = fe.problem().subdomain.get()) {
     const Solution whole = gather_solution(*part, fe.solution());
     auto values          = gather_cells(*part, fe.centroid_values(Recovered::stress), Recovered::stress);

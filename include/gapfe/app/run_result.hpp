@@ -11,7 +11,14 @@ namespace gapfe::app {
 /// What a run did: wall-clock seconds of its phases after meshing, the work of contact and plasticity, and
 /// the figures the report checks (residuals, global balance, friction cone, time error).
 struct RunResult {
-  double assemble = 0, factorize = 0, solve = 0, write = 0;
+  double assemble = 0, factorize = 0, solve = 0, write = 0, estimate = 0;
+  /// The recovery estimate of the discretization error (post/error_estimate.hpp): per load step (index
+  /// step - 1) the largest relative energy-norm error of its accepted increments; the last increment's, with
+  /// the deck element (0-based) that holds its largest share and that element's corners' mean (r, z).
+  std::vector<double> step_error;
+  double error          = 0;
+  int error_element     = -1;
+  Vec2 error_element_at = Vec2::Zero();
   ContactCounters contact;
   int increments = 0, closed = 0, pairs = 0;
   double penalty        = 0;

@@ -23,6 +23,7 @@
 #include "gapfe/assembly/assembler.hpp"
 #include "gapfe/driver/system_setup.hpp"
 #include "gapfe/post/balance.hpp"
+#include "gapfe/post/error_estimate.hpp"
 #include "gapfe/post/recovery.hpp"
 #include "gapfe/problem/problem.hpp"
 #include "gapfe/problem/results.hpp"
@@ -151,6 +152,11 @@ class LinearStatic {
   /// `what`: Recovered::stress leaves strain and the material-axes values out (post/recovery.hpp).
   std::vector<PointValues> centroid_values(Recovered what = Recovered::all) const {
     return recover(assembler_, p_, u_, ElasticStress<Law>{}, true, what);
+  }
+  /// The recovery estimate of the energy-norm error, per cell and whole, leaving out cells of the `skip`
+  /// materials (post/error_estimate.hpp).
+  ErrorEstimate error_estimate(const std::vector<int>& skip = {}) const {
+    return estimate_error(assembler_, p_, u_, ElasticStress<Law>{}, skip);
   }
 
  private:

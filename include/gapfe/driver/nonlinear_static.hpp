@@ -39,6 +39,7 @@
 #include "gapfe/driver/newton_options.hpp"
 #include "gapfe/driver/system_setup.hpp"
 #include "gapfe/post/balance.hpp"
+#include "gapfe/post/error_estimate.hpp"
 #include "gapfe/post/recovery.hpp"
 #include "gapfe/problem/problem.hpp"
 #include "gapfe/problem/results.hpp"
@@ -88,8 +89,8 @@ class NonlinearStatic {
   const Connectivity<2>& links() const { return assembler_.links(); }
   std::vector<NodeLink>& link_values() { return assembler_.link_values(); }
   const std::vector<NodeLink>& link_values() const { return assembler_.link_values(); }
-  /// Numeric factorizations so far; an iteration whose tangent equals the last factorized one bit for bit
-  /// (every point elastic) reuses it and is not counted.
+  /// Numeric factorizations so far (a tangent equal bit for bit to the last factorized one reuses it,
+  /// uncounted).
   int factorizations() const { return system_.factorizations(); }
   /// Elastic stiffness per node over the cells `keep` passes: what a contact penalty is scaled by.
   template <class Keep>
@@ -97,11 +98,10 @@ class NonlinearStatic {
     return assembler_.nodal_stiffness(p_, std::forward<Keep>(keep));
   }
 
-  /// A callback that sets link_values() for the displacement u (all DOFs) before every evaluation of the
-  /// internal forces: node links whose force is nonlinear in u (Coulomb friction, driver/contact_static.hpp)
-  /// then converge in the same Newton loop as the material history. Empty: the links stay as set.
-  /// `update(u, start)` before every evaluation; `start`: the first of a Newton pass (from the committed
-  /// or the extrapolated state), not an iterate.
+  /// `update(u, start)` sets link_values() for u (all DOFs) before every internal-force evaluation (`start`:
+  /// a Newton pass's first, not an iterate), so links nonlinear in u (Coulomb friction,
+  /// driver/contact_static.hpp) converge in the Newton loop with the material history. Empty: the links stay
+  /// as set.
   void set_link_update(std::function<void(const VecX&, bool)> update) { link_update_ = std::move(update); }
 
   /// Time and step size handed to the law (rate-dependent laws read them).
@@ -152,13 +152,15 @@ class NonlinearStatic {
     points_.reject();
     u_ = u_committed_;
   }
-
   /// Strain, stress and eqps at every stiffness point (the last solve()).
   std::vector<PointValues> point_values() const { return recover(assembler_, p_, u_, stored(), false); }
-  /// Their volume-weighted mean per cell.
-  /// `what`: Recovered::stress leaves strain and the material-axes values out (post/recovery.hpp).
+  /// Their volume-weighted mean per cell; `what` = Recovered::stress: no strain, no material axes.
   std::vector<PointValues> centroid_values(Recovered what = Recovered::all) const {
     return recover(assembler_, p_, u_, stored(), true, what);
+  }
+  /// The recovery estimate of the energy-norm error (post/error_estimate.hpp), without `skip` materials.
+  ErrorEstimate error_estimate(const std::vector<int>& skip = {}) const {
+    return estimate_error(assembler_, p_, u_, stored(), skip);
   }
 
  private:

@@ -8,7 +8,8 @@
 //   nodal   u (|u|, all components), u_r, u_z, u_t                                         [length]
 //   cells   s_rr, s_zz, s_tt, s_rz, s_rt, s_zt, mises (von Mises, core/types.hpp)           [stress]
 //           eqps (equivalent plastic strain) [-], gap_state (0 structural, -1 soft throughout, 1-4 the seed's
-//           contact states), contact_force (the normal forces of a gap element's pairs) [force], material
+//           contact states), contact_force (the normal forces of a gap element's pairs) [force], material,
+//           error_estimate (a cell's share of the relative energy-norm error, post/error_estimate.hpp) [-]
 // A nodal field colours each cell with the mean of its corners; a cell field with the cell's centroid value.
 // The colour map is viridis (perceptually uniform, readable in grey and by colour-blind readers): 17 of its
 // 256 entries, linear between them (the table is matplotlib's, CC0).
@@ -43,9 +44,9 @@ struct PlotField {
 
 /// The names plot_field knows, in the order the help lists them.
 inline const std::vector<std::string>& plot_field_names() {
-  static const std::vector<std::string> names{"u",     "u_r",  "u_z",       "u_t",           "s_rr",
-                                              "s_zz",  "s_tt", "s_rz",      "s_rt",          "s_zt",
-                                              "mises", "eqps", "gap_state", "contact_force", "material"};
+  static const std::vector<std::string> names{
+      "u",    "u_r",  "u_z",   "u_t",  "s_rr",      "s_zz",          "s_tt",     "s_rz",
+      "s_rt", "s_zt", "mises", "eqps", "gap_state", "contact_force", "material", "error_estimate"};
   return names;
 }
 
@@ -179,12 +180,14 @@ inline PlotField plot_field(const VtuData& d, const std::string& name, const Plo
       }
       return f;
     }
-  if (name == "eqps" || name == "gap_state" || name == "contact_force" || name == "material") {
+  if (name == "eqps" || name == "gap_state" || name == "contact_force" || name == "material" ||
+      name == "error_estimate") {
     f.values = need_cell(name.c_str(), 1).values;
-    f.label  = name == "eqps"            ? "equivalent plastic strain eqps [-]"
-               : name == "gap_state"     ? "gap state (0 structural, -1 soft, 1 open, 2-4 closed)"
-               : name == "contact_force" ? "contact force f_n [" + units.force + "]"
-                                         : std::string("material");
+    f.label  = name == "eqps"             ? "equivalent plastic strain eqps [-]"
+               : name == "gap_state"      ? "gap state (0 structural, -1 soft, 1 open, 2-4 closed)"
+               : name == "contact_force"  ? "contact force f_n [" + units.force + "]"
+               : name == "error_estimate" ? std::string("relative energy-norm error per cell [-]")
+                                          : std::string("material");
     return f;
   }
   throw InputError("unknown field '" + name + "' (known: " + detail::names_text() + ")");

@@ -36,6 +36,25 @@ inline Solution gather_solution(const Subdomain& domain, const Solution& local) 
   return out;
 }
 
+/// The whole mesh's index of a part's cell `cell` (a triangle's among the triangles), in the order of
+/// centroid_values(): cells, then triangles.
+inline int whole_cell_index(const PartLayout& l, bool triangle, int cell) {
+  return triangle ? l.whole_cells + l.global_triangle[static_cast<std::size_t>(cell)]
+                  : l.global_cell[static_cast<std::size_t>(cell)];
+}
+
+/// One value per cell (cells then triangles, as centroid_values() orders them) of the whole mesh on part 0;
+/// empty elsewhere.
+inline std::vector<double> gather_cell_values(const Subdomain& domain, const std::vector<double>& local) {
+  const PartLayout& l = domain.layout();
+  const int cells     = static_cast<int>(l.global_cell.size());
+  std::vector<int> index(local.size());
+  for (int e = 0; e < static_cast<int>(local.size()); ++e)
+    index[static_cast<std::size_t>(e)] = whole_cell_index(l, e >= cells, e >= cells ? e - cells : e);
+  return domain.gather_rows(local.data(), static_cast<int>(local.size()), 1, index.data(),
+                            l.whole_cells + l.whole_triangles);
+}
+
 /// Centroid values (one per cell, cells then triangles, as centroid_values() gives them) of the whole mesh
 /// on part 0; empty elsewhere. `what` as the recovery's: Recovered::stress gathers only the position, the
 /// global stress and eqps (what the deck output writes), a third of the traffic.
@@ -48,8 +67,7 @@ inline std::vector<PointValues> gather_cells(const Subdomain& domain, const std:
   std::vector<int> index;
   rows.reserve(local.size() * static_cast<std::size_t>(width)), index.reserve(local.size());
   for (const PointValues& v : local) {
-    index.push_back(v.triangle ? l.whole_cells + l.global_triangle[static_cast<std::size_t>(v.cell)]
-                               : l.global_cell[static_cast<std::size_t>(v.cell)]);
+    index.push_back(whole_cell_index(l, v.triangle, v.cell));
     rows.insert(rows.end(), {static_cast<double>(v.point), v.r, v.z, v.eqps});
     rows.insert(rows.end(), v.stress.data(), v.stress.data() + 6);
     if (!all) continue;

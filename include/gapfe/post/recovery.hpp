@@ -141,6 +141,21 @@ double nodal_results(const DofMap<DofsPerNode>& dofs, const VecX& u, const VecX&
   return size;
 }
 
+/// The displacements of a cell's shape nodes from its own DOFs `ue`: the same for an isoparametric cell, and
+/// a condensed centre's recovered from the corners' and the cell's loads (element/legacy_quad.hpp).
+template <class Kernel, class Local, class Inertia>
+typename Kernel::ShapeVector shape_displacements(const typename Kernel::Coords& x, const Local& lp,
+                                                 const Inertia& inertia, const typename Kernel::Vector& ue) {
+  if constexpr (Kernel::kInner > 0) {
+    const typename Kernel::StrainMatrix d = Kernel::restrict(lp.stiffness);
+    return Kernel::expand(
+        Kernel::inner_rows(x, d),
+        Kernel::shape_load(x, d, Kernel::restrict(lp.thermal_strain), body_force(inertia, lp.density)), ue);
+  } else {
+    return ue;
+  }
+}
+
 /// Strain and stress at every stiffness point of every cell, or (`centroids`) one value per cell; cells
 /// first, then triangles.
 template <class M, class Source>
@@ -151,74 +166,64 @@ std::vector<PointValues> recover(const Assembler<M>& a, const Problem<M>& p, con
   std::vector<PointValues> out;
   out.reserve(centroids ? p.mesh.cells.size() + p.mesh.triangles.size() : a.point_count());  // 232 B each
   a.reset_cache();
-  for_each_cell<Elem>(p.mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
-                                                            const std::array<int, NPC>& cell,
-                                                            const CellTag& tag) {
-    using Kernel      = ElementKernel<Kin, E>;
-    const auto x      = cell_coords<E>(p.mesh, cell);
-    const auto& lp    = a.local(p, tag, cell);
-    const auto ue     = a.gather(cell, u);
-    const auto first  = a.template first_point<E>(e);
-    const bool all    = what == Recovered::all;
-    const bool strain = all || Source::kAnyPoint;  // a law's stress from the strain needs it
-    typename Kernel::ShapeVector us;
-    if constexpr (Kernel::kInner > 0) {  // the condensed centre, from the element's own DOFs
-      if (strain) {
-        const typename Kernel::StrainMatrix d = Kernel::restrict(lp.stiffness);
-        us                                    = Kernel::expand(
-                                               Kernel::inner_rows(x, d),
-                                               Kernel::shape_load(x, d, Kernel::restrict(lp.thermal_strain), body_force(p.inertia, lp.density)),
-                                               ue);
-      }
-    } else {
-      us = ue;
-    }
-    const Mat<E::kShapeNodes, 2> xs = E::shape_coords(x);
-    const Mat66 to_strain_material  = all ? strain_rotation(lp.to_material) : Mat66::Zero();
-    const auto mean_vol             = strain ? Kernel::mean_volumetric(x) : typename Kernel::VolumetricRow();
-    const auto values_at = [&](const PointGeometry<E::kShapeNodes>& g, int point, std::size_t slot) {
-      PointValues v;
-      v.cell = static_cast<int>(e), v.triangle = !std::is_same_v<E, Elem>, v.point = point;
-      v.r = g.r, v.z = g.N.dot(xs.col(1));
-      v.strain = strain ? Kernel::strain(g, mean_vol, us) : Vec6::Zero();
-      v.stress = source.stress(lp, v.strain, slot);
-      v.eqps   = source.eqps(slot);
-      if (all) {
-        v.strain_material = to_strain_material * v.strain;
-        v.stress_material = lp.to_material * v.stress;
-      } else {
-        v.strain_material.setZero(), v.stress_material.setZero();
-      }
-      return v;
-    };
-    double det = 0;
-    if (!centroids) {
-      for (int q = 0; q < E::kStiffnessPoints; ++q)
-        out.push_back(values_at(E::stiffness_point(x, q, det), q, first + static_cast<std::size_t>(q)));
-      return;
-    }
-    if constexpr (Source::kAnyPoint && requires { E::centroid_point(x, det); }) {
-      out.push_back(values_at(E::centroid_point(x, det), -1, first));
-    } else {  // the volume-weighted mean of the stiffness points
-      PointValues mean{};
-      double w = 0;
-      mean.strain.setZero(), mean.stress.setZero(), mean.strain_material.setZero(),
-          mean.stress_material.setZero();
-      for (int q = 0; q < E::kStiffnessPoints; ++q) {
-        const auto g        = E::stiffness_point(x, q, det);
-        const PointValues v = values_at(g, q, first + static_cast<std::size_t>(q));
-        w += g.weight;
-        mean.r += g.weight * v.r, mean.z += g.weight * v.z, mean.eqps += g.weight * v.eqps;
-        mean.strain += g.weight * v.strain, mean.stress += g.weight * v.stress;
-        mean.strain_material += g.weight * v.strain_material,
-            mean.stress_material += g.weight * v.stress_material;
-      }
-      mean.r /= w, mean.z /= w, mean.eqps /= w, mean.strain /= w, mean.stress /= w;
-      mean.strain_material /= w, mean.stress_material /= w;
-      mean.cell = static_cast<int>(e), mean.triangle = !std::is_same_v<E, Elem>, mean.point = -1;
-      out.push_back(mean);
-    }
-  });
+  for_each_cell<Elem>(
+      p.mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
+                                            const std::array<int, NPC>& cell, const CellTag& tag) {
+        using Kernel      = ElementKernel<Kin, E>;
+        const auto x      = cell_coords<E>(p.mesh, cell);
+        const auto& lp    = a.local(p, tag, cell);
+        const auto ue     = a.gather(cell, u);
+        const auto first  = a.template first_point<E>(e);
+        const bool all    = what == Recovered::all;
+        const bool strain = all || Source::kAnyPoint;  // a law's stress from the strain needs it
+        const typename Kernel::ShapeVector us =
+            strain ? shape_displacements<Kernel>(x, lp, p.inertia, ue) : typename Kernel::ShapeVector();
+        const Mat<E::kShapeNodes, 2> xs = E::shape_coords(x);
+        const Mat66 to_strain_material  = all ? strain_rotation(lp.to_material) : Mat66::Zero();
+        const auto mean_vol  = strain ? Kernel::mean_volumetric(x) : typename Kernel::VolumetricRow();
+        const auto values_at = [&](const PointGeometry<E::kShapeNodes>& g, int point, std::size_t slot) {
+          PointValues v;
+          v.cell = static_cast<int>(e), v.triangle = !std::is_same_v<E, Elem>, v.point = point;
+          v.r = g.r, v.z = g.N.dot(xs.col(1));
+          v.strain = strain ? Kernel::strain(g, mean_vol, us) : Vec6::Zero();
+          v.stress = source.stress(lp, v.strain, slot);
+          v.eqps   = source.eqps(slot);
+          if (all) {
+            v.strain_material = to_strain_material * v.strain;
+            v.stress_material = lp.to_material * v.stress;
+          } else {
+            v.strain_material.setZero(), v.stress_material.setZero();
+          }
+          return v;
+        };
+        double det = 0;
+        if (!centroids) {
+          for (int q = 0; q < E::kStiffnessPoints; ++q)
+            out.push_back(values_at(E::stiffness_point(x, q, det), q, first + static_cast<std::size_t>(q)));
+          return;
+        }
+        if constexpr (Source::kAnyPoint && requires { E::centroid_point(x, det); }) {
+          out.push_back(values_at(E::centroid_point(x, det), -1, first));
+        } else {  // the volume-weighted mean of the stiffness points
+          PointValues mean{};
+          double w = 0;
+          mean.strain.setZero(), mean.stress.setZero(), mean.strain_material.setZero(),
+              mean.stress_material.setZero();
+          for (int q = 0; q < E::kStiffnessPoints; ++q) {
+            const auto g        = E::stiffness_point(x, q, det);
+            const PointValues v = values_at(g, q, first + static_cast<std::size_t>(q));
+            w += g.weight;
+            mean.r += g.weight * v.r, mean.z += g.weight * v.z, mean.eqps += g.weight * v.eqps;
+            mean.strain += g.weight * v.strain, mean.stress += g.weight * v.stress;
+            mean.strain_material += g.weight * v.strain_material,
+                mean.stress_material += g.weight * v.stress_material;
+          }
+          mean.r /= w, mean.z /= w, mean.eqps /= w, mean.strain /= w, mean.stress /= w;
+          mean.strain_material /= w, mean.stress_material /= w;
+          mean.cell = static_cast<int>(e), mean.triangle = !std::is_same_v<E, Elem>, mean.point = -1;
+          out.push_back(mean);
+        }
+      });
   return out;
 }
 

@@ -1,0 +1,294 @@
+#pragma once
+// The energy-norm error of a solution, estimated cell by cell by stress recovery (Zienkiewicz and Zhu's
+// estimator with their superconvergent patch recovery; docs/theory.md 9):
+//   1. at every node, for each material around it, a linear polynomial in (r, z) is fitted by least squares
+//      to the stresses at the stiffness points of the cells of that material around the node (its patch);
+//      its value at the node is the recovered stress sigma* there. A patch too small for a plane (a corner
+//      with one triangle) gives its points' mean.
+//   2. In each cell sigma* is interpolated from its corners, and the error is
+//        eta_e^2 = integral over the cell of (sigma* - sigma_h)^T C^-1 (sigma* - sigma_h) dV,
+//      with C the law's elastic stiffness and sigma_h the stresses kept at the stiffness points, exactly: on
+//      quad4 sigma_h is bilinear through its 2 x 2 points' values (at those points alone it is at its most
+//      accurate, and the error would read as nothing there), on a constant-strain triangle it is constant.
+// The relative error is eta / sqrt(|u_h|^2 + eta^2), |u_h|^2 the integral of sigma_h^T C^-1 sigma_h dV.
+// Each material is recovered on its own: its stresses jump across a bond to another material.
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+#include <vector>
+
+#include <Eigen/LU>
+
+#include "gapfe/post/recovery.hpp"
+
+namespace gapfe {
+
+/// What estimate_error() finds.
+struct ErrorEstimate {
+  /// Per cell (cells, then triangles): its energy-norm error relative to the whole solution's norm,
+  /// eta_e / sqrt(|u_h|^2 + eta^2) [-]; their squares sum to relative()^2.
+  std::vector<double> cell;
+  double error_squared  = 0;  ///< eta^2, summed over the cells [force x length]
+  double energy_squared = 0;  ///< |u_h|^2 = integral sigma_h^T C^-1 sigma_h dV, twice the strain energy
+  /// The global relative energy-norm error, eta / sqrt(|u_h|^2 + eta^2) [-].
+  double relative() const {
+    const double whole = error_squared + energy_squared;
+    return whole > 0 ? std::sqrt(error_squared / whole) : 0.0;
+  }
+};
+
+namespace detail {
+
+/// Recovery slots: one per node and material around it (most nodes have one).
+class RecoverySlots {
+ public:
+  explicit RecoverySlots(int nodes) : first_(static_cast<std::size_t>(nodes), -1) {}
+  void add(int node, int material) {
+    int& first = first_[static_cast<std::size_t>(node)];
+    if (first < 0)
+      first = material;
+    else if (first != material)
+      more_.push_back({node, material});
+  }
+  void finish() {
+    std::sort(more_.begin(), more_.end());
+    more_.erase(std::unique(more_.begin(), more_.end()), more_.end());
+  }
+  std::size_t size() const { return first_.size() + more_.size(); }
+  std::size_t operator()(int node, int material) const {
+    if (first_[static_cast<std::size_t>(node)] == material) return static_cast<std::size_t>(node);
+    const auto it = std::lower_bound(more_.begin(), more_.end(), std::array<int, 2>{node, material});
+    return first_.size() + static_cast<std::size_t>(it - more_.begin());
+  }
+
+ private:
+  std::vector<int> first_;                ///< the first material seen at each node, -1: none
+  std::vector<std::array<int, 2>> more_;  ///< (node, material) of the others, sorted
+};
+
+/// A patch's least-squares sums for sigma(r, z) = c0 + c1 (r - r_n) + c2 (z - z_n): the sums over its points
+/// of p p^T and p sigma^T, p = (1, r - r_n, z - z_n).
+template <int S>
+struct PatchSums {
+  Mat<3, 3> normal = Mat<3, 3>::Zero();
+  Mat<3, S> right  = Mat<3, S>::Zero();
+  /// A cell's sums about another origin, `shift` = that origin - this node: p = T p' with T = [1 0 0; -shift
+  /// I].
+  void add_shifted(const PatchSums& cell, const Vec2& shift) {
+    Mat<3, 3> m = cell.normal;  // T m T^T, by rows then by columns
+    m.row(1) += shift(0) * m.row(0), m.row(2) += shift(1) * m.row(0);
+    m.col(1) += shift(0) * m.col(0), m.col(2) += shift(1) * m.col(0);
+    normal += m;
+    right.row(0) += cell.right.row(0);
+    right.row(1) += cell.right.row(1) + shift(0) * cell.right.row(0);
+    right.row(2) += cell.right.row(2) + shift(1) * cell.right.row(0);
+  }
+  /// The fitted value at the node, c0; the points' mean when they do not span a plane.
+  Vec<S> at_node() const {
+    const double count = normal(0, 0);
+    if (count <= 0) return Vec<S>::Zero();
+    if (count >= 3) {  // scaled to a unit diagonal, a well-spread patch has a determinant of order 1
+      const Vec<3> d         = normal.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
+      const Mat<3, 3> scaled = d.asDiagonal() * normal * d.asDiagonal();
+      if (scaled.determinant() > 1e-6)
+        return d(0) * (scaled.inverse().row(0) * (d.asDiagonal() * right)).transpose();
+    }
+    return right.row(0).transpose() / count;
+  }
+};
+
+/// eta_e^2 and |u_h|_e^2 of a bilinear quadrilateral (Quad4 and its B-bar form) from sigma* at its corners
+/// and sigma_h at its 2 x 2 Gauss points, `at`. Both fields are bilinear in (xi, eta), c0 + c1 xi + c2 eta +
+/// c3 xi eta: sigma* through the corners, sigma_h through the Gauss points' values (what a law with history
+/// keeps; a linear law's own field but for the hoop strain's 1 / r). Their squares weighed by C^-1 and by
+/// 2 pi r det J are then sums of the coefficients' products c_k^T C^-1 c_l times the moments of
+/// (1, xi, eta, xi eta) under the weight, which 3 x 3 Gauss points integrate exactly (the weight is bilinear
+/// times linear). Returns {eta_e^2, |u_h|_e^2}.
+template <class E, int S>
+std::array<double, 2> bilinear_cell_energies(const Mat<4, 2>& x, const std::array<Vec<S>, 4>& corner,
+                                             const Vec<S>* at, const Mat<S, S>& compliance) {
+  struct Point {
+    Vec<4> N, monomial;
+    Mat<4, 2> dN;
+    double weight;
+  };
+  static const std::array<Point, 9> points = [] {  // the rule's shape values, the same for every cell
+    constexpr auto rule = gauss::square<3>();
+    std::array<Point, 9> t;
+    for (int q = 0; q < 9; ++q) {
+      const double xi = rule.point[q][0], eta = rule.point[q][1];
+      t[q] = {E::N(xi, eta), Vec<4>(1, xi, eta, xi * eta), E::dN(xi, eta), rule.weight[q]};
+    }
+    return t;
+  }();
+  Mat<4, 4> moments = Mat<4, 4>::Zero();  // of (1, xi, eta, xi eta) under 2 pi r det J
+  for (const Point& p : points) {
+    const Mat<2, 2> J = p.dN.transpose() * x;
+    const double w    = kTwoPi * p.N.dot(x.col(0)) * (J(0, 0) * J(1, 1) - J(0, 1) * J(1, 0)) * p.weight;
+    moments += w * p.monomial * p.monomial.transpose();
+  }
+  std::array<Vec<S>, 4> diff, held;  // the coefficients of sigma* - sigma_h and of sigma_h
+  for (int k = 0; k < 4; ++k) diff[k].setZero(), held[k].setZero();
+  for (int c = 0; c < 4; ++c) {  // N_c = (1 + xi_c xi)(1 + eta_c eta) / 4
+    const double a = E::kCorners[c][0], b = E::kCorners[c][1];
+    diff[0] += corner[c] / 4, diff[1] += a * corner[c] / 4, diff[2] += b * corner[c] / 4;
+    diff[3] += a * b * corner[c] / 4;
+  }
+  for (int q = 0; q < 4;
+       ++q) {  // Lagrange through (+-1/sqrt 3, +-1/sqrt 3): (1 + 3 xi_q xi)(1 + 3 eta_q eta) / 4
+    const double a = 3 * E::kRule.point[q][0], b = 3 * E::kRule.point[q][1];
+    held[0] += at[q] / 4, held[1] += a * at[q] / 4, held[2] += b * at[q] / 4, held[3] += a * b * at[q] / 4;
+  }
+  std::array<double, 2> out{0, 0};
+  for (int k = 0; k < 4; ++k) diff[k] -= held[k];
+  for (int k = 0; k < 4; ++k) {
+    const Vec<S> cd = compliance * diff[k], ch = compliance * held[k];
+    for (int l = 0; l < 4; ++l)
+      out[0] += moments(k, l) * diff[l].dot(cd), out[1] += moments(k, l) * held[l].dot(ch);
+  }
+  return out;
+}
+
+/// The constant-strain triangles of a cell, as shape-node indices: the legacy quadrilateral's four, a
+/// triangle itself. Stiffness point q is triangle q's centroid.
+template <class E>
+constexpr auto cst_triangles() {
+  if constexpr (requires { E::kTriangles; })
+    return E::kTriangles;
+  else
+    return std::array<std::array<int, 3>, 1>{E::kTri};
+}
+
+/// integral over a straight triangle of d^T K d 2 pi r dA, d linear (d_a at its corners), exactly:
+/// sum over a, b, c of (d_a^T K d_b) r_c times the integral of L_a L_b L_c, which is A / 10, A / 30 or
+/// A / 60 as a, b, c are all equal, two equal or all different (the integral of L1^i L2^j L3^k is
+/// 2 A i! j! k! / (i + j + k + 2)!).
+template <int S>
+double linear_field_energy(const std::array<Vec<S>, 3>& d, const Mat<S, S>& compliance, const Vec<3>& r,
+                           double area) {
+  const double all = r.sum();
+  double sum       = 0;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) {
+      const double gram = d[a].dot(compliance * d[b]);
+      sum += a == b ? gram * (r(a) / 10 + (all - r(a)) / 30)
+                    : gram * ((r(a) + r(b)) / 30 + (all - r(a) - r(b)) / 60);
+    }
+  return kTwoPi * area * sum;
+}
+
+}  // namespace detail
+
+/// The recovery estimate of the energy-norm error of displacements `u` (all DOFs) on a driver's assembler
+/// and problem, with stresses from `source` (post/recovery.hpp); cells of the `skip` materials (gap
+/// elements: their stiffness is a device, not a body's) have no estimate and count in no sum. A part of a
+/// partitioned problem recovers from its own cells only (a patch stops at the part's edge) and sums the
+/// norms over every part (collective). Linear cells only: Quad8's recovery would need a quadratic patch.
+template <class M, class Source>
+ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const VecX& u, const Source& source,
+                             const std::vector<int>& skip = {}) {
+  using Kin          = typename M::Kinematics;
+  using Elem         = typename M::Element;
+  constexpr int S    = Kin::kStrain;
+  const auto& mesh   = p.mesh;
+  const auto skipped = [&](const CellTag& tag) {
+    return std::find(skip.begin(), skip.end(), tag.material) != skip.end();
+  };
+  detail::RecoverySlots slots(mesh.node_count());
+  for_each_cell<Elem>(mesh,
+                      [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t,
+                                                    const std::array<int, NPC>& cell, const CellTag& tag) {
+                        if (!skipped(tag))
+                          for (int c = 0; c < E::kNodes; ++c) slots.add(cell[c], tag.material);
+                      });
+  slots.finish();
+
+  // 1. The stresses at the stiffness points, kept, and the patches' sums; then sigma* per slot.
+  std::vector<Vec<S>> stress(a.point_count());
+  std::vector<detail::PatchSums<S>> sums(slots.size());
+  a.reset_cache();
+  for_each_cell<Elem>(mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
+                                                          const std::array<int, NPC>& cell,
+                                                          const CellTag& tag) {
+    static_assert(
+        requires { E::kCorners; } || requires { E::kTri; } || requires { E::kTriangles; },
+        "the recovery fits planes: linear cells (Quad4, its B-bar form, the legacy quad, Tri3)");
+    if (skipped(tag)) return;
+    using Kernel     = ElementKernel<Kin, E>;
+    const auto x     = cell_coords<E>(mesh, cell);
+    const auto& lp   = a.local(p, tag, cell);
+    const auto first = a.template first_point<E>(e);
+    const auto us    = Source::kAnyPoint ? shape_displacements<Kernel>(x, lp, p.inertia, a.gather(cell, u))
+                                         : typename Kernel::ShapeVector();
+    const auto mean  = Source::kAnyPoint ? Kernel::mean_volumetric(x) : typename Kernel::VolumetricRow();
+    const Mat<E::kShapeNodes, 2> xs = E::shape_coords(x);
+    const Vec2 origin               = x.row(0).transpose();
+    detail::PatchSums<S> own;  // the cell's sums about its first corner, then moved to each corner's patch
+    double det = 0;
+    for (int q = 0; q < E::kStiffnessPoints; ++q) {
+      const auto g      = E::stiffness_point(x, q, det);
+      const auto slot   = first + static_cast<std::size_t>(q);
+      const Vec6 strain = Source::kAnyPoint ? Kernel::strain(g, mean, us) : Vec6();
+      stress[slot]      = Kernel::restrict(source.stress(lp, strain, slot));
+      const Vec<3> pq(1.0, g.r - origin(0), g.N.dot(xs.col(1)) - origin(1));
+      own.normal += pq * pq.transpose();
+      own.right += pq * stress[slot].transpose();
+    }
+    for (int c = 0; c < E::kNodes; ++c)
+      sums[slots(cell[c], tag.material)].add_shifted(own, origin - mesh.nodes[cell[c]]);
+  });
+  std::vector<Vec<S>> recovered(sums.size());
+  for (std::size_t k = 0; k < sums.size(); ++k) recovered[k] = sums[k].at_node();
+  sums = {};
+
+  // 2. The error per cell: sigma* from the corners against the kept sigma_h.
+  ErrorEstimate out;
+  out.cell.assign(mesh.cells.size() + (kHasTriangles<Elem> ? mesh.triangles.size() : 0), 0.0);
+  a.reset_cache();
+  Mat<S, S> stiffness = Mat<S, S>::Zero(), compliance = Mat<S, S>::Zero();  // the last cell's
+  for_each_cell<Elem>(mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
+                                                          const std::array<int, NPC>& cell,
+                                                          const CellTag& tag) {
+    if (skipped(tag)) return;
+    const auto x       = cell_coords<E>(mesh, cell);
+    const Mat<S, S> cs = ElementKernel<Kin, E>::restrict(a.local(p, tag, cell).stiffness);
+    if (cs != stiffness) stiffness = cs, compliance = cs.inverse();  // neighbours mostly share a material
+    const Vec<S>* at = stress.data() + a.template first_point<E>(e);
+    std::array<Vec<S>, E::kShapeNodes> corner;
+    Vec<S> centre = Vec<S>::Zero();
+    for (int c = 0; c < E::kNodes; ++c)
+      corner[c] = recovered[slots(cell[c], tag.material)], centre += corner[c] / E::kNodes;
+    for (int c = E::kNodes; c < E::kShapeNodes; ++c) corner[c] = centre;  // a condensed centre: the mean
+    double error = 0, energy = 0;
+    if constexpr (requires { E::kCorners; }) {
+      const auto both = detail::bilinear_cell_energies<E, S>(x, {corner[0], corner[1], corner[2], corner[3]},
+                                                             at, compliance);
+      error += both[0], energy += both[1];
+    } else {  // constant-strain triangles: sigma* - sigma_h is linear on each, integrated exactly
+      const Mat<E::kShapeNodes, 2> xs = E::shape_coords(x);
+      constexpr auto triangles        = detail::cst_triangles<E>();
+      for (std::size_t t = 0; t < triangles.size(); ++t) {
+        const auto& n     = triangles[t];
+        const double area = 0.5 * std::abs((xs(n[1], 0) - xs(n[0], 0)) * (xs(n[2], 1) - xs(n[0], 1)) -
+                                           (xs(n[2], 0) - xs(n[0], 0)) * (xs(n[1], 1) - xs(n[0], 1)));
+        const Vec<3> r(xs(n[0], 0), xs(n[1], 0), xs(n[2], 0));
+        const std::array<Vec<S>, 3> diff{corner[n[0]] - at[t], corner[n[1]] - at[t], corner[n[2]] - at[t]};
+        error += detail::linear_field_energy<S>(diff, compliance, r, area);
+        energy += kTwoPi * area * r.sum() / 3 * at[t].dot(compliance * at[t]);
+      }
+    }
+    const std::size_t index = std::is_same_v<E, Elem> ? e : mesh.cells.size() + e;
+    out.cell[index]         = error;
+    out.error_squared += error, out.energy_squared += energy;
+  });
+  if (const Subdomain* part = p.subdomain.get()) {  // the whole problem's norms
+    double both[2] = {out.error_squared, out.energy_squared};
+    part->sum(both, 2);
+    out.error_squared = both[0], out.energy_squared = both[1];
+  }
+  const double whole = std::sqrt(out.error_squared + out.energy_squared);
+  for (double& c : out.cell) c = whole > 0 ? std::sqrt(c) / whole : 0.0;
+  return out;
+}
+
+}  // namespace gapfe
