@@ -3,6 +3,7 @@
 // a warning on the error stream (docs/checks.md lists them). Reads the RunResult; writes only to the
 // streams it is given.
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <iomanip>
 #include <ostream>
@@ -185,6 +186,14 @@ inline void report_error_estimate(std::ostream& log, const RunResult& r) {
                "largest of its increments)",
                r.step_error);
   if (r.step_error.empty()) return;
+  if (r.error_stress_free) {
+    log << "error estimate at the end: none, the stresses are round-off (a body moved or expanded freely)\n";
+    return;
+  }
+  if (!std::isfinite(r.error)) {
+    log << "error estimate at the end: not finite (a material's stiffness singular?)\n";
+    return;
+  }
   log << "error estimate at the end: " << 100 * r.error << "% in the energy norm";
   if (r.error_element >= 0)
     log << ", the largest share in element " << r.error_element + 1 << " at r = " << r.error_element_at(0)

@@ -69,7 +69,7 @@ inline void progress_done(const RunRequest& r) {
 inline void keep_largest(std::vector<double>& per_step, int step, double value) {
   if (per_step.size() < static_cast<std::size_t>(step)) per_step.resize(static_cast<std::size_t>(step), 0.0);
   double& worst = per_step[static_cast<std::size_t>(step - 1)];
-  worst         = std::max(worst, value);
+  worst         = std::isnan(value) ? value : std::max(worst, value);  // a NaN is kept, never passed over
 }
 
 /// The recovery estimate of an accepted increment's discretization error (post/error_estimate.hpp), timed:
@@ -82,7 +82,7 @@ VtuField estimate_increment(const RunRequest& r, RunResult& times, int step, con
   if (r.scene.gap_material >= 0) gap_materials.push_back(r.scene.gap_material);
   ErrorEstimate estimate = fe.error_estimate(gap_materials);
   keep_largest(times.step_error, step, estimate.relative());
-  times.error           = estimate.relative();
+  times.error = estimate.relative(), times.error_stress_free = estimate.stress_free;
   const Subdomain* part = fe.problem().subdomain.get();
   const std::vector<double> cells =
       part ? gather_cell_values(*part, estimate.cell) : std::move(estimate.cell);
@@ -95,8 +95,9 @@ VtuField estimate_increment(const RunRequest& r, RunResult& times, int step, con
       field.values[e] =
           cells[(c.corners == 4 ? 0 : r.scene.mesh.cells.size()) + static_cast<std::size_t>(c.group_index)];
     }
-    const auto worst = std::max_element(field.values.begin(), field.values.end());
-    if (worst != field.values.end()) {
+    const auto worst    = std::max_element(field.values.begin(), field.values.end());
+    times.error_element = -1;
+    if (worst != field.values.end() && *worst > 0) {
       const GridCell& c      = g.cells[static_cast<std::size_t>(worst - field.values.begin())];
       times.error_element    = static_cast<int>(worst - field.values.begin());
       times.error_element_at = Vec2::Zero();

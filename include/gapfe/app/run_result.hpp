@@ -16,9 +16,10 @@ struct RunResult {
   /// step - 1) the largest relative energy-norm error of its accepted increments; the last increment's, with
   /// the deck element (0-based) that holds its largest share and that element's corners' mean (r, z).
   std::vector<double> step_error;
-  double error          = 0;
-  int error_element     = -1;
-  Vec2 error_element_at = Vec2::Zero();
+  double error           = 0;
+  int error_element      = -1;
+  Vec2 error_element_at  = Vec2::Zero();
+  bool error_stress_free = false;  ///< the last increment's stresses are round-off: nothing to estimate
   ContactCounters contact;
   int increments = 0, closed = 0, pairs = 0;
   double penalty        = 0;

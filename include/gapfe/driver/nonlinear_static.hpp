@@ -89,8 +89,7 @@ class NonlinearStatic {
   const Connectivity<2>& links() const { return assembler_.links(); }
   std::vector<NodeLink>& link_values() { return assembler_.link_values(); }
   const std::vector<NodeLink>& link_values() const { return assembler_.link_values(); }
-  /// Numeric factorizations so far (a tangent equal bit for bit to the last factorized one reuses it,
-  /// uncounted).
+  /// Numeric factorizations so far (an iteration whose tangent is the last one, bit for bit, reuses it).
   int factorizations() const { return system_.factorizations(); }
   /// Elastic stiffness per node over the cells `keep` passes: what a contact penalty is scaled by.
   template <class Keep>
@@ -98,10 +97,9 @@ class NonlinearStatic {
     return assembler_.nodal_stiffness(p_, std::forward<Keep>(keep));
   }
 
-  /// `update(u, start)` sets link_values() for u (all DOFs) before every internal-force evaluation (`start`:
-  /// a Newton pass's first, not an iterate), so links nonlinear in u (Coulomb friction,
-  /// driver/contact_static.hpp) converge in the Newton loop with the material history. Empty: the links stay
-  /// as set.
+  /// `update(u, start)` sets link_values() for u (all DOFs) before each internal-force evaluation (`start`: a
+  /// Newton pass's first), so links nonlinear in u (Coulomb friction, driver/contact_static.hpp) converge in
+  /// the Newton loop with the material history. Empty: the links stay as set.
   void set_link_update(std::function<void(const VecX&, bool)> update) { link_update_ = std::move(update); }
 
   /// Time and step size handed to the law (rate-dependent laws read them).

@@ -1,6 +1,6 @@
 #pragma once
 // The energy-norm error of a solution, estimated cell by cell by stress recovery (Zienkiewicz and Zhu's
-// estimator with their superconvergent patch recovery; docs/theory.md 9):
+// estimator with their superconvergent patch recovery; docs/accuracy.md):
 //   1. at every node, for each material around it, a linear polynomial in (r, z) is fitted by least squares
 //      to the stresses at the stiffness points of the cells of that material around the node (its patch);
 //      its value at the node is the recovered stress sigma* there. A patch too small for a plane (a corner
@@ -13,7 +13,9 @@
 // The relative error is eta / sqrt(|u_h|^2 + eta^2), |u_h|^2 the integral of sigma_h^T C^-1 sigma_h dV.
 // Each material is recovered on its own: its stresses jump across a bond to another material.
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <type_traits>
 #include <vector>
 
@@ -23,6 +25,10 @@
 
 namespace gapfe {
 
+/// Stresses below this fraction of a model's stress scale (estimate_error) are round-off: a solve leaves
+/// relative errors of about 1e-13 in the displacements, and a 1e-9 margin keeps any real stress above it.
+inline constexpr double kRoundOff = 1e-9;
+
 /// What estimate_error() finds.
 struct ErrorEstimate {
   /// Per cell (cells, then triangles): its energy-norm error relative to the whole solution's norm,
@@ -30,10 +36,15 @@ struct ErrorEstimate {
   std::vector<double> cell;
   double error_squared  = 0;  ///< eta^2, summed over the cells [force x length]
   double energy_squared = 0;  ///< |u_h|^2 = integral sigma_h^T C^-1 sigma_h dV, twice the strain energy
-  /// The global relative energy-norm error, eta / sqrt(|u_h|^2 + eta^2) [-].
+  /// Whether every stress is round-off (a body in free thermal expansion, or moved rigidly): then there is no
+  /// error to estimate, and the ratio of two round-offs would mean nothing.
+  bool stress_free = false;
+  /// The global relative energy-norm error, eta / sqrt(|u_h|^2 + eta^2) [-]; 0 when stress_free, NaN when a
+  /// sum is not finite.
   double relative() const {
     const double whole = error_squared + energy_squared;
-    return whole > 0 ? std::sqrt(error_squared / whole) : 0.0;
+    if (!std::isfinite(whole)) return std::numeric_limits<double>::quiet_NaN();
+    return whole > 0 && !stress_free ? std::sqrt(error_squared / whole) : 0.0;
   }
 };
 
@@ -72,7 +83,7 @@ template <int S>
 struct PatchSums {
   Mat<3, 3> normal = Mat<3, 3>::Zero();
   Mat<3, S> right  = Mat<3, S>::Zero();
-  /// A cell's sums about another origin, `shift` = that origin - this node: p = T p' with T = [1 0 0; -shift
+  /// A cell's sums about another origin, `shift` = that origin - this node: p = T p' with T = [1 0 0; shift
   /// I].
   void add_shifted(const PatchSums& cell, const Vec2& shift) {
     Mat<3, 3> m = cell.normal;  // T m T^T, by rows then by columns
@@ -206,6 +217,11 @@ ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const V
   // 1. The stresses at the stiffness points, kept, and the patches' sums; then sigma* per slot.
   std::vector<Vec<S>> stress(a.point_count());
   std::vector<detail::PatchSums<S>> sums(slots.size());
+  // The largest stress, against the round-off a stress of this model carries: about the unit round-off of
+  // the stiffness times the strains the displacements and temperatures could make (max |u| over a cell's
+  // side, and the thermal strain).
+  double peak = 0, noise = 0;
+  const double largest_u = u.size() > 0 ? u.cwiseAbs().maxCoeff() : 0.0;
   a.reset_cache();
   for_each_cell<Elem>(mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
                                                           const std::array<int, NPC>& cell,
@@ -224,12 +240,16 @@ ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const V
     const Mat<E::kShapeNodes, 2> xs = E::shape_coords(x);
     const Vec2 origin               = x.row(0).transpose();
     detail::PatchSums<S> own;  // the cell's sums about its first corner, then moved to each corner's patch
-    double det = 0;
+    const double side = std::min((x.row(1) - x.row(0)).norm(), (x.row(E::kNodes - 1) - x.row(0)).norm());
+    noise             = std::max(noise, lp.stiffness.diagonal().maxCoeff() *
+                                            (largest_u / side + lp.thermal_strain.cwiseAbs().maxCoeff()));
+    double det        = 0;
     for (int q = 0; q < E::kStiffnessPoints; ++q) {
       const auto g      = E::stiffness_point(x, q, det);
       const auto slot   = first + static_cast<std::size_t>(q);
       const Vec6 strain = Source::kAnyPoint ? Kernel::strain(g, mean, us) : Vec6();
       stress[slot]      = Kernel::restrict(source.stress(lp, strain, slot));
+      peak              = std::max(peak, stress[slot].cwiseAbs().maxCoeff());
       const Vec<3> pq(1.0, g.r - origin(0), g.N.dot(xs.col(1)) - origin(1));
       own.normal += pq * pq.transpose();
       own.right += pq * stress[slot].transpose();
@@ -285,9 +305,11 @@ ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const V
     double both[2] = {out.error_squared, out.energy_squared};
     part->sum(both, 2);
     out.error_squared = both[0], out.energy_squared = both[1];
+    peak = part->max(peak), noise = part->max(noise);
   }
+  out.stress_free    = !(peak > kRoundOff * noise);
   const double whole = std::sqrt(out.error_squared + out.energy_squared);
-  for (double& c : out.cell) c = whole > 0 ? std::sqrt(c) / whole : 0.0;
+  for (double& c : out.cell) c = whole > 0 && !out.stress_free ? std::sqrt(c) / whole : 0.0;
   return out;
 }
 
