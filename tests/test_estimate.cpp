@@ -48,10 +48,11 @@ double complementary(const Vec<4>& s, double poisson) {
 }
 
 /// The true relative energy-norm error of a solved Lame tube, |u - u_h| / |u|. For an isoparametric element
-/// by the loads' work: |u - u_h|^2 = l(u) - l(u_h) (Galerkin orthogonality; u_r is linear along the bore
-/// between nodes). For the constant-strain triangles of the legacy quadrilateral that identity does not hold
-/// (the hoop strain taken at the centroid is not the exact form), so the error is integrated: the exact
-/// stress against each sub-triangle's, on its degree-4 rule. |u|^2 = l(u) = p u_r(a) 2 pi a H either way.
+/// by the loads' work: |u - u_h|^2 = l(u) - l(u_h) (Galerkin orthogonality; u_r along the bore is the
+/// element's edge interpolation). For the constant-strain triangles of the legacy quadrilateral that identity
+/// does not hold (the hoop strain taken at the centroid is not the exact form), so the error is integrated:
+/// the exact stress against each sub-triangle's, on its degree-4 rule. |u|^2 = l(u) = p u_r(a) 2 pi a H
+/// either way.
 template <class M>
 M model_of(const Problem<M>&);
 
@@ -85,8 +86,13 @@ double true_relative_error(const Fe& fe, double height, double poisson = kPoisso
         bore.push_back({m.nodes[n](1), fe.solution().displacement(n, 0)});
     std::sort(bore.begin(), bore.end());
     double work_h = 0;
-    for (std::size_t k = 1; k < bore.size(); ++k)
-      work_h += 0.5 * (bore[k].second + bore[k - 1].second) * (bore[k].first - bore[k - 1].first);
+    if constexpr (Elem::kEdgeNodes == 3)  // quadratic along the bore: Simpson on (corner, mid-side, corner)
+      for (std::size_t k = 2; k < bore.size(); k += 2)
+        work_h += (bore[k].first - bore[k - 2].first) / 6 *
+                  (bore[k - 2].second + 4 * bore[k - 1].second + bore[k].second);
+    else  // linear between the nodes
+      for (std::size_t k = 1; k < bore.size(); ++k)
+        work_h += 0.5 * (bore[k].second + bore[k - 1].second) * (bore[k].first - bore[k - 1].first);
     const double work = exact.displacement(0.1) * height;
     return std::sqrt((work - work_h) / work);
   }
@@ -251,4 +257,22 @@ TEST_CASE_TEMPLATE("[estimate] a spinning solid cylinder: effectivity within [0.
     CHECK(estimate / truth <= 1.5);
     if (nr == 32) CHECK(std::abs(estimate / truth - 1) < 0.01);  // measured 0.999 for both
   }
+}
+
+TEST_CASE("[estimate] Quad8 on the Lame tube: quadratic patches, effectivity within [0.7, 1.5]") {
+  using M = Model<Axisym2, Quad8, Isotropic>;
+  for (const double grading : {1.0, 3.0})
+    for (const int nr : {2, 4, 8, 16}) {
+      const double height = 0.1 / nr * 2;
+      LinearStatic<M> fe(tube_problem<M>(nr, 2, height, grading));
+      fe.solve();
+      const ErrorEstimate est = fe.error_estimate();
+      const double truth      = true_relative_error(fe, height);
+      INFO("nr " << nr << " grading " << grading << ": estimate " << est.relative() << ", true " << truth);
+      CHECK(est.relative() / truth >= 0.7);
+      CHECK(est.relative() / truth <= 1.5);
+      // From below towards 1 (measured 0.76, 0.83, 0.90, 0.94 uniform; 0.80 to 0.98 graded): the recovery
+      // samples the 3 x 3 points, not Quad8's superconvergent 2 x 2.
+      if (nr == 16) CHECK(std::abs(est.relative() / truth - 1) < 0.1);
+    }
 }

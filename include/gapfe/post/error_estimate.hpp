@@ -1,15 +1,16 @@
 #pragma once
 // The energy-norm error of a solution, estimated cell by cell by stress recovery (Zienkiewicz and Zhu's
 // estimator with their superconvergent patch recovery; docs/accuracy.md):
-//   1. at every node, for each material around it, a linear polynomial in (r, z) is fitted by least squares
-//      to the stresses at the stiffness points of the cells of that material around the node (its patch);
-//      its value at the node is the recovered stress sigma* there. A patch too small for a plane (a corner
-//      with one triangle) gives its points' mean.
-//   2. In each cell sigma* is interpolated from its corners, and the error is
+//   1. at every node, for each material around it, a polynomial in (r, z) of the cells' order (a plane; a
+//      quadratic for Quad8) is fitted by least squares to the stresses at the stiffness points of the cells
+//      of that material around the node (its patch, post/patch_recovery.hpp); its value at the node is the
+//      recovered stress sigma* there. A patch too small for it falls back to a plane, then to the mean.
+//   2. In each cell sigma* is interpolated from its nodes, and the error is
 //        eta_e^2 = integral over the cell of (sigma* - sigma_h)^T C^-1 (sigma* - sigma_h) dV,
 //      with C the law's elastic stiffness and sigma_h the stresses kept at the stiffness points, exactly: on
 //      quad4 sigma_h is bilinear through its 2 x 2 points' values (at those points alone it is at its most
-//      accurate, and the error would read as nothing there), on a constant-strain triangle it is constant.
+//      accurate, and the error would read as nothing there), on a constant-strain triangle it is constant;
+//      Quad8's biquadratic through its 3 x 3 points is integrated on 4 x 4.
 // The relative error is eta / sqrt(|u_h|^2 + eta^2), |u_h|^2 the integral of sigma_h^T C^-1 sigma_h dV.
 // Each material is recovered on its own: its stresses jump across a bond to another material.
 #include <algorithm>
@@ -21,6 +22,7 @@
 
 #include <Eigen/LU>
 
+#include "gapfe/post/patch_recovery.hpp"
 #include "gapfe/post/recovery.hpp"
 
 namespace gapfe {
@@ -49,64 +51,6 @@ struct ErrorEstimate {
 };
 
 namespace detail {
-
-/// Recovery slots: one per node and material around it (most nodes have one).
-class RecoverySlots {
- public:
-  explicit RecoverySlots(int nodes) : first_(static_cast<std::size_t>(nodes), -1) {}
-  void add(int node, int material) {
-    int& first = first_[static_cast<std::size_t>(node)];
-    if (first < 0)
-      first = material;
-    else if (first != material)
-      more_.push_back({node, material});
-  }
-  void finish() {
-    std::sort(more_.begin(), more_.end());
-    more_.erase(std::unique(more_.begin(), more_.end()), more_.end());
-  }
-  std::size_t size() const { return first_.size() + more_.size(); }
-  std::size_t operator()(int node, int material) const {
-    if (first_[static_cast<std::size_t>(node)] == material) return static_cast<std::size_t>(node);
-    const auto it = std::lower_bound(more_.begin(), more_.end(), std::array<int, 2>{node, material});
-    return first_.size() + static_cast<std::size_t>(it - more_.begin());
-  }
-
- private:
-  std::vector<int> first_;                ///< the first material seen at each node, -1: none
-  std::vector<std::array<int, 2>> more_;  ///< (node, material) of the others, sorted
-};
-
-/// A patch's least-squares sums for sigma(r, z) = c0 + c1 (r - r_n) + c2 (z - z_n): the sums over its points
-/// of p p^T and p sigma^T, p = (1, r - r_n, z - z_n).
-template <int S>
-struct PatchSums {
-  Mat<3, 3> normal = Mat<3, 3>::Zero();
-  Mat<3, S> right  = Mat<3, S>::Zero();
-  /// A cell's sums about another origin, `shift` = that origin - this node: p = T p' with T = [1 0 0; shift
-  /// I].
-  void add_shifted(const PatchSums& cell, const Vec2& shift) {
-    Mat<3, 3> m = cell.normal;  // T m T^T, by rows then by columns
-    m.row(1) += shift(0) * m.row(0), m.row(2) += shift(1) * m.row(0);
-    m.col(1) += shift(0) * m.col(0), m.col(2) += shift(1) * m.col(0);
-    normal += m;
-    right.row(0) += cell.right.row(0);
-    right.row(1) += cell.right.row(1) + shift(0) * cell.right.row(0);
-    right.row(2) += cell.right.row(2) + shift(1) * cell.right.row(0);
-  }
-  /// The fitted value at the node, c0; the points' mean when they do not span a plane.
-  Vec<S> at_node() const {
-    const double count = normal(0, 0);
-    if (count <= 0) return Vec<S>::Zero();
-    if (count >= 3) {  // scaled to a unit diagonal, a well-spread patch has a determinant of order 1
-      const Vec<3> d         = normal.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
-      const Mat<3, 3> scaled = d.asDiagonal() * normal * d.asDiagonal();
-      if (scaled.determinant() > 1e-6)
-        return d(0) * (scaled.inverse().row(0) * (d.asDiagonal() * right)).transpose();
-    }
-    return right.row(0).transpose() / count;
-  }
-};
 
 /// eta_e^2 and |u_h|_e^2 of a bilinear quadrilateral (Quad4 and its B-bar form) from sigma* at its corners
 /// and sigma_h at its 2 x 2 Gauss points, `at`. Both fields are bilinear in (xi, eta), c0 + c1 xi + c2 eta +
@@ -160,6 +104,33 @@ std::array<double, 2> bilinear_cell_energies(const Mat<4, 2>& x, const std::arra
   return out;
 }
 
+/// eta_e^2 and |u_h|_e^2 of an 8-node quadrilateral from sigma* at its nodes and sigma_h at its 3 x 3 Gauss
+/// points, `at`, on 4 x 4 Gauss points: sigma* through the nodes (its shape functions), sigma_h biquadratic
+/// through the 3 x 3 points' values (Lagrange through -a, 0, a, a = sqrt(3/5), in each direction).
+template <class E, int S>
+std::array<double, 2> quadratic_cell_energies(const Mat<8, 2>& x, const std::array<Vec<S>, 8>& node,
+                                              const Vec<S>* at, const Mat<S, S>& compliance) {
+  constexpr auto rule = gauss::square<4>();
+  constexpr double a  = gauss::Line<3>::a;
+  const auto lagrange = [&](double t) {
+    return Vec<3>(t * (t - a) / (2 * a * a), (a * a - t * t) / (a * a), t * (t + a) / (2 * a * a));
+  };
+  std::array<double, 2> out{0, 0};
+  double det = 0;
+  for (int q = 0; q < 16; ++q) {
+    const double xi = rule.point[q][0], eta = rule.point[q][1];
+    const auto g    = E::at(x, xi, eta, rule.weight[q], det);
+    const Vec<3> li = lagrange(xi), lj = lagrange(eta);
+    Vec<S> held = Vec<S>::Zero(), diff = Vec<S>::Zero();
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i) held += li(i) * lj(j) * at[3 * j + i];  // square<3>: xi fastest
+    for (int c = 0; c < 8; ++c) diff += g.N(c) * node[c];
+    diff -= held;
+    out[0] += g.weight * diff.dot(compliance * diff), out[1] += g.weight * held.dot(compliance * held);
+  }
+  return out;
+}
+
 /// The constant-strain triangles of a cell, as shape-node indices: the legacy quadrilateral's four, a
 /// triangle itself. Stiffness point q is triangle q's centroid.
 template <class E>
@@ -194,13 +165,14 @@ double linear_field_energy(const std::array<Vec<S>, 3>& d, const Mat<S, S>& comp
 /// and problem, with stresses from `source` (post/recovery.hpp); cells of the `skip` materials (gap
 /// elements: their stiffness is a device, not a body's) have no estimate and count in no sum. A part of a
 /// partitioned problem recovers from its own cells only (a patch stops at the part's edge) and sums the
-/// norms over every part (collective). Linear cells only: Quad8's recovery would need a quadratic patch.
+/// norms over every part (collective).
 template <class M, class Source>
 ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const VecX& u, const Source& source,
                              const std::vector<int>& skip = {}) {
   using Kin          = typename M::Kinematics;
   using Elem         = typename M::Element;
   constexpr int S    = Kin::kStrain;
+  constexpr int P    = Elem::kStiffnessPoints == 9 ? 6 : 3;  // Quad8: quadratic patches, else planes
   const auto& mesh   = p.mesh;
   const auto skipped = [&](const CellTag& tag) {
     return std::find(skip.begin(), skip.end(), tag.material) != skip.end();
@@ -216,47 +188,54 @@ ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const V
 
   // 1. The stresses at the stiffness points, kept, and the patches' sums; then sigma* per slot.
   std::vector<Vec<S>> stress(a.point_count());
-  std::vector<detail::PatchSums<S>> sums(slots.size());
+  std::vector<detail::PatchSums<S, P>> sums(slots.size());
   // The largest stress, against the round-off a stress of this model carries: about the unit round-off of
   // the stiffness times the strains the displacements and temperatures could make (max |u| over a cell's
   // side, and the thermal strain).
   double peak = 0, noise = 0;
   const double largest_u = u.size() > 0 ? u.cwiseAbs().maxCoeff() : 0.0;
   a.reset_cache();
-  for_each_cell<Elem>(mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
-                                                          const std::array<int, NPC>& cell,
-                                                          const CellTag& tag) {
-    static_assert(
-        requires { E::kCorners; } || requires { E::kTri; } || requires { E::kTriangles; },
-        "the recovery fits planes: linear cells (Quad4, its B-bar form, the legacy quad, Tri3)");
-    if (skipped(tag)) return;
-    using Kernel     = ElementKernel<Kin, E>;
-    const auto x     = cell_coords<E>(mesh, cell);
-    const auto& lp   = a.local(p, tag, cell);
-    const auto first = a.template first_point<E>(e);
-    const auto us    = Source::kAnyPoint ? shape_displacements<Kernel>(x, lp, p.inertia, a.gather(cell, u))
-                                         : typename Kernel::ShapeVector();
-    const auto mean  = Source::kAnyPoint ? Kernel::mean_volumetric(x) : typename Kernel::VolumetricRow();
-    const Mat<E::kShapeNodes, 2> xs = E::shape_coords(x);
-    const Vec2 origin               = x.row(0).transpose();
-    detail::PatchSums<S> own;  // the cell's sums about its first corner, then moved to each corner's patch
-    const double side = std::min((x.row(1) - x.row(0)).norm(), (x.row(E::kNodes - 1) - x.row(0)).norm());
-    noise             = std::max(noise, lp.stiffness.diagonal().maxCoeff() *
-                                            (largest_u / side + lp.thermal_strain.cwiseAbs().maxCoeff()));
-    double det        = 0;
-    for (int q = 0; q < E::kStiffnessPoints; ++q) {
-      const auto g      = E::stiffness_point(x, q, det);
-      const auto slot   = first + static_cast<std::size_t>(q);
-      const Vec6 strain = Source::kAnyPoint ? Kernel::strain(g, mean, us) : Vec6();
-      stress[slot]      = Kernel::restrict(source.stress(lp, strain, slot));
-      peak              = std::max(peak, stress[slot].cwiseAbs().maxCoeff());
-      const Vec<3> pq(1.0, g.r - origin(0), g.N.dot(xs.col(1)) - origin(1));
-      own.normal += pq * pq.transpose();
-      own.right += pq * stress[slot].transpose();
-    }
-    for (int c = 0; c < E::kNodes; ++c)
-      sums[slots(cell[c], tag.material)].add_shifted(own, origin - mesh.nodes[cell[c]]);
-  });
+  for_each_cell<Elem>(
+      mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
+                                          const std::array<int, NPC>& cell, const CellTag& tag) {
+        static_assert(
+            requires { E::kCorners; } || requires { E::kTri; } || requires { E::kTriangles; } ||
+                E::kStiffnessPoints == 9,
+            "cells the recovery knows: Quad4, its B-bar form, the legacy quad, Tri3 (planes), Quad8 "
+            "(quadratics)");
+        if (skipped(tag)) return;
+        using Kernel     = ElementKernel<Kin, E>;
+        const auto x     = cell_coords<E>(mesh, cell);
+        const auto& lp   = a.local(p, tag, cell);
+        const auto first = a.template first_point<E>(e);
+        const auto us   = Source::kAnyPoint ? shape_displacements<Kernel>(x, lp, p.inertia, a.gather(cell, u))
+                                            : typename Kernel::ShapeVector();
+        const auto mean = Source::kAnyPoint ? Kernel::mean_volumetric(x) : typename Kernel::VolumetricRow();
+        const Mat<E::kShapeNodes, 2> xs = E::shape_coords(x);
+        const Vec2 origin               = x.row(0).transpose();
+        detail::PatchSums<S, P>
+            own;  // linear cells: the sums about the first corner, moved to each corner's patch
+        const double side = std::min((x.row(1) - x.row(0)).norm(), (x.row(E::kNodes - 1) - x.row(0)).norm());
+        noise             = std::max(noise, lp.stiffness.diagonal().maxCoeff() *
+                                                (largest_u / side + lp.thermal_strain.cwiseAbs().maxCoeff()));
+        double det        = 0;
+        for (int q = 0; q < E::kStiffnessPoints; ++q) {
+          const auto g      = E::stiffness_point(x, q, det);
+          const auto slot   = first + static_cast<std::size_t>(q);
+          const Vec6 strain = Source::kAnyPoint ? Kernel::strain(g, mean, us) : Vec6();
+          stress[slot]      = Kernel::restrict(source.stress(lp, strain, slot));
+          peak              = std::max(peak, stress[slot].cwiseAbs().maxCoeff());
+          const Vec2 point(g.r, g.N.dot(xs.col(1)));
+          if constexpr (P == 3)
+            own.add(point - origin, stress[slot]);
+          else  // a quadratic's sums do not move by a cheap shift: each node's own
+            for (int c = 0; c < E::kNodes; ++c)
+              sums[slots(cell[c], tag.material)].add(point - mesh.nodes[cell[c]], stress[slot]);
+        }
+        if constexpr (P == 3)
+          for (int c = 0; c < E::kNodes; ++c)
+            sums[slots(cell[c], tag.material)].add_shifted(own, origin - mesh.nodes[cell[c]]);
+      });
   std::vector<Vec<S>> recovered(sums.size());
   for (std::size_t k = 0; k < sums.size(); ++k) recovered[k] = sums[k].at_node();
   sums = {};
@@ -280,7 +259,10 @@ ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const V
       corner[c] = recovered[slots(cell[c], tag.material)], centre += corner[c] / E::kNodes;
     for (int c = E::kNodes; c < E::kShapeNodes; ++c) corner[c] = centre;  // a condensed centre: the mean
     double error = 0, energy = 0;
-    if constexpr (requires { E::kCorners; }) {
+    if constexpr (E::kStiffnessPoints == 9) {
+      const auto both = detail::quadratic_cell_energies<E, S>(x, corner, at, compliance);
+      error += both[0], energy += both[1];
+    } else if constexpr (requires { E::kCorners; }) {
       const auto both = detail::bilinear_cell_energies<E, S>(x, {corner[0], corner[1], corner[2], corner[3]},
                                                              at, compliance);
       error += both[0], energy += both[1];

@@ -1,0 +1,102 @@
+#pragma once
+// Superconvergent patch recovery (Zienkiewicz and Zhu 1992; docs/accuracy.md): the least-squares sums of a
+// polynomial through the stresses at the stiffness points of the cells around a node, per material, and its
+// value at the node. The error estimate (post/error_estimate.hpp) reads them.
+#include <algorithm>
+#include <array>
+#include <vector>
+
+#include <Eigen/LU>
+
+#include "gapfe/core/types.hpp"
+
+namespace gapfe::detail {
+
+/// Recovery slots: one per node and material around it (most nodes have one).
+class RecoverySlots {
+ public:
+  explicit RecoverySlots(int nodes) : first_(static_cast<std::size_t>(nodes), -1) {}
+  void add(int node, int material) {
+    int& first = first_[static_cast<std::size_t>(node)];
+    if (first < 0)
+      first = material;
+    else if (first != material)
+      more_.push_back({node, material});
+  }
+  void finish() {
+    std::sort(more_.begin(), more_.end());
+    more_.erase(std::unique(more_.begin(), more_.end()), more_.end());
+  }
+  std::size_t size() const { return first_.size() + more_.size(); }
+  std::size_t operator()(int node, int material) const {
+    if (first_[static_cast<std::size_t>(node)] == material) return static_cast<std::size_t>(node);
+    const auto it = std::lower_bound(more_.begin(), more_.end(), std::array<int, 2>{node, material});
+    return first_.size() + static_cast<std::size_t>(it - more_.begin());
+  }
+
+ private:
+  std::vector<int> first_;                ///< the first material seen at each node, -1: none
+  std::vector<std::array<int, 2>> more_;  ///< (node, material) of the others, sorted
+};
+
+/// A patch's least-squares sums for a polynomial in (r - r_n, z - z_n) about its node: a plane (P = 3 terms:
+/// 1, dr, dz) for linear cells, a quadratic (P = 6: also dr^2, dr dz, dz^2) for quadratic ones; the sums over
+/// its points of p p^T and p sigma^T, p the terms at the point.
+template <int S, int P = 3>
+struct PatchSums {
+  static_assert(P == 3 || P == 6, "a plane or a quadratic");
+  Mat<P, P> normal = Mat<P, P>::Zero();
+  Mat<P, S> right  = Mat<P, S>::Zero();
+  static Vec<P> terms(const Vec2& d) {
+    Vec<P> p;
+    if constexpr (P == 3)
+      p << 1.0, d(0), d(1);
+    else
+      p << 1.0, d(0), d(1), d(0) * d(0), d(0) * d(1), d(1) * d(1);
+    return p;
+  }
+  /// One point at `offset` = point - node.
+  void add(const Vec2& offset, const Vec<S>& stress) {
+    const Vec<P> p = terms(offset);
+    normal += p * p.transpose();
+    right += p * stress.transpose();
+  }
+  /// A cell's plane sums about another origin, `shift` = that origin - this node: p = T p' with
+  /// T = [1 0 0; shift I].
+  void add_shifted(const PatchSums& cell, const Vec2& shift) requires(P == 3) {
+    Mat<3, 3> m = cell.normal;  // T m T^T, by rows then by columns
+    m.row(1) += shift(0) * m.row(0), m.row(2) += shift(1) * m.row(0);
+    m.col(1) += shift(0) * m.col(0), m.col(2) += shift(1) * m.col(0);
+    normal += m;
+    right.row(0) += cell.right.row(0);
+    right.row(1) += cell.right.row(1) + shift(0) * cell.right.row(0);
+    right.row(2) += cell.right.row(2) + shift(1) * cell.right.row(0);
+  }
+  /// The fitted value at the node, c0: of the full polynomial, else of the plane (the leading 3 x 3 block
+  /// holds the plane's sums), else the points' mean.
+  Vec<S> at_node() const {
+    const double count = normal(0, 0);
+    if (count <= 0) return Vec<S>::Zero();
+    Vec<S> value;
+    if constexpr (P == 6)
+      if (fitted<6>(1e-10, value)) return value;
+    if (fitted<3>(1e-6, value)) return value;
+    return right.row(0).transpose() / count;
+  }
+
+ private:
+  /// c0 of the fit with the first Q terms, when the points determine it: scaled to a unit diagonal, a
+  /// well-spread patch's normal matrix has a determinant of order 1 (a plane's) or well above `least`.
+  template <int Q>
+  bool fitted(double least, Vec<S>& value) const {
+    if (normal(0, 0) < Q) return false;
+    const Vec<Q> d =
+        normal.template topLeftCorner<Q, Q>().diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
+    const Mat<Q, Q> scaled = d.asDiagonal() * normal.template topLeftCorner<Q, Q>() * d.asDiagonal();
+    if (!(scaled.determinant() > least)) return false;
+    value = d(0) * (scaled.inverse().row(0) * (d.asDiagonal() * right.template topRows<Q>())).transpose();
+    return true;
+  }
+};
+
+}  // namespace gapfe::detail
