@@ -276,3 +276,22 @@ TEST_CASE("[estimate] Quad8 on the Lame tube: quadratic patches, effectivity wit
       if (nr == 16) CHECK(std::abs(est.relative() / truth - 1) < 0.1);
     }
 }
+
+TEST_CASE(
+    "[estimate] a quadratic patch on a skewed cell reproduces a quadratic field; a plane patch a plane") {
+  // One Quad8-like cell's 3 x 3 Gauss points on a parallelogram skewed 18 degrees (its scaled normal
+  // matrix's determinant is about 5e-11, yet the fit is as well determined as on a square), about a corner.
+  const double skew = 3, a = std::sqrt(0.6);
+  const auto field = [](const Vec2& p) { return 1 + 2 * p(0) - 3 * p(1) + 0.5 * p(0) * p(0) - p(0) * p(1); };
+  const Vec2 corner(10, 0);
+  detail::PatchSums<1, 6> quadratic;
+  detail::PatchSums<1, 3> plane;
+  for (const double s : {-a, 0.0, a})
+    for (const double t : {-a, 0.0, a}) {
+      const Vec2 p = corner + Vec2(1 + s + skew * (1 + t), 1 + t) * 0.5;  // (xi, eta) -> the parallelogram
+      quadratic.add(p - corner, Vec<1>(field(p)));
+      plane.add(p - corner, Vec<1>(2 * p(0) - 3 * p(1)));
+    }
+  CHECK(quadratic.at_node()(0) == doctest::Approx(field(corner)).epsilon(1e-9));
+  CHECK(plane.at_node()(0) == doctest::Approx(2 * corner(0) - 3 * corner(1)).epsilon(1e-12));
+}

@@ -172,7 +172,7 @@ ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const V
   using Kin          = typename M::Kinematics;
   using Elem         = typename M::Element;
   constexpr int S    = Kin::kStrain;
-  constexpr int P    = Elem::kStiffnessPoints == 9 ? 6 : 3;  // Quad8: quadratic patches, else planes
+  constexpr int P    = Elem::kEdgeNodes == 3 ? 6 : 3;  // quadratic cells (Quad8): quadratic patches
   const auto& mesh   = p.mesh;
   const auto skipped = [&](const CellTag& tag) {
     return std::find(skip.begin(), skip.end(), tag.material) != skip.end();
@@ -200,7 +200,7 @@ ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const V
                                           const std::array<int, NPC>& cell, const CellTag& tag) {
         static_assert(
             requires { E::kCorners; } || requires { E::kTri; } || requires { E::kTriangles; } ||
-                E::kStiffnessPoints == 9,
+                (E::kEdgeNodes == 3 && E::kStiffnessPoints == 9),
             "cells the recovery knows: Quad4, its B-bar form, the legacy quad, Tri3 (planes), Quad8 "
             "(quadratics)");
         if (skipped(tag)) return;
@@ -213,12 +213,13 @@ ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const V
         const auto mean = Source::kAnyPoint ? Kernel::mean_volumetric(x) : typename Kernel::VolumetricRow();
         const Mat<E::kShapeNodes, 2> xs = E::shape_coords(x);
         const Vec2 origin               = x.row(0).transpose();
-        detail::PatchSums<S, P>
-            own;  // linear cells: the sums about the first corner, moved to each corner's patch
-        const double side = std::min((x.row(1) - x.row(0)).norm(), (x.row(E::kNodes - 1) - x.row(0)).norm());
-        noise             = std::max(noise, lp.stiffness.diagonal().maxCoeff() *
-                                                (largest_u / side + lp.thermal_strain.cwiseAbs().maxCoeff()));
-        double det        = 0;
+        // Linear cells: the cell's sums about its first corner, moved to each corner's patch.
+        detail::PatchSums<S, P> own;
+        const double side =
+            std::min((x.row(1) - x.row(0)).norm(), (x.row(std::min(E::kNodes, 4) - 1) - x.row(0)).norm());
+        noise      = std::max(noise, lp.stiffness.diagonal().maxCoeff() *
+                                         (largest_u / side + lp.thermal_strain.cwiseAbs().maxCoeff()));
+        double det = 0;
         for (int q = 0; q < E::kStiffnessPoints; ++q) {
           const auto g      = E::stiffness_point(x, q, det);
           const auto slot   = first + static_cast<std::size_t>(q);
@@ -240,7 +241,7 @@ ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const V
   for (std::size_t k = 0; k < sums.size(); ++k) recovered[k] = sums[k].at_node();
   sums = {};
 
-  // 2. The error per cell: sigma* from the corners against the kept sigma_h.
+  // 2. The error per cell: sigma* from the cell's nodes against the kept sigma_h.
   ErrorEstimate out;
   out.cell.assign(mesh.cells.size() + (kHasTriangles<Elem> ? mesh.triangles.size() : 0), 0.0);
   a.reset_cache();
@@ -259,7 +260,7 @@ ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const V
       corner[c] = recovered[slots(cell[c], tag.material)], centre += corner[c] / E::kNodes;
     for (int c = E::kNodes; c < E::kShapeNodes; ++c) corner[c] = centre;  // a condensed centre: the mean
     double error = 0, energy = 0;
-    if constexpr (E::kStiffnessPoints == 9) {
+    if constexpr (E::kEdgeNodes == 3) {
       const auto both = detail::quadratic_cell_energies<E, S>(x, corner, at, compliance);
       error += both[0], energy += both[1];
     } else if constexpr (requires { E::kCorners; }) {

@@ -4,6 +4,7 @@
 // value at the node. The error estimate (post/error_estimate.hpp) reads them.
 #include <algorithm>
 #include <array>
+#include <utility>
 #include <vector>
 
 #include <Eigen/LU>
@@ -77,25 +78,35 @@ struct PatchSums {
   Vec<S> at_node() const {
     const double count = normal(0, 0);
     if (count <= 0) return Vec<S>::Zero();
-    Vec<S> value;
-    if constexpr (P == 6)
-      if (fitted<6>(1e-10, value)) return value;
-    if (fitted<3>(1e-6, value)) return value;
+    if constexpr (P == 6) {
+      if (count >= 6) {
+        // The quadratic's monomials make the scaled matrix's determinant fall with a cell's skew (5e-11 at
+        // 18 degrees) while c0 stays as well determined: accept by rank and by c0's variance factor,
+        // (S^-1)_00, which is 3 in an interior patch and 21 at a corner with one cell, skewed or not.
+        const auto [d, scaled] = scaled_normal<6>();
+        Eigen::FullPivLU<Mat<6, 6>> lu(scaled);
+        lu.setThreshold(1e-12);
+        if (lu.rank() == 6) {
+          const Mat<6, 6> inverse = lu.inverse();
+          if (inverse(0, 0) < 1e4) return d(0) * (inverse.row(0) * (d.asDiagonal() * right)).transpose();
+        }
+      }
+    }
+    if (count >= 3) {  // a well-spread plane's scaled determinant is of order 1
+      const auto [d, scaled] = scaled_normal<3>();
+      if (scaled.determinant() > 1e-6)
+        return d(0) * (scaled.inverse().row(0) * (d.asDiagonal() * right.template topRows<3>())).transpose();
+    }
     return right.row(0).transpose() / count;
   }
 
  private:
-  /// c0 of the fit with the first Q terms, when the points determine it: scaled to a unit diagonal, a
-  /// well-spread patch's normal matrix has a determinant of order 1 (a plane's) or well above `least`.
+  /// The first Q terms' normal matrix scaled to a unit diagonal, D N D, with D.
   template <int Q>
-  bool fitted(double least, Vec<S>& value) const {
-    if (normal(0, 0) < Q) return false;
+  std::pair<Vec<Q>, Mat<Q, Q>> scaled_normal() const {
     const Vec<Q> d =
         normal.template topLeftCorner<Q, Q>().diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
-    const Mat<Q, Q> scaled = d.asDiagonal() * normal.template topLeftCorner<Q, Q>() * d.asDiagonal();
-    if (!(scaled.determinant() > least)) return false;
-    value = d(0) * (scaled.inverse().row(0) * (d.asDiagonal() * right.template topRows<Q>())).transpose();
-    return true;
+    return {d, d.asDiagonal() * normal.template topLeftCorner<Q, Q>() * d.asDiagonal()};
   }
 };
 
