@@ -28,7 +28,8 @@ decks the largest share lies in the two columns at the bore, where the stress va
 cells to deck elements; B-bar's largest is in the second). The notched tube (Gmsh: triangles below, quadrangles above) has its largest share at the
 groove's root. Runs with gaps, plasticity and friction report an estimate per load step too, with the gap
 elements' shares 0; a tube expanding freely under a uniform temperature rise has no stress, and its log says
-there is nothing to estimate.
+there is nothing to estimate. With `error_estimate = none` a run writes the same tables, byte for byte, and the
+same VTU arrays but the estimate's.
 
     /usr/bin/python3 tests/check_estimate.py build/release/examples/gapfe WORKDIR
 """
@@ -311,9 +312,35 @@ value = 100.0
           "free expansion: the log says there is nothing to estimate")
 
 
+def without_estimate():
+    """error_estimate = none: the log says so, and every result but the estimate's array is the same, bit for
+    bit (a run takes its centroid stresses from the estimate's pass; without it, from their own): the tables
+    byte for byte, the VTU's arrays exactly. On the legacy quadrilateral (its condensed centre), a plastic run
+    (stored stresses) and a gap run (skipped gap elements)."""
+    for deck in ("thick_tube.deck", "plastic_tube.deck", "two_tubes.deck"):
+        name = deck.replace(".deck", "")
+        with_it, _ = run(root / "examples" / "decks" / deck, name + "_estimated")
+        without, log = run(root / "examples" / "decks" / deck, name + "_none", "--set", "error_estimate=none")
+        check("error estimate: none (error_estimate = none)" in log and "error estimate at the end" not in log,
+              f"{deck}: the log says the run made no estimate")
+        for table in ("nodes.csv", "elements.csv", "reactions.csv"):
+            check((with_it / table).read_bytes() == (without / table).read_bytes(),
+                  f"{deck}: {table} is the same with and without the estimate")
+        a = meshio.read(sorted(with_it.glob("step_*.vtu"))[-1])
+        b = meshio.read(sorted(without.glob("step_*.vtu"))[-1])
+        check("error_estimate" in a.cell_data and "error_estimate" not in b.cell_data,
+              f"{deck}: error_estimate only in the run that estimates")
+        same = all(np.array_equal(np.concatenate(a.cell_data[k]), np.concatenate(b.cell_data[k]))
+                   for k in b.cell_data) and all(np.array_equal(a.point_data[k], b.point_data[k])
+                                                 for k in b.point_data)
+        check(same and set(b.cell_data) | {"error_estimate"} == set(a.cell_data),
+              f"{deck}: the VTU's other arrays are the same")
+
+
 work.mkdir(parents=True, exist_ok=True)
 lame_decks()
 lame_gmsh()
 spinning_cylinder()
 other_runs()
+without_estimate()
 finish("check_estimate: ")

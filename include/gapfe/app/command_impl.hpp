@@ -15,6 +15,7 @@
 
 #include "gapfe/app/command.hpp"
 #include "gapfe/app/command_line.hpp"
+#include "gapfe/app/error_bars.hpp"
 #include "gapfe/app/explain.hpp"
 #include "gapfe/app/pictures.hpp"
 #include "gapfe/app/plan.hpp"
@@ -147,13 +148,18 @@ inline void list_files(const Args& a, const Plan& p, const ModelDescription& d, 
 /// `gapfe run`, after the plan was explained: the process checks, the partition, the run folder, the run,
 /// the report and the record of the folder's run.
 inline int run_command(const Args& a, const SceneModel& model, const Plan& plan, std::ostream& log,
-                       std::ostream& err, const Process& process, double t_read, double t_mesh) {
+                       std::ostream& err, const Process& process, double t_read, double t_mesh,
+                       const Deck* cards) {
   const ModelDescription& d             = model.description;
   const Scene& s                        = model.scene;
   const auto [launch_rank, launch_size] = launcher_ranks();
   check_process(a, plan, launch_size, process.start_mpi);
   check_plan(plan, d, s);
   check_compiled(plan);
+  if (a.estimate) {  // refused before the run, which would leave the last run's files lost for nothing
+    if (const std::string why = estimate_refused(cards == nullptr, plan); !why.empty()) throw InputError(why);
+    refinable(*cards);
+  }
   std::optional<ScenePart> part;
   const int rank = plan.solver == SolverChoice::petsc ? partition(a, s, process.start_mpi, part, log) : 0;
   log << "solver: " << solver_text(plan) << "; element " << name_of(plan.key.element) << "\n";
@@ -170,7 +176,8 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
                            a.plots.value_or(std::vector<std::string>{"mises"}),
                            plot_units(d.options.units),
                            part ? &*part : nullptr,
-                           rank == 0};
+                           rank == 0,
+                           a.estimate};
   // Rank 0 of a launch writes the files; a run's folder holds one run (run_folder.hpp). Made ready only
   // now, after every check of the request: a run refused before it starts leaves the last run's files.
   const std::string run_what = "gapfe run " + a.deck;
@@ -186,6 +193,11 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
         << result.assemble << ", factorize " << result.factorize << ", solve " << result.solve
         << ", estimate " << result.estimate << ", write " << result.write << "\n";
     report_run(log, err, plan, d, result);
+    if (a.estimate) {
+      std::vector<LevelRun> levels{{0, s.grid.node_count(), since(t0), result.quantities}};
+      for (LevelRun& finer : solve_finer(*cards, s, plan, request, log)) levels.push_back(std::move(finer));
+      report_error_bars(log, a.out, levels);
+    }
     list_files(a, plan, d, result, log);
   } catch (const std::exception& e) {  // the manifest says the files stop short, and why
     if (writes) RunFolder::record_stopped(a.out, run_what, e.what());
@@ -221,10 +233,12 @@ inline int execute(const Args& a, std::ostream& out, std::ostream& err, const Pr
   t0                  = Clock::now();
   if (!scene) model.scene = build_scene(*deck);
   const double t_mesh = since(t0);
+  std::optional<Deck> cards;  // the grid cards, which --estimate refines
   if (scene) {
     describe_scene(log, model);
   } else {
     describe_deck(log, *deck, model.scene);
+    if (a.estimate) cards = *deck;
     model.description = std::move(*deck);  // the description; the grid cards are done with
     deck.reset();
   }
@@ -243,7 +257,7 @@ inline int execute(const Args& a, std::ostream& out, std::ostream& err, const Pr
     log << "wrote " << a.out << "/mesh.svg, mesh_nodes.csv, mesh_elements.csv, mesh.vtu\n";
     return ok;
   }
-  return run_command(a, model, plan, log, err, process, t_read, t_mesh);
+  return run_command(a, model, plan, log, err, process, t_read, t_mesh, cards ? &*cards : nullptr);
 }
 
 }  // namespace command_steps

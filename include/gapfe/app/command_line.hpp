@@ -71,6 +71,10 @@ inline constexpr OptionSpec kOptions[] = {
      "the field plot_FIELD.svg shows for the last step (repeat for more; default mises; none: no picture)"},
     {"--png", nullptr, "run",
      "also rasterize the run's pictures to PNG (rsvg-convert, Debian's librsvg2-bin)"},
+    {"--estimate", nullptr, "run",
+     "error bars on the reactions, the largest displacement and the largest von Mises stress: the deck "
+     "solved "
+     "again on its grid at 1/2 (and 1/4) of the spacing, extrapolated; in the log and estimates.csv"},
     {"--threads", "N", "run", "OpenBLAS threads for the factorization's dense kernels (default 1)"},
     {"--overwrite", nullptr, "run",
      "replace results in --out that no gapfe run wrote there (without it such a folder is refused; a folder "
@@ -95,7 +99,8 @@ struct Args {
   std::optional<VariantChoice> variant;  ///< --variant: forced kinematics
   std::vector<std::pair<std::string, std::string>> options;
   bool quiet = false, help = false, version = false, png = false, no_png = false, overwrite = false;
-  int threads = 1;
+  bool estimate = false;  ///< run --estimate: error bars from finer meshes (app/error_bars.hpp)
+  int threads   = 1;
   std::optional<std::vector<std::string>> plots;  ///< --plot / --field; unset: the default
   int step = 0;                                   ///< plot --step (0: the last)
   std::string curve_x, curve_y, units;
@@ -255,6 +260,7 @@ inline Args parse(const std::vector<std::string>& a) {
        : s == "--version"   ? r.version
        : s == "--png"       ? r.png
        : s == "--overwrite" ? r.overwrite
+       : s == "--estimate"  ? r.estimate
                             : r.no_png) = true;
     }
   }

@@ -180,7 +180,11 @@ inline void report_balance(std::ostream& log, std::ostream& err, const RunResult
 
 /// The recovery estimate of the discretization error (post/error_estimate.hpp; docs/accuracy.md) in the log:
 /// per load step and at the end, with the element that holds the largest share.
-inline void report_error_estimate(std::ostream& log, const RunResult& r) {
+inline void report_error_estimate(std::ostream& log, const ModelDescription& d, const RunResult& r) {
+  if (!d.options.error_estimate) {
+    log << "error estimate: none (error_estimate = none)\n";
+    return;
+  }
   log_per_step(log,
                "error estimate per load step (the relative energy-norm error of the recovered stresses, the "
                "largest of its increments)",
@@ -224,7 +228,7 @@ inline void report_run(std::ostream& log, std::ostream& err, const Plan& p, cons
   const bool seed = plastic && p.key.integration == PlasticityChoice::tangent;
   report_balance(log, err, r, d, p.key.kinematics == VariantChoice::saga, p.gaps, plastic,
                  seed && warn_seed_residual(err, r));
-  report_error_estimate(log, r);
+  report_error_estimate(log, d, r);
   if (plastic && !p.gaps)
     log << "plasticity: " << name_of(d.options.plasticity) << "; " << r.increments << " increments ("
         << r.cut_steps << " from cut steps), " << r.newton_iterations << " linear solves ("

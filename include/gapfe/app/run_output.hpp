@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gapfe/app/plan.hpp"
+#include "gapfe/app/read_quantities.hpp"
 #include "gapfe/app/run_result.hpp"
 #include "gapfe/input/scene.hpp"
 #include "gapfe/output/step_files.hpp"
@@ -32,6 +33,8 @@ struct RunRequest {
   const ScenePart* part = nullptr;
   /// Whether this process writes the files (rank 0 of a partitioned run, which gathers the results).
   bool writes = true;
+  /// Whether the run records the quantities `--estimate` gives error bars (RunResult::quantities).
+  bool read_quantities = false;
 };
 
 /// The result files of a run (output/step_files.hpp): on the process that writes them (every process of a
@@ -74,13 +77,16 @@ inline void keep_largest(std::vector<double>& per_step, int step, double value) 
 
 /// The recovery estimate of an accepted increment's discretization error (post/error_estimate.hpp), timed:
 /// recorded in `times` (per load step and the last) and returned as the VTU cell array `error_estimate`, one
-/// value per deck element (gap elements 0), on the process that writes; empty elsewhere.
+/// value per deck element (gap elements 0), on the process that writes; empty elsewhere. The same pass gives
+/// the output's centroid stresses (`centroids`: the driver's centroid_values(Recovered::stress)), so the
+/// estimate phase's time holds theirs.
 template <class Fe>
-VtuField estimate_increment(const RunRequest& r, RunResult& times, int step, const Fe& fe) {
+VtuField estimate_increment(const RunRequest& r, RunResult& times, int step, const Fe& fe,
+                            std::vector<PointValues>& centroids) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<int> gap_materials;
   if (r.scene.gap_material >= 0) gap_materials.push_back(r.scene.gap_material);
-  ErrorEstimate estimate = fe.error_estimate(gap_materials);
+  ErrorEstimate estimate = fe.error_estimate(gap_materials, &centroids);
   keep_largest(times.step_error, step, estimate.relative());
   times.error = estimate.relative(), times.error_stress_free = estimate.stress_free;
   const Subdomain* part = fe.problem().subdomain.get();
@@ -128,15 +134,18 @@ void write_increment(const RunRequest& r, RunResult& times, RunFiles& files, int
   keep_largest(times.step_balance, step, balance.relative());
   if (balance.relative() > times.balance) times.balance = balance.relative(), times.balance_step = step;
   times.last_balance = balance;
-  extra_cells.push_back(estimate_increment(r, times, step, fe));
+  std::vector<PointValues> centroids;
+  if (r.model.options.error_estimate)
+    extra_cells.push_back(estimate_increment(r, times, step, fe, centroids));
   const auto start = std::chrono::steady_clock::now();
+  if (!r.model.options.error_estimate) centroids = fe.centroid_values(Recovered::stress);
   if (const Subdomain* part = fe.problem().subdomain.get()) {
     const Solution whole = gather_solution(*part, fe.solution());
-    auto values          = gather_cells(*part, fe.centroid_values(Recovered::stress), Recovered::stress);
+    auto values          = gather_cells(*part, centroids, Recovered::stress);
     if (files) files.write(step, inc, whole, values, std::move(extra_cells), summary);
-  } else if (files) {
-    files.write(step, inc, fe.solution(), fe.centroid_values(Recovered::stress), std::move(extra_cells),
-                summary);
+  } else {
+    if (r.read_quantities) times.quantities = read_quantities(r.scene, fe.solution(), centroids);
+    if (files) files.write(step, inc, fe.solution(), centroids, std::move(extra_cells), summary);
   }
   times.write += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   progress_line(r, step);

@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "gapfe/app/read_quantities.hpp"
 #include "gapfe/contact/pair_state.hpp"
 #include "gapfe/problem/results.hpp"
 
@@ -20,6 +21,8 @@ struct RunResult {
   int error_element      = -1;
   Vec2 error_element_at  = Vec2::Zero();
   bool error_stress_free = false;  ///< the last increment's stresses are round-off: nothing to estimate
+  /// The last increment's quantities, when the request asks for them (RunRequest::read_quantities).
+  std::vector<ReadQuantity> quantities;
   ContactCounters contact;
   int increments = 0, closed = 0, pairs = 0;
   double penalty        = 0;

@@ -154,9 +154,11 @@ class LinearStatic {
     return recover(assembler_, p_, u_, ElasticStress<Law>{}, true, what);
   }
   /// The recovery estimate of the energy-norm error, per cell and whole, leaving out cells of the `skip`
-  /// materials (post/error_estimate.hpp).
-  ErrorEstimate error_estimate(const std::vector<int>& skip = {}) const {
-    return estimate_error(assembler_, p_, u_, ElasticStress<Law>{}, skip);
+  /// materials (post/error_estimate.hpp); and, into `centroids` when given,
+  /// centroid_values(Recovered::stress) from the same pass.
+  ErrorEstimate error_estimate(const std::vector<int>& skip        = {},
+                               std::vector<PointValues>* centroids = nullptr) const {
+    return estimate_error(assembler_, p_, u_, ElasticStress<Law>{}, skip, centroids);
   }
 
  private:

@@ -146,19 +146,18 @@ class NonlinearStatic {
     load_peak_   = std::max(load_peak_, step_scale_);
   }
   /// Forget the last solve(): back to the committed state.
-  void reject() {
-    points_.reject();
-    u_ = u_committed_;
-  }
+  void reject() { points_.reject(), u_ = u_committed_; }
   /// Strain, stress and eqps at every stiffness point (the last solve()).
   std::vector<PointValues> point_values() const { return recover(assembler_, p_, u_, stored(), false); }
   /// Their volume-weighted mean per cell; `what` = Recovered::stress: no strain, no material axes.
   std::vector<PointValues> centroid_values(Recovered what = Recovered::all) const {
     return recover(assembler_, p_, u_, stored(), true, what);
   }
-  /// The recovery estimate of the energy-norm error (post/error_estimate.hpp), without `skip` materials.
-  ErrorEstimate error_estimate(const std::vector<int>& skip = {}) const {
-    return estimate_error(assembler_, p_, u_, stored(), skip);
+  /// The recovery estimate of the energy-norm error (post/error_estimate.hpp), without `skip` materials;
+  /// `centroids` as LinearStatic's.
+  ErrorEstimate error_estimate(const std::vector<int>& skip        = {},
+                               std::vector<PointValues>* centroids = nullptr) const {
+    return estimate_error(assembler_, p_, u_, stored(), skip, centroids);
   }
 
  private:

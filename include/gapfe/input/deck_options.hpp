@@ -64,6 +64,10 @@ struct ModelOptions {
   /// record, and deformed.svg (the last increment) are always written.
   Increments output_csv = Increments::all;
   Increments output_vtu = Increments::all;
+  /// error_estimate = energy (the default: the recovery estimate of the energy-norm error at every accepted
+  /// increment, post/error_estimate.hpp, docs/accuracy.md) | none (no estimate: a run timed against a code
+  /// that makes none).
+  bool error_estimate = true;
   /// newton_tolerance = |R_free| / |F_int| that ends a plastic step's Newton iterations (default 1e-10);
   /// newton_iterations = the iterations before a step is cut in halves (default 30). NewtonOptions.
   double newton_tolerance = 1e-10;
@@ -149,6 +153,8 @@ struct ModelOptions {
       output_csv = choice(Increments{});
     } else if (key == "output_vtu") {
       output_vtu = choice(Increments{});
+    } else if (key == "error_estimate") {
+      error_estimate = one_of({"energy", "none"}) == "energy";
     } else if (key == "newton_tolerance") {
       newton_tolerance = number(0.0);
       if (!(newton_tolerance > 0 && newton_tolerance < 1))
@@ -168,8 +174,8 @@ struct ModelOptions {
     } else {
       throw InputError("unknown option '" + key +
                        "' (known: format, element, solver, bc_loads, contact, friction, slip, gap_penalty, "
-                       "events, gap_direction, plasticity, output, output_csv, output_vtu, newton_tolerance, "
-                       "newton_iterations, time_tolerance, fields, units)");
+                       "events, gap_direction, plasticity, output, output_csv, output_vtu, error_estimate, "
+                       "newton_tolerance, newton_iterations, time_tolerance, fields, units)");
     }
   }
 };

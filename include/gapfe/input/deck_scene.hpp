@@ -6,6 +6,7 @@
 // Readings (docs deck section): a BC card applies to the grid points in [I1, I2] x [J1, J2]; a
 // material block to the cells whose corners all lie in [I1, I2] x [J1, J2] (later blocks win); a BC
 // load is a total ring force.
+#include <array>
 #include <cstdlib>
 #include <string>
 #include <vector>
@@ -17,12 +18,10 @@
 
 namespace gapfe {
 
-/// Build the scene (mesh, tags, conditions, temperatures, checked loads) of a read deck.
-inline Scene build_scene(const Deck& d) {
-  Scene s;
-  IJGrid grid;
+/// The I-J grid of a read deck's segment cards (Data 3-4); an error names the card and its line.
+inline IJGrid deck_grid(const Deck& d) {
   try {
-    grid = generate_ij_grid(d.mesh.max_i, d.mesh.max_j, d.segments);
+    return generate_ij_grid(d.mesh.max_i, d.mesh.max_j, d.segments);
   } catch (const InputError& e) {
     // The generator numbers segment cards from 1 in deck order: add their lines.
     std::string msg       = e.what();
@@ -35,6 +34,12 @@ inline Scene build_scene(const Deck& d) {
     }
     throw InputError("DATA NO. 3-4 (mesh generation): " + msg);
   }
+}
+
+/// Build the scene (mesh, tags, conditions, temperatures, checked loads) of a read deck on its grid
+/// (deck_grid(d), or a refined deck's, input/deck_refine.hpp).
+inline Scene build_scene(const Deck& d, IJGrid grid) {
+  Scene s;
   detail::grid_scene_mesh(std::move(grid), s);
   const IJGrid& g = s.grid;
 
@@ -109,10 +114,16 @@ inline Scene build_scene(const Deck& d) {
     const int card = static_cast<int>(s.condition_cards.size());
     s.condition_cards.push_back("bc" + std::to_string(card + 1));
     const auto [i1, i2, j1, j2] = g.box_cut(b.i1, b.i2, b.j1, b.j2);
+    std::array<double, 3> held  = b.value;  // between a refined deck's own points: its forces zero
+    for (int c = 0; c < 3; ++c)
+      if (!((b.code >> c) & 1)) held[static_cast<std::size_t>(c)] = 0;
     for (int j = j1; j <= j2; ++j)
       for (int i = i1; i <= i2; ++i)
-        if (const int n = g.node(i, j); n >= 0)
-          s.conditions.push_back({n, b.code, b.value}), s.condition_card.push_back(card), ++found;
+        if (const int n = g.node(i, j); n >= 0) {
+          const bool own = (i - b.i1) % b.load_spacing == 0 && (j - b.j1) % b.load_spacing == 0;
+          s.conditions.push_back({n, b.code, own ? b.value : held}), s.condition_card.push_back(card),
+              ++found;
+        }
     if (found == 0)
       throw InputError(b.ref.where() + ": no grid point lies in I " + std::to_string(b.i1) + "-" +
                        std::to_string(b.i2) + ", J " + std::to_string(b.j1) + "-" + std::to_string(b.j2));
@@ -123,6 +134,11 @@ inline Scene build_scene(const Deck& d) {
 
   detail::finish_scene(d, s);
   return s;
+}
+
+/// Build the scene of a read deck on the grid of its segment cards.
+inline Scene build_scene(const Deck& d) {
+  return build_scene(d, deck_grid(d));
 }
 
 }  // namespace gapfe

@@ -3,9 +3,19 @@
 // (t = inc x the time a load step lasts; output/step_files.hpp gives the tables' columns).
 #include <string>
 
+#include "gapfe/core/text.hpp"
 #include "gapfe/output/output_file.hpp"
 
 namespace gapfe::detail {
+
+/// A name as a CSV field or header: no control characters (core/text.hpp), no separators or quotes (a
+/// scene's group may be named anything).
+inline std::string csv_name(const std::string& name) {
+  std::string s = visible_text(name);
+  for (char& ch : s)
+    if (ch == ',' || ch == '"') ch = '_';
+  return s;
+}
 
 inline void csv_number(std::string& s, double v) {
   append_number(s, v);

@@ -152,7 +152,8 @@ inline PlotField plot_field(const VtuData& d, const std::string& name, const Plo
     const VtuField* a = d.cell(array);
     if (!a || a->components != components)
       throw InputError("field " + name + ": the file has no cell array '" + array +
-                       "' (gap_state and contact_force come from runs with gap elements)");
+                       "' (gap_state and contact_force come from runs with gap elements, error_estimate "
+                       "from runs with error_estimate = energy)");
     return *a;
   };
   static constexpr std::array<const char*, 6> kStress{"s_rr", "s_zz", "s_tt", "s_rz", "s_rt", "s_zt"};

@@ -27,7 +27,6 @@
 // Each row is one write (output/output_file.hpp), so a run that fails or is killed keeps the history of what
 // it accepted, every row whole.
 #include <algorithm>
-#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -35,6 +34,8 @@
 #include "gapfe/core/error.hpp"
 #include "gapfe/core/text.hpp"
 #include "gapfe/input/scene.hpp"
+#include "gapfe/output/card_reactions.hpp"
+#include "gapfe/output/csv_rows.hpp"
 #include "gapfe/output/output_file.hpp"
 #include "gapfe/output/vtu_writer.hpp"
 #include "gapfe/problem/results.hpp"
@@ -58,30 +59,11 @@ class HistoryFile {
   HistoryFile(const std::string& dir, const Scene& scene, int steps, double step_time,
               HistoryColumns columns = {})
       : steps_(steps), step_time_(step_time), columns_(columns) {
-    // Each card's nodes (each once) and the components it prescribes.
-    std::map<int, Card> by_index;
-    for (std::size_t k = 0; k < scene.conditions.size(); ++k) {
-      const int card = scene.condition_card.empty() ? 0 : scene.condition_card[k];
-      Card& c        = by_index[card];
-      c.name         = card < static_cast<int>(scene.condition_cards.size())
-                           ? scene.condition_cards[static_cast<std::size_t>(card)]
-                           : "bc" + std::to_string(card + 1);
-      c.code |= scene.conditions[k].code;
-      c.nodes.push_back(scene.conditions[k].node);
-    }
-    for (auto& [index, card] : by_index) cards_.push_back(std::move(card));
-    if (const StrainRateTest& x = scene.strain_rate_test; x.active()) {
-      cards_.push_back({"saac3x_bottom", 2 | 4, x.bottom});
-      cards_.push_back({"saac3x_top", 2, x.top});
-    }
+    cards_           = card_nodes(scene);
     std::string head = "step,inc,t,load_factor";
     std::set<std::string> used;
-    for (Card& c : cards_) {
-      std::sort(c.nodes.begin(), c.nodes.end());
-      c.nodes.erase(std::unique(c.nodes.begin(), c.nodes.end()), c.nodes.end());
-      c.name = detail::visible_text(c.name);  // a CSV header: no control characters (core/text.hpp), and
-      for (char& ch : c.name)                 // no separators or quotes in a name (a group may hold any)
-        if (ch == ',' || ch == '"') ch = '_';
+    for (CardNodes& c : cards_) {
+      c.name           = detail::csv_name(c.name);
       std::string name = c.name;
       for (int k = 2; !used.insert(name).second; ++k) name = c.name + "_" + std::to_string(k);
       for (int comp = 0; comp < 3; ++comp)
@@ -100,14 +82,9 @@ class HistoryFile {
       detail::append_number(row, v);
       row += ',';
     }
-    for (const Card& c : cards_)
+    for (const CardNodes& c : cards_)
       for (int comp = 0; comp < 3; ++comp)
-        if ((c.code >> comp) & 1) {
-          double total = 0;
-          for (const int n : c.nodes) total += s.reaction(n, comp);
-          detail::append_number(row, total);
-          row += ',';
-        }
+        if ((c.code >> comp) & 1) detail::append_number(row, card_reaction(s, c, comp)), row += ',';
     const double u_max = s.displacement.rows() > 0 ? s.displacement.rowwise().norm().maxCoeff() : 0.0;
     detail::append_number(row, u_max);
     for (const int v : {summary.closed, summary.slipping}) {
@@ -133,12 +110,7 @@ class HistoryFile {
   void close() { out_.close(); }
 
  private:
-  struct Card {
-    std::string name;
-    int code = 0;
-    std::vector<int> nodes;
-  };
-  std::vector<Card> cards_;
+  std::vector<CardNodes> cards_;
   int steps_        = 1;
   double step_time_ = 1;
   HistoryColumns columns_;

@@ -1,9 +1,9 @@
 #pragma once
 // One run per output folder. A run's files are a fixed family of names (run_file: the tables, gaps.csv,
-// history.csv, plasticity.csv, result.pvd and step_*.vtu, deformed.svg, the pictures plot_* and curve_*,
-// and the temporaries of output/output_file.hpp), and a run starts by writing a manifest, gapfe-run.txt,
-// which says the folder is a run's and how the run went (running; complete; stopped, and why: a run
-// killed leaves "running"). Before a run writes anything:
+// history.csv, plasticity.csv, estimates.csv, result.pvd and step_*.vtu, deformed.svg, the pictures plot_*
+// and curve_*, and the temporaries of output/output_file.hpp), and a run starts by writing a manifest,
+// gapfe-run.txt, which says the folder is a run's and how the run went (running; complete; stopped, and why:
+// a run killed leaves "running"). Before a run writes anything:
 //   - a folder with a manifest held the last run: every file of the family is removed (a link is removed,
 //     never what it points to), so the new run's files are the only ones there, however few it writes;
 //   - a folder with files of the family but no manifest holds results no gapfe run can vouch for (another
@@ -37,7 +37,8 @@ struct RunFolder {
     for (const std::string_view fixed :
          {std::string_view("nodes.csv"), std::string_view("elements.csv"), std::string_view("reactions.csv"),
           std::string_view("gaps.csv"), std::string_view("history.csv"), std::string_view("plasticity.csv"),
-          std::string_view("result.pvd"), std::string_view("deformed.svg"), kManifest})
+          std::string_view("result.pvd"), std::string_view("deformed.svg"), std::string_view("estimates.csv"),
+          kManifest})
       if (name == fixed) return true;
     return (starts("step_") && ends(".vtu")) ||
            ((starts("plot_") || starts("curve_")) && (ends(".svg") || ends(".png"))) ||

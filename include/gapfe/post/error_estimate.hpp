@@ -165,10 +165,14 @@ double linear_field_energy(const std::array<Vec<S>, 3>& d, const Mat<S, S>& comp
 /// and problem, with stresses from `source` (post/recovery.hpp); cells of the `skip` materials (gap
 /// elements: their stiffness is a device, not a body's) have no estimate and count in no sum. A part of a
 /// partitioned problem recovers from its own cells only (a patch stops at the part's edge) and sums the
-/// norms over every part (collective).
+/// norms over every part (collective). `centroids`, when given, receives what recover() gives for the
+/// cells' centroids with Recovered::stress (every cell's, the skipped ones' too), from the same pass: a run
+/// that writes them and estimates recovers each cell once (the legacy quad's condensed centre is the costly
+/// part).
 template <class M, class Source>
 ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const VecX& u, const Source& source,
-                             const std::vector<int>& skip = {}) {
+                             const std::vector<int>& skip        = {},
+                             std::vector<PointValues>* centroids = nullptr) {
   using Kin          = typename M::Kinematics;
   using Elem         = typename M::Element;
   constexpr int S    = Kin::kStrain;
@@ -194,49 +198,52 @@ ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const V
   // side, and the thermal strain).
   double peak = 0, noise = 0;
   const double largest_u = u.size() > 0 ? u.cwiseAbs().maxCoeff() : 0.0;
+  if (centroids) centroids->clear(), centroids->reserve(mesh.cells.size() + mesh.triangles.size());
   a.reset_cache();
-  for_each_cell<Elem>(
-      mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
-                                          const std::array<int, NPC>& cell, const CellTag& tag) {
-        static_assert(
-            requires { E::kCorners; } || requires { E::kTri; } || requires { E::kTriangles; } ||
-                (E::kEdgeNodes == 3 && E::kStiffnessPoints == 9),
-            "cells the recovery knows: Quad4, its B-bar form, the legacy quad, Tri3 (planes), Quad8 "
-            "(quadratics)");
-        if (skipped(tag)) return;
-        using Kernel     = ElementKernel<Kin, E>;
-        const auto x     = cell_coords<E>(mesh, cell);
-        const auto& lp   = a.local(p, tag, cell);
-        const auto first = a.template first_point<E>(e);
-        const auto us   = Source::kAnyPoint ? shape_displacements<Kernel>(x, lp, p.inertia, a.gather(cell, u))
-                                            : typename Kernel::ShapeVector();
-        const auto mean = Source::kAnyPoint ? Kernel::mean_volumetric(x) : typename Kernel::VolumetricRow();
-        const Mat<E::kShapeNodes, 2> xs = E::shape_coords(x);
-        const Vec2 origin               = x.row(0).transpose();
-        // Linear cells: the cell's sums about its first corner, moved to each corner's patch.
-        detail::PatchSums<S, P> own;
-        const double side =
-            std::min((x.row(1) - x.row(0)).norm(), (x.row(std::min(E::kNodes, 4) - 1) - x.row(0)).norm());
-        noise      = std::max(noise, lp.stiffness.diagonal().maxCoeff() *
-                                         (largest_u / side + lp.thermal_strain.cwiseAbs().maxCoeff()));
-        double det = 0;
-        for (int q = 0; q < E::kStiffnessPoints; ++q) {
-          const auto g      = E::stiffness_point(x, q, det);
-          const auto slot   = first + static_cast<std::size_t>(q);
-          const Vec6 strain = Source::kAnyPoint ? Kernel::strain(g, mean, us) : Vec6();
-          stress[slot]      = Kernel::restrict(source.stress(lp, strain, slot));
-          peak              = std::max(peak, stress[slot].cwiseAbs().maxCoeff());
-          const Vec2 point(g.r, g.N.dot(xs.col(1)));
-          if constexpr (P == 3)
-            own.add(point - origin, stress[slot]);
-          else  // a quadratic's sums do not move by a cheap shift: each node's own
-            for (int c = 0; c < E::kNodes; ++c)
-              sums[slots(cell[c], tag.material)].add(point - mesh.nodes[cell[c]], stress[slot]);
-        }
-        if constexpr (P == 3)
-          for (int c = 0; c < E::kNodes; ++c)
-            sums[slots(cell[c], tag.material)].add_shifted(own, origin - mesh.nodes[cell[c]]);
-      });
+  for_each_cell<Elem>(mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
+                                                          const std::array<int, NPC>& cell,
+                                                          const CellTag& tag) {
+    static_assert(
+        requires { E::kCorners; } || requires { E::kTri; } || requires { E::kTriangles; } ||
+            (E::kEdgeNodes == 3 && E::kStiffnessPoints == 9),
+        "cells the recovery knows: Quad4, its B-bar form, the legacy quad, Tri3 (planes), Quad8 "
+        "(quadratics)");
+    const bool skip_cell = skipped(tag);
+    if (skip_cell && !centroids) return;
+    const auto x     = cell_coords<E>(mesh, cell);
+    const auto& lp   = a.local(p, tag, cell);
+    const auto first = a.template first_point<E>(e);
+    const CellPoints<Kin, E, std::decay_t<decltype(lp)>, Source> values(
+        x, lp, p.inertia, a.gather(cell, u), source, e, !std::is_same_v<E, Elem>, first, Recovered::stress);
+    if (skip_cell) {
+      centroids->push_back(values.centroid());
+      return;
+    }
+    const auto points = values.points();
+    if (centroids) centroids->push_back(values.centroid(points));
+    const Vec2 origin = x.row(0).transpose();
+    // Linear cells: the cell's sums about its first corner, moved to each corner's patch.
+    detail::PatchSums<S, P> own;
+    const double side =
+        std::min((x.row(1) - x.row(0)).norm(), (x.row(std::min(E::kNodes, 4) - 1) - x.row(0)).norm());
+    noise = std::max(noise, lp.stiffness.diagonal().maxCoeff() *
+                                (largest_u / side + lp.thermal_strain.cwiseAbs().maxCoeff()));
+    for (int q = 0; q < E::kStiffnessPoints; ++q) {
+      const PointValues& v = points.value[q];
+      const auto slot      = first + static_cast<std::size_t>(q);
+      stress[slot]         = ElementKernel<Kin, E>::restrict(v.stress);
+      peak                 = std::max(peak, stress[slot].cwiseAbs().maxCoeff());
+      const Vec2 point(v.r, v.z);
+      if constexpr (P == 3)
+        own.add(point - origin, stress[slot]);
+      else  // a quadratic's sums do not move by a cheap shift: each node's own
+        for (int c = 0; c < E::kNodes; ++c)
+          sums[slots(cell[c], tag.material)].add(point - mesh.nodes[cell[c]], stress[slot]);
+    }
+    if constexpr (P == 3)
+      for (int c = 0; c < E::kNodes; ++c)
+        sums[slots(cell[c], tag.material)].add_shifted(own, origin - mesh.nodes[cell[c]]);
+  });
   std::vector<Vec<S>> recovered(sums.size());
   for (std::size_t k = 0; k < sums.size(); ++k) recovered[k] = sums[k].at_node();
   sums = {};

@@ -156,6 +156,117 @@ typename Kernel::ShapeVector shape_displacements(const typename Kernel::Coords& 
   }
 }
 
+/// One cell's values at its points, as a recovery gives them (Recovered says which fields): the strain from
+/// the cell's displacements (the legacy quad's condensed centre recovered once, here) where the values need
+/// it, the stress from `source`. recover() and the error estimate (post/error_estimate.hpp) both take their
+/// values from here, so a run that does both in one pass writes the same numbers as either alone.
+template <class Kin, class E, class Local, class Source>
+class CellPoints {
+ public:
+  using Kernel = ElementKernel<Kin, E>;
+  /// Whether the centroid is a point of its own (a stress at any point, and an element that has a centroid
+  /// point), else the volume-weighted mean of the stiffness points (the legacy quad's r-bar-A weighted mean
+  /// of its sub-triangles, docs/theory.md 2 item 4; a law's stored stresses).
+  static constexpr bool kCentroidPoint =
+      Source::kAnyPoint && requires(const Mat<E::kNodes, 2>& x, double& det) {
+    E::centroid_point(x, det);
+  };
+
+  /// The values at every stiffness point, and the points' volume weights.
+  struct Points {
+    std::array<PointValues, E::kStiffnessPoints> value;
+    std::array<double, E::kStiffnessPoints> weight;
+  };
+
+  template <class Inertia>
+  CellPoints(const typename Kernel::Coords& x, const Local& lp, const Inertia& inertia,
+             const typename Kernel::Vector& ue, const Source& source, std::size_t e, bool triangle,
+             std::size_t first, Recovered what)
+      : x_(x),
+        lp_(lp),
+        source_(source),
+        e_(e),
+        first_(first),
+        triangle_(triangle),
+        all_(what == Recovered::all),
+        strain_(all_ || Source::kAnyPoint),  // a law's stress from the strain needs it
+        xs_(E::shape_coords(x)) {
+    if (strain_)
+      us_ = shape_displacements<Kernel>(x, lp, inertia, ue), mean_vol_ = Kernel::mean_volumetric(x);
+    if (all_) to_strain_material_ = strain_rotation(lp.to_material);
+  }
+
+  /// The values at point `g`: stiffness point `point` (its history slot first + point), or -1 the centroid.
+  PointValues at(const PointGeometry<E::kShapeNodes>& g, int point) const {
+    PointValues v;
+    v.cell = static_cast<int>(e_), v.triangle = triangle_, v.point = point;
+    v.r = g.r, v.z = g.N.dot(xs_.col(1));
+    v.strain = strain_ ? Kernel::strain(g, mean_vol_, us_) : Vec6::Zero();
+    v.stress = source_.stress(lp_, v.strain, first_ + static_cast<std::size_t>(std::max(point, 0)));
+    v.eqps   = source_.eqps(first_ + static_cast<std::size_t>(std::max(point, 0)));
+    if (all_) {
+      v.strain_material = to_strain_material_ * v.strain;
+      v.stress_material = lp_.to_material * v.stress;
+    } else {
+      v.strain_material.setZero(), v.stress_material.setZero();
+    }
+    return v;
+  }
+  Points points() const {
+    Points out;
+    double det = 0;
+    for (int q = 0; q < E::kStiffnessPoints; ++q) {
+      const auto g = E::stiffness_point(x_, q, det);
+      out.value[q] = at(g, q), out.weight[q] = g.weight;
+    }
+    return out;
+  }
+  /// The centroid's values; `p` the stiffness points' (points()) when the centroid is their mean.
+  PointValues centroid(const Points& p) const {
+    if constexpr (kCentroidPoint) {
+      (void)p;
+      return centroid();
+    } else {
+      PointValues mean{};
+      double w = 0;
+      mean.strain.setZero(), mean.stress.setZero(), mean.strain_material.setZero(),
+          mean.stress_material.setZero();
+      for (int q = 0; q < E::kStiffnessPoints; ++q) {
+        const double g       = p.weight[q];
+        const PointValues& v = p.value[q];
+        w += g;
+        mean.r += g * v.r, mean.z += g * v.z, mean.eqps += g * v.eqps;
+        mean.strain += g * v.strain, mean.stress += g * v.stress;
+        mean.strain_material += g * v.strain_material, mean.stress_material += g * v.stress_material;
+      }
+      mean.r /= w, mean.z /= w, mean.eqps /= w, mean.strain /= w, mean.stress /= w;
+      mean.strain_material /= w, mean.stress_material /= w;
+      mean.cell = static_cast<int>(e_), mean.triangle = triangle_, mean.point = -1;
+      return mean;
+    }
+  }
+  /// The centroid's values alone.
+  PointValues centroid() const {
+    if constexpr (kCentroidPoint) {
+      double det = 0;
+      return at(E::centroid_point(x_, det), -1);
+    } else {
+      return centroid(points());
+    }
+  }
+
+ private:
+  const typename Kernel::Coords& x_;
+  const Local& lp_;
+  const Source& source_;
+  std::size_t e_, first_;
+  bool triangle_, all_, strain_;
+  Mat<E::kShapeNodes, 2> xs_;
+  typename Kernel::ShapeVector us_{};
+  typename Kernel::VolumetricRow mean_vol_{};
+  Mat66 to_strain_material_ = Mat66::Zero();
+};
+
 /// Strain and stress at every stiffness point of every cell, or (`centroids`) one value per cell; cells
 /// first, then triangles.
 template <class M, class Source>
@@ -166,64 +277,21 @@ std::vector<PointValues> recover(const Assembler<M>& a, const Problem<M>& p, con
   std::vector<PointValues> out;
   out.reserve(centroids ? p.mesh.cells.size() + p.mesh.triangles.size() : a.point_count());  // 232 B each
   a.reset_cache();
-  for_each_cell<Elem>(
-      p.mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
-                                            const std::array<int, NPC>& cell, const CellTag& tag) {
-        using Kernel      = ElementKernel<Kin, E>;
-        const auto x      = cell_coords<E>(p.mesh, cell);
-        const auto& lp    = a.local(p, tag, cell);
-        const auto ue     = a.gather(cell, u);
-        const auto first  = a.template first_point<E>(e);
-        const bool all    = what == Recovered::all;
-        const bool strain = all || Source::kAnyPoint;  // a law's stress from the strain needs it
-        const typename Kernel::ShapeVector us =
-            strain ? shape_displacements<Kernel>(x, lp, p.inertia, ue) : typename Kernel::ShapeVector();
-        const Mat<E::kShapeNodes, 2> xs = E::shape_coords(x);
-        const Mat66 to_strain_material  = all ? strain_rotation(lp.to_material) : Mat66::Zero();
-        const auto mean_vol  = strain ? Kernel::mean_volumetric(x) : typename Kernel::VolumetricRow();
-        const auto values_at = [&](const PointGeometry<E::kShapeNodes>& g, int point, std::size_t slot) {
-          PointValues v;
-          v.cell = static_cast<int>(e), v.triangle = !std::is_same_v<E, Elem>, v.point = point;
-          v.r = g.r, v.z = g.N.dot(xs.col(1));
-          v.strain = strain ? Kernel::strain(g, mean_vol, us) : Vec6::Zero();
-          v.stress = source.stress(lp, v.strain, slot);
-          v.eqps   = source.eqps(slot);
-          if (all) {
-            v.strain_material = to_strain_material * v.strain;
-            v.stress_material = lp.to_material * v.stress;
-          } else {
-            v.strain_material.setZero(), v.stress_material.setZero();
-          }
-          return v;
-        };
-        double det = 0;
-        if (!centroids) {
-          for (int q = 0; q < E::kStiffnessPoints; ++q)
-            out.push_back(values_at(E::stiffness_point(x, q, det), q, first + static_cast<std::size_t>(q)));
-          return;
-        }
-        if constexpr (Source::kAnyPoint && requires { E::centroid_point(x, det); }) {
-          out.push_back(values_at(E::centroid_point(x, det), -1, first));
-        } else {  // the volume-weighted mean of the stiffness points
-          PointValues mean{};
-          double w = 0;
-          mean.strain.setZero(), mean.stress.setZero(), mean.strain_material.setZero(),
-              mean.stress_material.setZero();
-          for (int q = 0; q < E::kStiffnessPoints; ++q) {
-            const auto g        = E::stiffness_point(x, q, det);
-            const PointValues v = values_at(g, q, first + static_cast<std::size_t>(q));
-            w += g.weight;
-            mean.r += g.weight * v.r, mean.z += g.weight * v.z, mean.eqps += g.weight * v.eqps;
-            mean.strain += g.weight * v.strain, mean.stress += g.weight * v.stress;
-            mean.strain_material += g.weight * v.strain_material,
-                mean.stress_material += g.weight * v.stress_material;
-          }
-          mean.r /= w, mean.z /= w, mean.eqps /= w, mean.strain /= w, mean.stress /= w;
-          mean.strain_material /= w, mean.stress_material /= w;
-          mean.cell = static_cast<int>(e), mean.triangle = !std::is_same_v<E, Elem>, mean.point = -1;
-          out.push_back(mean);
-        }
-      });
+  for_each_cell<Elem>(p.mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
+                                                            const std::array<int, NPC>& cell,
+                                                            const CellTag& tag) {
+    const auto x   = cell_coords<E>(p.mesh, cell);
+    const auto& lp = a.local(p, tag, cell);
+    const CellPoints<Kin, E, std::decay_t<decltype(lp)>, Source> values(x, lp, p.inertia, a.gather(cell, u),
+                                                                        source, e, !std::is_same_v<E, Elem>,
+                                                                        a.template first_point<E>(e), what);
+    if (centroids) {
+      out.push_back(values.centroid());
+    } else {
+      const auto points = values.points();
+      out.insert(out.end(), points.value.begin(), points.value.end());
+    }
+  });
   return out;
 }
 

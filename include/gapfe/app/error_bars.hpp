@@ -1,0 +1,126 @@
+#pragma once
+// `gapfe run --estimate`: error bars on the quantities a user reads (app/read_quantities.hpp). The deck is
+// solved again on its grid at 1/2 the spacing, and at 1/4 where that mesh is small enough (kThirdLevelNodes),
+// from the same cards (input/deck_refine.hpp); each quantity's values are extrapolated
+// (post/extrapolation.hpp) and its error bar is the distance of this run's value to the limit. The finer runs
+// write no files: the log and estimates.csv carry what they found. docs/accuracy.md "Error bars".
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "gapfe/app/plan.hpp"
+#include "gapfe/app/read_quantities.hpp"
+#include "gapfe/app/run.hpp"
+#include "gapfe/input/deck_refine.hpp"
+#include "gapfe/output/csv_rows.hpp"
+#include "gapfe/output/output_file.hpp"
+#include "gapfe/post/extrapolation.hpp"
+
+namespace gapfe::app {
+
+/// The mesh at 1/4 the spacing is solved too when it has at most this many nodes (16 times the deck's; about
+/// 4e5 equations, seconds on one core): three meshes then give each quantity's observed order.
+inline constexpr long kThirdLevelNodes = 200'000;
+
+/// One mesh's run: its spacing level (0 the deck's own; k: 1 / 2^k of it), size, time and quantities.
+struct LevelRun {
+  int level      = 0;
+  long nodes     = 0;
+  double seconds = 0;
+  std::vector<ReadQuantity> quantities;
+};
+
+/// Why `gapfe run --estimate` cannot refine this model, before any run: empty when it can.
+inline std::string estimate_refused(bool scene_file, const Plan& p) {
+  if (scene_file)
+    return "--estimate refines card decks (their I-J grids) only so far; a scene file's mesh is not refined";
+  if (p.solver == SolverChoice::petsc) return "--estimate runs on one process: not with solver = petsc";
+  return "";
+}
+
+/// The runs of the finer meshes of `deck` (whose grid is `scene`'s), after the run of its own mesh
+/// (`level0`), with `plan`'s options: one at 1/2 the spacing, and at 1/4 when it has at most kThirdLevelNodes
+/// nodes. Each is reported in `log` as it ends.
+inline std::vector<LevelRun> solve_finer(const Deck& deck, const Scene& scene, const Plan& plan,
+                                         const RunRequest& level0, std::ostream& log) {
+  std::vector<LevelRun> runs;
+  std::ostringstream quiet;  // the finer runs' warnings repeat the deck's own run's
+  for (int level = 1; level <= 2; ++level) {
+    const long nodes = static_cast<long>(scene.grid.node_count()) << (2 * level);  // about
+    if (level == 2 && nodes > kThirdLevelNodes) break;
+    const auto start          = std::chrono::steady_clock::now();
+    const RefinedDeck refined = refine_deck(deck, scene.grid, level);
+    const Plan refined_plan   = make_plan(refined.deck, refined.scene, plan.key.kinematics);
+    if (!(refined_plan.key == plan.key) || refined_plan.solver != plan.solver)
+      throw std::logic_error("--estimate: the finer mesh's plan differs from the deck's");
+    const RunRequest r{refined.deck, refined.scene, refined_plan, "",    quiet, false,
+                       {},           level0.units,  nullptr,      false, true};
+    LevelRun finer{level, refined.scene.grid.node_count(), 0, app::run(r).quantities};
+    finer.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    log << "error bars: the mesh at 1/" << (1 << level) << " of the spacing, " << finer.nodes
+        << " nodes, solved in " << finer.seconds << " s\n";
+    runs.push_back(std::move(finer));
+  }
+  return runs;
+}
+
+/// Each quantity's error bar from the runs (the deck's own first), in the log and in `dir`/estimates.csv.
+inline void report_error_bars(std::ostream& log, const std::string& dir, const std::vector<LevelRun>& runs) {
+  const std::vector<ReadQuantity>& own = runs.front().quantities;
+  std::ostringstream csv;
+  csv << std::setprecision(17);
+  csv << "quantity,value,error,relative_error,status,order,limit,r,z";
+  for (const LevelRun& run : runs) csv << ",spacing_1/" << (1 << run.level);
+  csv << "\n";
+  log << "error bars (" << runs.size()
+      << " meshes; the error of this run's value, from its values on the finer "
+      << "meshes; docs/accuracy.md \"Error bars\"):\n";
+  for (std::size_t q = 0; q < own.size(); ++q) {
+    std::vector<double> values;
+    for (const LevelRun& run : runs)
+      values.push_back(q < run.quantities.size() && run.quantities[q].name == own[q].name
+                           ? run.quantities[q].value
+                           : std::nan(""));
+    const ErrorBar bar    = error_bar(values, own[q].order);
+    const ReadQuantity& v = own[q];
+    log << "  " << v.name;
+    if (v.located) log << " (at r = " << v.at(0) << ", z = " << v.at(1) << ")";
+    log << ": ";
+    const std::string status = bar.status == ErrorBar::Status::exact      ? "exact"
+                               : bar.status == ErrorBar::Status::observed ? "observed"
+                               : bar.status == ErrorBar::Status::assumed  ? "assumed"
+                                                                          : "not_converging";
+    if (bar.status == ErrorBar::Status::exact) {
+      log << v.value << " (the meshes agree to round-off)\n";
+      csv << detail::csv_name(v.name) << "," << v.value << ",0,0," << status << ",," << bar.limit;
+    } else if (bar.converges()) {
+      const double relative = bar.limit != 0 ? bar.error / std::abs(bar.limit) : 0.0;
+      log << v.value << " +- " << bar.error << " (" << 100 * relative << "%";
+      if (bar.status == ErrorBar::Status::observed && std::isfinite(bar.order))
+        log << "; observed order " << bar.order;
+      else if (bar.status == ErrorBar::Status::assumed)
+        log << "; order " << bar.order << " assumed, two meshes";
+      log << ")\n";
+      csv << detail::csv_name(v.name) << "," << v.value << "," << bar.error << "," << relative << ","
+          << status << "," << bar.order << "," << bar.limit;
+    } else {
+      log << "not converging (";
+      for (std::size_t k = 0; k < values.size(); ++k) log << (k ? ", " : "") << values[k];
+      log << " as the spacing halves: a singular point such as a re-entrant corner or a point load?)\n";
+      csv << detail::csv_name(v.name) << "," << v.value << ",,," << status << ",,";
+    }
+    csv << "," << (v.located ? v.at(0) : std::nan("")) << "," << (v.located ? v.at(1) : std::nan(""));
+    for (const double value : values) csv << "," << value;
+    csv << "\n";
+  }
+  OutputFile file(dir + "/estimates.csv");
+  file.append(csv.str());
+  file.close();
+}
+
+}  // namespace gapfe::app

@@ -1,0 +1,56 @@
+#pragma once
+// The quantities a user reads off a run, which `gapfe run --estimate` gives error bars (app/error_bars.hpp;
+// docs/accuracy.md "Error bars"): each BC card's (a scene's [[boundary]] group's) reaction along each
+// direction it holds, the largest displacement and the largest von Mises stress with where they are. The same
+// list on any mesh of one model: the cards and groups are the model's, not the mesh's.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "gapfe/input/scene.hpp"
+#include "gapfe/output/card_reactions.hpp"
+#include "gapfe/problem/results.hpp"
+
+namespace gapfe::app {
+
+/// One quantity of a run's last increment.
+struct ReadQuantity {
+  std::string name;             ///< "reaction bc1 R_z", "largest |u|", "largest von Mises"
+  double value = 0;             ///< [force] total ring force, [length], [stress]
+  Vec2 at      = Vec2::Zero();  ///< where, for a largest value (r, z) [length]
+  bool located = false;         ///< whether `at` means something
+  /// The order of convergence in h of its error, assumed when only two meshes are solved: reactions and
+  /// displacements as the energy (2), a stress at a point one less (1).
+  double order = 2;
+};
+
+/// The quantities of a solution on `scene` (whole, not a part's), with the cells' centroid stresses
+/// (cells, then triangles, as a driver's centroid_values gives them).
+inline std::vector<ReadQuantity> read_quantities(const Scene& scene, const Solution& solution,
+                                                 const std::vector<PointValues>& centroids) {
+  std::vector<ReadQuantity> out;
+  static constexpr std::array<const char*, 3> kDirection{"R_r", "R_z", "R_t"};
+  for (const CardNodes& card : card_nodes(scene))  // each card's total reaction along what it holds
+    for (int d = 0; d < 3; ++d)
+      if ((card.code >> d) & 1)
+        out.push_back({"reaction " + card.name + " " + kDirection[d], card_reaction(solution, card, d)});
+
+  ReadQuantity u{"largest |u|", 0, Vec2::Zero(), true, 2};
+  for (Eigen::Index n = 0; n < solution.displacement.rows(); ++n)
+    if (const double size = solution.displacement.row(n).norm(); size > u.value)
+      u.value = size, u.at = scene.mesh.nodes[static_cast<std::size_t>(n)];
+  out.push_back(u);
+
+  ReadQuantity mises{"largest von Mises", 0, Vec2::Zero(), true, 1};
+  const std::size_t quads = scene.mesh.cells.size();
+  for (std::size_t e = 0; e < centroids.size(); ++e) {
+    const CellTag tag = e < quads ? scene.mesh.cell_tag(e) : scene.mesh.triangle_tag(e - quads);
+    if (tag.material == scene.gap_material) continue;  // a gap element's stress is a device's
+    if (const double s = voigt::von_mises(centroids[e].stress); s > mises.value)
+      mises.value = s, mises.at = Vec2(centroids[e].r, centroids[e].z);
+  }
+  out.push_back(mises);
+  return out;
+}
+
+}  // namespace gapfe::app

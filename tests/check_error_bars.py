@@ -1,0 +1,155 @@
+#!/usr/bin/python3
+"""`gapfe run --estimate` (app/error_bars.hpp, docs/accuracy.md "Error bars") through the command, against
+closed forms (ctest `gapfe_error_bars`):
+
+  * the Lame tube (a = 100, b = 200, bore pressure 100, plane strain; E = 200000, nu = 0.3) as card decks of
+    8 cells through the wall, with the legacy quadrilateral, quad4 and quad4bbar: each end's axial reaction
+    (2 pi nu p a^2, the plane-strain sigma_zz over the end), the largest displacement (u_r at the bore) and
+    the largest von Mises stress (the bore's; the run's is its cells' centroids', nearest the bore h / 2
+    away). Each error bar (this run's value against the extrapolated limit) must lie within [0.5, 2] of the
+    true error, |value - closed form|, where that error is above round-off;
+  * a stepped bar pulled along its axis, with a re-entrant corner of 270 degrees: its largest von Mises
+    stress grows without bound as the mesh is refined, and is reported as not converging, with no number;
+  * what --estimate refuses before it runs (a scene file, a deck with gap elements), with the last run's
+    files left as they were; and estimates.csv gone after a later run without --estimate.
+
+    /usr/bin/python3 tests/check_error_bars.py build/release/examples/gapfe WORKDIR
+"""
+import csv
+import math
+import pathlib
+import shutil
+import subprocess
+import sys
+
+root = pathlib.Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(root / "bench"))
+import deckgen  # noqa: E402  (the decks' one writer)
+from checks import check, finish  # noqa: E402  (tests/checks.py: the shared tally)
+
+gapfe = pathlib.Path(sys.argv[1]).resolve()
+work = pathlib.Path(sys.argv[2]).resolve()
+E, NU = 200000.0, 0.3
+A, B, P = 100.0, 200.0, 100.0
+BAND = (0.5, 2.0)
+
+
+def run(model, name, *options, expect=0):
+    out = work / name
+    done = subprocess.run([str(gapfe), "run", str(model), "--out", str(out), "--plot", "none", *options],
+                          capture_output=True, text=True)
+    check(done.returncode == expect, f"{name}: exit {done.returncode}, expected {expect}: {done.stderr.strip()}")
+    return out, done.stdout, done.stderr
+
+
+def estimates(out):
+    rows = list(csv.DictReader(open(out / "estimates.csv")))
+    return {row["quantity"]: row for row in rows}
+
+
+def lame():
+    s = P * A * A / (B * B - A * A)
+    u_bore = (1 + NU) / E * s * ((1 - 2 * NU) * A + B * B / A)
+    sigma = (-P, 2 * NU * s, s * (B * B + A * A) / (A * A))  # rr, zz, hoop at the bore
+    mises = math.sqrt(0.5 * sum((sigma[k] - sigma[(k + 1) % 3]) ** 2 for k in range(3)))
+    axial = 2 * math.pi * NU * P * A * A
+    truth = {"reaction bc1 R_z": axial, "reaction bc2 R_z": axial, "largest |u|": u_bore,
+             "largest von Mises": mises}
+    for element in ("legacy", "quad4", "quad4bbar"):
+        deck = work / f"lame_{element}.deck"
+        deck.write_text(deckgen.tube_deck(9, 3, extension=("format = elastic", f"element = {element}")))
+        out, log, _ = run(deck, deck.stem, "--estimate")
+        check("error bars (3 meshes" in log, f"{deck.stem}: three meshes solved")
+        rows = estimates(out)
+        check(set(rows) == set(truth), f"{deck.stem}: the quantities {sorted(rows)}")
+        for name, exact in truth.items():
+            if name not in rows:
+                continue
+            row = rows[name]
+            value, bar = float(row["value"]), float(row["error"] or "nan")
+            true_error = abs(abs(value) - exact)
+            check(row["status"] in ("observed", "exact"), f"{deck.stem}: {name} converges: {row['status']}")
+            if true_error < 1e-7 * exact:  # exact to round-off: the bar must say so
+                check(bar < 1e-6 * exact, f"{deck.stem}: {name}: exact to {true_error:.3g}, bar {bar:.3g}")
+                continue
+            ratio = bar / true_error
+            print(f"{deck.stem}: {name} = {value:.6g} +- {bar:.3g}, true error {true_error:.3g} "
+                  f"(ratio {ratio:.3f}, order {row['order']})")
+            check(BAND[0] <= ratio <= BAND[1], f"{deck.stem}: {name}: error bar {bar:.3g} against the true "
+                                               f"error {true_error:.3g} (ratio {ratio:.3g})")
+
+
+def stepped_bar_deck(n=4, m=4, a=50.0, b=150.0, height=50.0, pull=100.0):
+    """A bar a < r < b for 0 < z < height, a < r < c = (a + b) / 2 above it to 2 height; held along z at the
+    bottom, pulled by `pull` on its top. The step's inner corner (c, height) is re-entrant (270 degrees).
+    Grid (2n + 1) x (2m + 1); rows above J = m + 1 hold I = 1 .. n + 1 (numbered row by row)."""
+    ni, nj, c = 2 * n + 1, 2 * m + 1, (a + b) / 2
+    full = (m + 1) * ni  # nodes of the full rows
+    node = lambda i, j: (j - 1) * ni + i if j <= m + 1 else full + (j - m - 2) * (n + 1) + i
+    seg = deckgen.segment
+    lines = ["$ format = elastic", "STEPPED BAR WITH A RE-ENTRANT CORNER",
+             deckgen.control(numpc=n), deckgen.mesh_control(ni, nj, 6, 1, 1),
+             seg([(1, 1, a, 0.0), (ni, 1, b, 0.0)], 1), seg([(ni, 1, b, 0.0), (ni, m + 1, b, height)], 1),
+             seg([(ni, m + 1, b, height), (n + 1, m + 1, c, height)], 1),
+             seg([(n + 1, m + 1, c, height), (n + 1, nj, c, 2 * height)], 1),
+             seg([(n + 1, nj, c, 2 * height), (1, nj, a, 2 * height)], 1),
+             seg([(1, nj, a, 2 * height), (1, 1, a, 0.0)], 1),
+             deckgen.bc(1, ni, 1, 1, 2), deckgen.block(1, 1, ni, 1, nj)]
+    lines += deckgen.material(1, [deckgen.isotropic(E, NU)], elastic_format=True)
+    lines += [deckgen.edge(node(i + 1, nj), node(i, nj), -pull) for i in range(1, n + 1)]  # tension
+    return "\n".join(lines) + "\n", node, ni, nj
+
+
+def reentrant_corner():
+    text, node, ni, nj = stepped_bar_deck()
+    deck = work / "stepped_bar.deck"
+    deck.write_text(text)
+    mesh = work / "stepped_bar_mesh"
+    done = subprocess.run([str(gapfe), "mesh", str(deck), "--out", str(mesh)], capture_output=True, text=True)
+    check(done.returncode == 0, f"stepped bar: gapfe mesh: {done.stderr.strip()}")
+    numbers = {(int(r["i"]), int(r["j"])): int(r["node"]) for r in csv.DictReader(open(mesh / "mesh_nodes.csv"))}
+    check(all(numbers.get((i, nj)) == node(i, nj) for i in range(1, 6)), "stepped bar: the top row's numbers")
+    out, log, _ = run(deck, "stepped_bar", "--estimate")
+    rows = estimates(out)
+    mises = rows.get("largest von Mises", {})
+    check(mises.get("status") == "not_converging" and mises.get("error") == "",
+          f"stepped bar: the corner's stress reported as not converging: {mises}")
+    where = (float(mises.get("r", "nan")), float(mises.get("z", "nan")))
+    check(math.hypot(where[0] - 100.0, where[1] - 50.0) < 25.0, f"stepped bar: the largest stress at {where}, "
+                                                                 "not within two cells of the corner (100, 50)")
+    check(any("largest von Mises" in line and "not converging" in line for line in log.splitlines()),
+          "stepped bar: the log's line for the stress")
+    values = [float(mises.get(k, "nan")) for k in ("spacing_1/1", "spacing_1/2", "spacing_1/4")]
+    check(values[0] < values[1] < values[2], f"stepped bar: the stress grows as the mesh is refined: {values}")
+    reaction = rows.get("reaction bc1 R_z", {})
+    pulled = 100.0 * math.pi * (100.0 ** 2 - 50.0 ** 2)
+    check(reaction.get("status") in ("observed", "exact") and
+          abs(abs(float(reaction.get("value", "nan"))) - pulled) < 1e-6 * pulled,
+          f"stepped bar: the support carries the pull: {reaction}")
+
+
+def refusals():
+    # A folder with a finished run, which a refused --estimate must leave as it is.
+    deck = work / "lame_small.deck"
+    deck.write_text(deckgen.tube_deck(5, 3))
+    out, _, _ = run(deck, "kept")
+    before = sorted(p.name for p in out.iterdir())
+    scene = root / "examples" / "scenes" / "notched_tube.toml"
+    for model, why in ((scene, "refines card decks"), (root / "examples" / "decks" / "two_tubes.deck",
+                                                        "gap elements of this deck")):
+        _, _, err = run(model, "kept", "--estimate", expect=1)
+        lines = [line for line in err.splitlines() if line.strip()]
+        check(len(lines) == 1 and why in err, f"{model.name}: one line naming why: {err.strip()}")
+        check(sorted(p.name for p in out.iterdir()) == before, f"{model.name}: the last run's files kept")
+    out, _, _ = run(deck, "kept", "--estimate")
+    check((out / "estimates.csv").exists(), "estimates.csv written")
+    run(deck, "kept")
+    check(not (out / "estimates.csv").exists(), "a later run without --estimate leaves no estimates.csv")
+
+
+shutil.rmtree(work, ignore_errors=True)
+work.mkdir(parents=True, exist_ok=True)
+lame()
+reentrant_corner()
+refusals()
+finish("check_error_bars: ")

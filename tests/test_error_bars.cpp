@@ -1,0 +1,186 @@
+// What `gapfe run --estimate` is made of: Richardson's extrapolation with the observed order
+// (post/extrapolation.hpp) on sequences whose limit is known, and a deck's grid refined from its own cards
+// (input/deck_refine.hpp), which must describe the same model: the same points, loads and supports.
+// The error bars through the command, against closed forms: tests/check_error_bars.py.
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <doctest/doctest.h>
+
+#include "gapfe/input/deck.hpp"
+#include "gapfe/input/deck_refine.hpp"
+#include "gapfe/input/input_file.hpp"
+#include "gapfe/post/extrapolation.hpp"
+
+#include "deck_support.hpp"
+
+using namespace gapfe;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// q(h) on h = 1, 1/2, 1/4 (as many as `levels`).
+template <class Q>
+std::vector<double> sequence(const Q& q, int levels) {
+  std::vector<double> v;
+  for (int k = 0; k < levels; ++k) v.push_back(q(std::exp2(-k)));
+  return v;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "[error bars] Richardson's extrapolation: the observed order, the limit and the first value's error") {
+  // q = 3 + 0.2 h^2 - 0.05 h^3: the observed order near 2, the limit near 3.
+  const auto smooth = [](double h) { return 3 + 0.2 * h * h - 0.05 * h * h * h; };
+  const ErrorBar b  = error_bar(sequence(smooth, 3), 1.0);
+  CHECK(b.status == ErrorBar::Status::observed);
+  CHECK(b.order == doctest::Approx(2).epsilon(0.15));
+  CHECK(b.limit == doctest::Approx(3).epsilon(2e-3));
+  const double truth = smooth(1) - 3;  // the first value's true error
+  CHECK(b.error / truth >= 0.9);
+  CHECK(b.error / truth <= 1.1);
+  // Exactly first order: its limit exactly.
+  const ErrorBar linear = error_bar(sequence([](double h) { return 1 - 2 * h; }, 3), 2.0);
+  CHECK(linear.order == doctest::Approx(1).epsilon(1e-12));
+  CHECK(linear.limit == doctest::Approx(1).epsilon(1e-12));
+  CHECK(linear.error == doctest::Approx(2).epsilon(1e-12));
+  // Two values: the order assumed.
+  const ErrorBar two = error_bar(sequence([](double h) { return 5 + h * h; }, 2), 2.0);
+  CHECK(two.status == ErrorBar::Status::assumed);
+  CHECK(two.limit == doctest::Approx(5).epsilon(1e-12));
+  CHECK(two.error == doctest::Approx(1).epsilon(1e-12));
+}
+
+TEST_CASE("[error bars] values that do not converge get no error bar") {
+  // A stress at a re-entrant corner of 270 degrees grows as h^(lambda - 1), lambda = 0.5445.
+  const ErrorBar corner = error_bar(sequence([](double h) { return 100 * std::pow(h, -0.4555); }, 3), 1.0);
+  CHECK(corner.status == ErrorBar::Status::not_converging);
+  CHECK_FALSE(corner.converges());
+  CHECK(std::isnan(corner.error));
+  // A displacement under a ring load grows as log(1 / h): differences that do not shrink.
+  CHECK_FALSE(error_bar(sequence([](double h) { return std::log(1 / h); }, 3), 2.0).converges());
+  // Differences changing sign: no order to extrapolate with.
+  CHECK_FALSE(error_bar(std::vector<double>{1.0, 1.1, 1.05}, 2.0).converges());
+  // Shrinking slower than order 0.5 (by 1.2 a level): too slow to extrapolate.
+  CHECK_FALSE(error_bar(std::vector<double>{1.0, 2.0, 2.0 + 1 / 1.2}, 2.0).converges());
+  // Not a number on some mesh.
+  CHECK_FALSE(error_bar(std::vector<double>{1.0, std::nan(""), 1.0}, 2.0).converges());
+}
+
+TEST_CASE("[error bars] values equal to round-off, or exact from the second mesh on") {
+  const ErrorBar same = error_bar(std::vector<double>{2.5, 2.5 * (1 + 1e-15), 2.5}, 2.0);
+  CHECK(same.status == ErrorBar::Status::exact);
+  CHECK(same.error == 0.0);
+  const ErrorBar settled = error_bar(std::vector<double>{2.0, 2.5, 2.5}, 2.0);
+  CHECK(settled.converges());
+  CHECK(settled.error == doctest::Approx(0.5).epsilon(1e-12));
+}
+
+namespace {
+
+/// The total ring force of a deck's pressure cards on a scene's nodes: value x edge length x 2 pi r_mid.
+double pressure_force(const Deck& d, const Scene& s) {
+  double total = 0;
+  for (const EdgeCard& c : d.program.blocks.front().pressure) {
+    const Vec2 m = s.mesh.nodes[static_cast<std::size_t>(c.node_m - 1)],
+               n = s.mesh.nodes[static_cast<std::size_t>(c.node_n - 1)];
+    total += c.value * (m - n).norm() * std::numbers::pi * (m(0) + n(0));
+  }
+  return total;
+}
+
+}  // namespace
+
+TEST_CASE("[error bars] a deck's grid refined from its cards: the same points, loads and supports") {
+  const Deck d       = read_deck(gapfe::test::lame_tube_deck(5, 3, false));
+  const Scene coarse = build_scene(d);
+  for (const int times : {1, 2}) {
+    const RefinedDeck f = refine_deck(d, coarse.grid, times);
+    const IJGrid& g     = f.scene.grid;
+    const int k         = 1 << times;
+    CHECK(g.max_i == 4 * k + 1);
+    CHECK(g.max_j == 2 * k + 1);
+    CHECK(f.scene.mesh.cells.size() == coarse.mesh.cells.size() * static_cast<std::size_t>(k * k));
+    // Every point of the deck's grid is a point of the finer one, where it was.
+    double moved = 0;
+    for (int n = 0; n < coarse.grid.node_count(); ++n) {
+      const auto ij  = coarse.grid.node_ij[static_cast<std::size_t>(n)];
+      const int fine = g.node(refined_index(ij[0], times), refined_index(ij[1], times));
+      REQUIRE(fine >= 0);
+      moved = std::max(moved, (g.nodes[static_cast<std::size_t>(fine)] - coarse.grid.nodes[n]).norm());
+    }
+    CHECK(moved < 1e-9);
+    // The bore's pressure: each card's edge split in k, the same total force.
+    CHECK(f.deck.program.blocks.front().pressure.size() == d.program.blocks.front().pressure.size() * k);
+    CHECK(pressure_force(f.deck, f.scene) == doctest::Approx(pressure_force(d, coarse)).epsilon(1e-12));
+    // Both ends held along z at every point of the finer grid's ends.
+    CHECK(f.scene.conditions.size() == static_cast<std::size_t>(2 * g.max_i));
+  }
+}
+
+TEST_CASE("[error bars] a refined deck's ring loads stay at the deck's points, its arcs on their circles") {
+  // The quarter annulus 100 < rho < 200 between 10 and 80 degrees (arcs about the origin, seed type 4), held
+  // along z on its lower edge, with ring loads along r on its outer arc's other points.
+  const double deg = std::numbers::pi / 180;
+  const auto at    = [&](double rho, double angle) {
+    char text[16];
+    std::snprintf(text, sizeof text, "%.3f", rho * std::cos(angle * deg));
+    std::string r = text;
+    std::snprintf(text, sizeof text, "%.3f", rho * std::sin(angle * deg));
+    return std::pair<std::string, std::string>{r, text};
+  };
+  const auto [r1, z1] = at(100, 10);
+  const auto [r2, z2] = at(200, 10);
+  const auto [r3, z3] = at(200, 80);
+  const auto [r4, z4] = at(100, 80);
+  using gapfe::test::Card;
+  using gapfe::test::segment;
+  std::string text = "$ format = elastic\nQUARTER ANNULUS\n";
+  text += Card().i(1, 5, 1).i(11, 15, 1).i(41, 45, 1).str() + "\n";
+  text += Card().i(1, 5, 5).i(6, 10, 7).i(11, 15, 4).i(16, 20, 2).i(21, 25, 1).str() + "\n";
+  text += segment(1, 1, r1.c_str(), z1.c_str(), 5, 1, r2.c_str(), z2.c_str()) + "\n";
+  text += segment(5, 1, r2.c_str(), z2.c_str(), 5, 7, r3.c_str(), z3.c_str(), 4) + "\n";  // centre: blank, 0
+  text += segment(5, 7, r3.c_str(), z3.c_str(), 1, 7, r4.c_str(), z4.c_str()) + "\n";
+  text += segment(1, 1, r1.c_str(), z1.c_str(), 1, 7, r4.c_str(), z4.c_str(), 4) + "\n";
+  text += Card().i(1, 5, 1).i(6, 10, 5).i(11, 15, 1).i(16, 20, 1).i(21, 30, 2).str() + "\n";
+  text +=
+      Card().i(1, 5, 5).i(6, 10, 5).i(11, 15, 2).i(16, 20, 7).i(21, 30, 0).f(31, 40, "1000.").str() + "\n";
+  text += Card().i(1, 5, 1).i(6, 10, 1).i(11, 15, 5).i(16, 20, 1).i(21, 25, 7).str() + "\n";
+  text += Card().i(1, 5, 1).i(6, 10, 1).str() + "\n" + gapfe::test::steel_first_property_card() + "\n";
+  text += Card().f(1, 10, "76923.0769").f(11, 20, "76923.0769").f(21, 30, "76923.0769").str() + "\n";
+  const Deck d          = read_deck(text);
+  const Scene coarse    = build_scene(d);
+  const auto ring_loads = [](const Scene& s) {
+    double total = 0;
+    int loaded   = 0;
+    for (const NodalCondition& c : s.conditions)
+      if (c.value[0] != 0) total += c.value[0], ++loaded;
+    return std::pair<double, int>{total, loaded};
+  };
+  const RefinedDeck f = refine_deck(d, coarse.grid, 1);
+  CHECK(ring_loads(f.scene).first == doctest::Approx(ring_loads(coarse).first).epsilon(1e-15));
+  CHECK(ring_loads(f.scene).second == ring_loads(coarse).second);  // 6 points, not the 11 of the finer arc
+  double off_circle = 0;  // the finer grid's points on either arc, from its circle
+  for (int j = 1; j <= f.scene.grid.max_j; ++j)
+    for (const auto& [i, rho] : {std::pair<int, double>{1, 100.0}, {9, 200.0}}) {
+      const int n = f.scene.grid.node(i, j);
+      REQUIRE(n >= 0);
+      off_circle =
+          std::max(off_circle, std::abs(f.scene.grid.nodes[static_cast<std::size_t>(n)].norm() - rho));
+    }
+  // The cards' coordinates have three decimals, so the arcs' ends are off their circles by up to 7e-4; a point
+  // put on the chord between two of the deck's points instead would be 200 (1 - cos(70 / 12 degrees)) = 1.0
+  // off.
+  CHECK(off_circle < 2e-3);
+}
+
+TEST_CASE("[error bars] a deck with gap elements is refused, naming its gap block") {
+  const fs::path deck = fs::path(GAPFE_SOURCE_DIR) / "examples" / "decks" / "two_tubes.deck";
+  const Deck d        = read_deck(read_input(deck.string(), "deck"));
+  CHECK_THROWS_WITH_AS(refinable(d), doctest::Contains("gap elements of this deck (material 2, DATA NO. 6"),
+                       InputError);
+}
