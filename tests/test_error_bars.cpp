@@ -99,7 +99,7 @@ TEST_CASE("[error bars] a deck's grid refined from its cards: the same points, l
   const Deck d       = read_deck(gapfe::test::lame_tube_deck(5, 3, false));
   const Scene coarse = build_scene(d);
   for (const int times : {1, 2}) {
-    const RefinedDeck f = refine_deck(d, coarse.grid, times);
+    const RefinedDeck f = refine_deck(d, coarse, times);
     const IJGrid& g     = f.scene.grid;
     const int k         = 1 << times;
     CHECK(g.max_i == 4 * k + 1);
@@ -108,8 +108,9 @@ TEST_CASE("[error bars] a deck's grid refined from its cards: the same points, l
     // Every point of the deck's grid is a point of the finer one, where it was.
     double moved = 0;
     for (int n = 0; n < coarse.grid.node_count(); ++n) {
-      const auto ij  = coarse.grid.node_ij[static_cast<std::size_t>(n)];
-      const int fine = g.node(refined_index(ij[0], times), refined_index(ij[1], times));
+      const auto ij = coarse.grid.node_ij[static_cast<std::size_t>(n)];
+      const int fine =
+          g.node(f.index.i[static_cast<std::size_t>(ij[0])], f.index.j[static_cast<std::size_t>(ij[1])]);
       REQUIRE(fine >= 0);
       moved = std::max(moved, (g.nodes[static_cast<std::size_t>(fine)] - coarse.grid.nodes[n]).norm());
     }
@@ -161,7 +162,7 @@ TEST_CASE("[error bars] a refined deck's ring loads stay at the deck's points, i
       if (c.value[0] != 0) total += c.value[0], ++loaded;
     return std::pair<double, int>{total, loaded};
   };
-  const RefinedDeck f = refine_deck(d, coarse.grid, 1);
+  const RefinedDeck f = refine_deck(d, coarse, 1);
   CHECK(ring_loads(f.scene).first == doctest::Approx(ring_loads(coarse).first).epsilon(1e-15));
   CHECK(ring_loads(f.scene).second == ring_loads(coarse).second);  // 6 points, not the 11 of the finer arc
   double off_circle = 0;  // the finer grid's points on either arc, from its circle
@@ -172,15 +173,50 @@ TEST_CASE("[error bars] a refined deck's ring loads stay at the deck's points, i
       off_circle =
           std::max(off_circle, std::abs(f.scene.grid.nodes[static_cast<std::size_t>(n)].norm() - rho));
     }
-  // The cards' coordinates have three decimals, so the arcs' ends are off their circles by up to 7e-4; a point
-  // put on the chord between two of the deck's points instead would be 200 (1 - cos(70 / 12 degrees)) = 1.0
-  // off.
+  // The cards' coordinates have three decimals, so the arcs' ends are off their circles by up to 7e-4; a
+  // point put on the chord between two of the deck's points instead would be 200 (1 - cos(70 / 12 degrees))
+  // = 1.0 off.
   CHECK(off_circle < 2e-3);
 }
 
-TEST_CASE("[error bars] a deck with gap elements is refused, naming its gap block") {
+TEST_CASE("[error bars] a gap layer stays one cell thick: its gap elements are split along it, not across") {
+  // examples/decks/two_tubes.deck: tubes on I 1-21 and 22-42, the gap elements between I = 21 and 22
+  // (IJDIR = 1), 2 rows of cells.
   const fs::path deck = fs::path(GAPFE_SOURCE_DIR) / "examples" / "decks" / "two_tubes.deck";
   const Deck d        = read_deck(read_input(deck.string(), "deck"));
-  CHECK_THROWS_WITH_AS(refinable(d), doctest::Contains("gap elements of this deck (material 2, DATA NO. 6"),
-                       InputError);
+  const Scene coarse  = build_scene(d);
+  const RefinedDeck f = refine_deck(d, coarse, 2);
+  const int gap_line  = f.index.i[21];
+  CHECK(f.index.i[22] == gap_line + 1);  // the layer: one cell
+  CHECK(gap_line == 1 + 20 * 4);         // the tubes: four times the cells
+  CHECK(f.index.i[42] == gap_line + 1 + 20 * 4);
+  int gap_cells = 0;
+  for (std::size_t e = 0; e < f.scene.grid.cells.size(); ++e)
+    if (f.scene.material_id[e] == 2) {
+      ++gap_cells;
+      CHECK(f.scene.grid.cells[e].i == gap_line);
+    }
+  CHECK(gap_cells == 2 * 4);  // each split in four along z
+  REQUIRE_FALSE(f.scene.gaps.pairs.empty());
+  for (const GapPair& p : f.scene.gaps.pairs) {  // across the layer, from one tube to the other
+    CHECK(f.scene.grid.node_ij[static_cast<std::size_t>(p.node_a)][0] == gap_line);
+    CHECK(f.scene.grid.node_ij[static_cast<std::size_t>(p.node_b)][0] == gap_line + 1);
+    CHECK(p.initial_gap == doctest::Approx(0.02).epsilon(1e-9));
+  }
+}
+
+TEST_CASE("[error bars] a segment card other than a line across a gap layer is refused, naming it") {
+  const fs::path deck = fs::path(GAPFE_SOURCE_DIR) / "examples" / "decks" / "two_tubes.deck";
+  Deck d              = read_deck(read_input(deck.string(), "deck"));
+  const Scene coarse  = build_scene(d);
+  // The lower boundary as one card from the first tube's bore to the second's outside: a line, split.
+  Deck joined        = d;
+  joined.segments[0] = {{GridPoint{1, 1, Vec2(50.0, 0.0)}, GridPoint{42, 1, Vec2(100.0, 0.0)}},
+                        SegmentType::line};
+  joined.segments.erase(joined.segments.begin() + 1);
+  joined.segment_refs.erase(joined.segment_refs.begin() + 1);
+  CHECK_NOTHROW(refinable(joined, coarse));
+  // An arc across the layer cannot keep its even steps.
+  joined.segments[0].type = SegmentType::arc_centre;
+  CHECK_THROWS_WITH_AS(refinable(joined, coarse), doctest::Contains("crosses a gap layer"), InputError);
 }

@@ -158,7 +158,7 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
   check_compiled(plan);
   if (a.estimate) {  // refused before the run, which would leave the last run's files lost for nothing
     if (const std::string why = estimate_refused(cards == nullptr, plan); !why.empty()) throw InputError(why);
-    refinable(*cards);
+    refinable(*cards, s);
   }
   std::optional<ScenePart> part;
   const int rank = plan.solver == SolverChoice::petsc ? partition(a, s, process.start_mpi, part, log) : 0;

@@ -45,7 +45,8 @@ inline std::string estimate_refused(bool scene_file, const Plan& p) {
 
 /// The runs of the finer meshes of `deck` (whose grid is `scene`'s), after the run of its own mesh
 /// (`level0`), with `plan`'s options: one at 1/2 the spacing, and at 1/4 when it has at most kThirdLevelNodes
-/// nodes. Each is reported in `log` as it ends.
+/// nodes. Each is reported in `log` as it ends. A run that fails throws, naming its mesh; but the one at 1/4,
+/// which only sharpens the order, is left out with a line in `log`.
 inline std::vector<LevelRun> solve_finer(const Deck& deck, const Scene& scene, const Plan& plan,
                                          const RunRequest& level0, std::ostream& log) {
   std::vector<LevelRun> runs;
@@ -53,18 +54,27 @@ inline std::vector<LevelRun> solve_finer(const Deck& deck, const Scene& scene, c
   for (int level = 1; level <= 2; ++level) {
     const long nodes = static_cast<long>(scene.grid.node_count()) << (2 * level);  // about
     if (level == 2 && nodes > kThirdLevelNodes) break;
-    const auto start          = std::chrono::steady_clock::now();
-    const RefinedDeck refined = refine_deck(deck, scene.grid, level);
-    const Plan refined_plan   = make_plan(refined.deck, refined.scene, plan.key.kinematics);
-    if (!(refined_plan.key == plan.key) || refined_plan.solver != plan.solver)
-      throw std::logic_error("--estimate: the finer mesh's plan differs from the deck's");
-    const RunRequest r{refined.deck, refined.scene, refined_plan, "",    quiet, false,
-                       {},           level0.units,  nullptr,      false, true};
-    LevelRun finer{level, refined.scene.grid.node_count(), 0, app::run(r).quantities};
-    finer.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    log << "error bars: the mesh at 1/" << (1 << level) << " of the spacing, " << finer.nodes
-        << " nodes, solved in " << finer.seconds << " s\n";
-    runs.push_back(std::move(finer));
+    const std::string what = "--estimate, the mesh at 1/" + std::to_string(1 << level) + " of the spacing: ";
+    try {
+      const auto start          = std::chrono::steady_clock::now();
+      const RefinedDeck refined = refine_deck(deck, scene, level);
+      const Plan refined_plan   = make_plan(refined.deck, refined.scene, plan.key.kinematics);
+      if (!(refined_plan.key == plan.key) || refined_plan.solver != plan.solver)
+        throw std::logic_error("--estimate: the finer mesh's plan differs from the deck's");
+      const RunRequest r{refined.deck, refined.scene, refined_plan, "",    quiet, false,
+                         {},           level0.units,  nullptr,      false, true};
+      LevelRun finer{level, refined.scene.grid.node_count(), 0, app::run(r).quantities};
+      finer.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      log << "error bars: the mesh at 1/" << (1 << level) << " of the spacing, " << finer.nodes
+          << " nodes, solved in " << finer.seconds << " s\n";
+      runs.push_back(std::move(finer));
+    } catch (const SolveError& e) {  // the deck's own run is done: say which run failed
+      if (level == 1) throw SolveError(what + e.what());
+      log << "error bars: " << what << "not solved (" << e.what() << "); the bars come from two meshes\n";
+      break;
+    } catch (const InputError& e) {
+      throw InputError(what + e.what());
+    }
   }
   return runs;
 }
@@ -86,7 +96,10 @@ inline void report_error_bars(std::ostream& log, const std::string& dir, const s
       values.push_back(q < run.quantities.size() && run.quantities[q].name == own[q].name
                            ? run.quantities[q].value
                            : std::nan(""));
-    const ErrorBar bar    = error_bar(values, own[q].order);
+    double scale = 0;
+    for (const LevelRun& run : runs)
+      if (q < run.quantities.size()) scale = std::max(scale, run.quantities[q].scale);
+    const ErrorBar bar    = error_bar(values, own[q].order, scale);
     const ReadQuantity& v = own[q];
     log << "  " << v.name;
     if (v.located) log << " (at r = " << v.at(0) << ", z = " << v.at(1) << ")";

@@ -4,9 +4,11 @@
 // direction it holds, the largest displacement and the largest von Mises stress with where they are. The same
 // list on any mesh of one model: the cards and groups are the model's, not the mesh's.
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
+#include "gapfe/contact/pair_state.hpp"
 #include "gapfe/input/scene.hpp"
 #include "gapfe/output/card_reactions.hpp"
 #include "gapfe/problem/results.hpp"
@@ -22,6 +24,9 @@ struct ReadQuantity {
   /// The order of convergence in h of its error, assumed when only two meshes are solved: reactions and
   /// displacements as the energy (2), a stress at a point one less (1).
   double order = 2;
+  /// What round-off in it is relative to: a sum's terms' sizes (a card whose reactions cancel, gap pairs'
+  /// forces); 0: the value itself.
+  double scale = 0;
 };
 
 /// The quantities of a solution on `scene` (whole, not a part's), with the cells' centroid stresses
@@ -32,8 +37,11 @@ inline std::vector<ReadQuantity> read_quantities(const Scene& scene, const Solut
   static constexpr std::array<const char*, 3> kDirection{"R_r", "R_z", "R_t"};
   for (const CardNodes& card : card_nodes(scene))  // each card's total reaction along what it holds
     for (int d = 0; d < 3; ++d)
-      if ((card.code >> d) & 1)
-        out.push_back({"reaction " + card.name + " " + kDirection[d], card_reaction(solution, card, d)});
+      if ((card.code >> d) & 1) {
+        double size        = 0;
+        const double total = card_reaction(solution, card, d, &size);
+        out.push_back({"reaction " + card.name + " " + kDirection[d], total, Vec2::Zero(), false, 2, size});
+      }
 
   ReadQuantity u{"largest |u|", 0, Vec2::Zero(), true, 2};
   for (Eigen::Index n = 0; n < solution.displacement.rows(); ++n)
@@ -51,6 +59,18 @@ inline std::vector<ReadQuantity> read_quantities(const Scene& scene, const Solut
   }
   out.push_back(mises);
   return out;
+}
+
+/// The gap pairs' sums: the normal force of the closed pairs, and with friction their tangential force along
+/// the interface in the (r, z) plane (PairState::tangential_force's T component) [force, total ring forces].
+inline void add_contact_quantities(std::vector<ReadQuantity>& out, const std::vector<PairState>& states,
+                                   bool friction) {
+  double normal = 0, tangential = 0, sizes = 0;
+  for (const PairState& s : states)
+    if (s.closed)
+      normal += s.normal_force, tangential += s.tangential_force(0), sizes += std::abs(s.normal_force);
+  out.push_back({"contact normal force", normal, Vec2::Zero(), false, 2, sizes});
+  if (friction) out.push_back({"contact friction force", tangential, Vec2::Zero(), false, 2, sizes});
 }
 
 }  // namespace gapfe::app

@@ -159,6 +159,7 @@ void run_contact(const RunRequest& r, RunResult& times) {
         write_increment(
             r, times, files, step, inc, c.fe(),
             gaps ? gaps->write(step, inc, r.scene.gaps.pairs, c.states()) : std::vector<VtuField>{}, summary);
+        if (r.read_quantities) add_contact_quantities(times.quantities, c.states(), F::kFriction);
       },
       r.part, make_run_solver<typename M::LinearSolver>(r.plan.solver));
   if (gaps) gaps->close();

@@ -25,10 +25,6 @@ struct BoundaryCard {  // Data 5: nodes in [i1, i2] x [j1, j2]
   int i1 = 0, i2 = 0, j1 = 0, j2 = 0, code = 0;
   std::array<double, 3> value{};  ///< XR, XZ, XT
   CardRef ref;
-  /// Its forces (the components `code` leaves free) act at the points whose offsets from (I1, J1) are
-  /// multiples of this, and are zero at the others: 1 on a deck's card; on a refined deck's
-  /// (input/deck_refine.hpp), the deck's own points.
-  int load_spacing = 1;
 };
 
 struct MaterialBlockCard {  // Data 6: cells whose four corners lie in [i1, i2] x [j1, j2]
@@ -49,6 +45,10 @@ struct Deck : ModelDescription {
   std::vector<MaterialBlockCard> blocks;
   std::string plot_title;
   double plot_rmax = 0, plot_zmax = 0;
+  /// A refined deck's (input/deck_refine.hpp): the finer grid's indices of the deck's own grid lines, I and
+  /// J, ascending. Its BC cards' forces act at their crossings only, and IANG counts cells between them.
+  /// Empty: every line is the deck's own.
+  std::vector<int> own_i, own_j;
 };
 
 }  // namespace gapfe

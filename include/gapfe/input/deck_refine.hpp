@@ -1,18 +1,21 @@
 #pragma once
-// A deck's model on a finer mesh: its I-J grid at 1 / 2^times the spacing, generated from the same line
-// segment cards (grid point I of the deck is point (I - 1) 2^times + 1 of the finer grid, and likewise J),
-// for the levels of `gapfe run --estimate` (docs/accuracy.md "Error bars"). Every card keeps its meaning:
-//   * a segment card places the same points (its index steps are 2^times apart: lines and arcs get the points
-//     between, evenly in index as the generator spaces them; the Laplace fill covers the rest);
-//   * a material block covers the cells of its old cells (IANG's sign flips every NANG old cells still);
+// A deck's model on a finer mesh, for the meshes of `gapfe run --estimate` (docs/accuracy.md "Error bars"):
+// its I-J grid with every cell split into 2^times x 2^times, generated from the same cards. Grid line I of
+// the deck becomes line RefinedIndices::i[I] of the finer grid, 2^times lines on from the last, and likewise
+// J; except across a gap layer: the interval a gap element closes across (its IJDIR, or the deck's one LGAP)
+// stays one cell, because a gap layer split into several gap elements in series would be another model. Every
+// card keeps its meaning:
+//   * a segment card places the same points (the finer grid's points between them evenly in index along
+//     lines, in angle along arcs; a line across a gap layer is split there); the Laplace fill covers the
+//     rest;
+//   * a material block covers the cells of its old cells (IANG flips the sign every NANG of the old ones);
 //   * a BC card prescribes its displacements at every grid point of its rectangle, the new ones between too
 //   (an
-//     edge held stays held all along), and its forces at the deck's own points only (BoundaryCard::
-//     load_spacing): a ring load stays one ring load;
-//   * an edge load card (Data 13-15) loads the 2^times edges its edge became, with the same traction;
+//     edge held stays held all along), and its forces at the deck's own points only (Deck::own_i, own_j): a
+//     ring load stays one ring load;
+//   * an edge load card (Data 13-15) loads the edges its edge became, with the same traction;
 //   * temperature cards give (r, z) points and stay as they are.
-// Gap elements (material 2 blocks) are not refined: a gap layer one cell thick would become 2^times gap
-// elements in series, a different model; such decks are refused, naming their first gap block.
+#include <algorithm>
 #include <string>
 #include <utility>
 #include <vector>
@@ -23,35 +26,106 @@
 
 namespace gapfe {
 
-/// Deck grid index `i` on the grid refined `times` times.
-constexpr int refined_index(int i, int times) {
-  return (i - 1) * (1 << times) + 1;
-}
+/// A deck's grid lines on the finer grid: i[I] is the finer index of line I (i[0] unused), likewise j.
+struct RefinedIndices {
+  std::vector<int> i, j;
+};
 
 /// The refined deck and its scene, built on the refined grid.
 struct RefinedDeck {
   Deck deck;
   Scene scene;
+  RefinedIndices index;
 };
 
 namespace detail {
 
-/// The edge cards of `cards` on the refined grid: each edge of the deck's grid (nodes numbered 1-based on
-/// `coarse`) becomes the 2^times edges of `fine` along it.
+/// Line k of 1..count on the finer grid: 2^times intervals from line k to k + 1, one where `kept[k]`.
+inline std::vector<int> refined_lines(int count, const std::vector<char>& kept, int times) {
+  std::vector<int> line(static_cast<std::size_t>(count) + 1, 0);
+  line[1] = 1;
+  for (int k = 1; k < count; ++k)
+    line[static_cast<std::size_t>(k) + 1] = line[static_cast<std::size_t>(k)] + (kept[k] ? 1 : 1 << times);
+  return line;
+}
+
+/// Whether a segment's index path crosses a kept interval along I or J (its lines do not step evenly there).
+inline bool crosses_kept(const GridPoint& a, const GridPoint& b, const std::vector<char>& kept_i,
+                         const std::vector<char>& kept_j) {
+  for (int k = std::min(a.i, b.i); k < std::max(a.i, b.i); ++k)
+    if (kept_i[k]) return true;
+  for (int k = std::min(a.j, b.j); k < std::max(a.j, b.j); ++k)
+    if (kept_j[k]) return true;
+  return false;
+}
+
+/// The segment cards on the finer grid, into `out` (each with its deck card's reference): each point moved to
+/// its line; a line (type 1) across a kept interval split into lines between the intervals' ends, its points
+/// there where the deck's grid put them (evenly in index). Other types across one are refused (their steps
+/// could not stay even).
+inline void refined_segments(const Deck& d, const RefinedIndices& f, const std::vector<char>& kept_i,
+                             const std::vector<char>& kept_j, Deck& out) {
+  out.segments.clear(), out.segment_refs.clear();
+  const auto moved = [&](GridPoint p) {
+    if (p.i >= 1 && p.i < static_cast<int>(f.i.size()) && p.j >= 1 && p.j < static_cast<int>(f.j.size()))
+      p.i = f.i[static_cast<std::size_t>(p.i)], p.j = f.j[static_cast<std::size_t>(p.j)];
+    return p;  // an unused point (an arc's centre) keeps its indices
+  };
+  for (std::size_t s = 0; s < d.segments.size(); ++s) {
+    const Segment& c  = d.segments[s];
+    const GridPoint a = c.p[0], b = c.type == SegmentType::arc_three_points ? c.p[2] : c.p[1];
+    if (c.type == SegmentType::point || !crosses_kept(a, b, kept_i, kept_j)) {
+      Segment m = c;
+      for (GridPoint& p : m.p) p = moved(p);
+      out.segments.push_back(m), out.segment_refs.push_back(d.segment_refs[s]);
+      continue;
+    }
+    if (c.type != SegmentType::line)
+      throw InputError(
+          d.segment_refs[s].where() +
+          ": --estimate: this segment card crosses a gap layer, which stays one cell thick on the "
+          "finer meshes; only a line (type 1) can be split there");
+    const int steps = std::max(std::abs(b.i - a.i), std::abs(b.j - a.j));
+    const int di = (b.i - a.i) / steps, dj = (b.j - a.j) / steps;
+    int from = 0;
+    for (int k = 1; k <= steps; ++k) {  // a piece ends before and after every kept interval, and at b
+      const int i = a.i + k * di, j = a.j + k * dj, pi = i - di, pj = j - dj;
+      const bool kept_step = (di != 0 && kept_i[std::min(i, pi)]) || (dj != 0 && kept_j[std::min(j, pj)]);
+      const bool next_kept =
+          k < steps && ((di != 0 && kept_i[std::min(i, i + di)]) || (dj != 0 && kept_j[std::min(j, j + dj)]));
+      if (k < steps && !kept_step && !next_kept) continue;
+      const auto at = [&](int n) {
+        return GridPoint{a.i + n * di, a.j + n * dj, a.x + (b.x - a.x) * (static_cast<double>(n) / steps)};
+      };
+      Segment piece;
+      piece.type = SegmentType::line;
+      piece.p[0] = moved(at(from)), piece.p[1] = moved(at(k));
+      out.segments.push_back(piece), out.segment_refs.push_back(d.segment_refs[s]);
+      from = k;
+    }
+  }
+}
+
+/// The edge cards of `cards` on the finer grid: each edge of the deck's grid (nodes numbered 1-based on
+/// `coarse`) becomes the edges of `fine` along it.
 inline std::vector<EdgeCard> refined_edges(const std::vector<EdgeCard>& cards, const IJGrid& coarse,
-                                           const IJGrid& fine, int times) {
+                                           const IJGrid& fine, const RefinedIndices& f) {
   std::vector<EdgeCard> out;
-  const int steps = 1 << times;
   for (const EdgeCard& c : cards) {
     const auto node_ij = [&](int n) -> std::array<int, 2> {
       if (n < 1 || n > coarse.node_count())  // build_scene names it with its columns on the deck's grid
         throw InputError(c.ref.where() + ": node " + std::to_string(n) + " is not a node of the mesh (1 to " +
                          std::to_string(coarse.node_count()) + ")");
       const auto ij = coarse.node_ij[static_cast<std::size_t>(n - 1)];
-      return {refined_index(ij[0], times), refined_index(ij[1], times)};
+      return {f.i[static_cast<std::size_t>(ij[0])], f.j[static_cast<std::size_t>(ij[1])]};
     };
     const auto m = node_ij(c.node_m), n = node_ij(c.node_n);
-    const int di = (n[0] - m[0]) / steps, dj = (n[1] - m[1]) / steps;
+    const int si = n[0] - m[0], sj = n[1] - m[1], steps = std::max(std::abs(si), std::abs(sj));
+    if (steps == 0 || (si != 0 && sj != 0 && std::abs(si) != std::abs(sj)))
+      throw InputError(c.ref.where() + ": nodes " + std::to_string(c.node_m) + " and " +
+                       std::to_string(c.node_n) +
+                       " are not the ends of an element edge the finer meshes keep");
+    const int di = si / steps, dj = sj / steps;
     for (int k = 0; k < steps; ++k) {
       EdgeCard piece = c;
       piece.node_m   = fine.node(m[0] + k * di, m[1] + k * dj) + 1;
@@ -67,42 +141,66 @@ inline std::vector<EdgeCard> refined_edges(const std::vector<EdgeCard>& cards, c
 
 }  // namespace detail
 
-/// Throws InputError when `d`'s grid cannot be refined: its gap elements (see the top).
-inline void refinable(const Deck& d) {
-  if (d.options.format != DeckFormat::elastic)
-    for (const MaterialBlockCard& b : d.blocks)
-      if (b.material == 2)
-        throw InputError(
-            "--estimate: the gap elements of this deck (material 2, " + b.ref.where() +
-            ") are not refined yet (a gap layer one cell thick would become several gap elements "
-            "in series)");
+/// The intervals the gap elements of a deck's scene close across, along I and J (kept[k]: from line k to
+/// k + 1), which the finer meshes keep one cell (see the top).
+inline std::pair<std::vector<char>, std::vector<char>> gap_layers(const Deck& d, const Scene& coarse) {
+  std::vector<char> kept_i(static_cast<std::size_t>(d.mesh.max_i) + 1, 0),
+      kept_j(static_cast<std::size_t>(d.mesh.max_j) + 1, 0);
+  const IJGrid& g = coarse.grid;
+  for (std::size_t e = 0; e < g.cells.size() && e < coarse.gaps.direction.size(); ++e) {
+    const int dir = coarse.gaps.direction[e];
+    if (dir == 1) kept_i[static_cast<std::size_t>(g.cells[e].i)] = 1;
+    if (dir == 2) kept_j[static_cast<std::size_t>(g.cells[e].j)] = 1;
+  }
+  return {std::move(kept_i), std::move(kept_j)};
 }
 
-/// `d`'s model on its grid refined `times` (>= 1) times, and that model's scene; `coarse` is the grid of `d`
-/// itself (its scene's). Throws InputError for a deck with gap elements, and for a refined grid past
-/// `limits`.
-inline RefinedDeck refine_deck(const Deck& d, const IJGrid& coarse, int times,
+/// The finer grids' lines, refined `times` times.
+inline RefinedIndices refined_indices(const Deck& d, const Scene& coarse, int times) {
+  const auto [kept_i, kept_j] = gap_layers(d, coarse);
+  return {detail::refined_lines(d.mesh.max_i, kept_i, times),
+          detail::refined_lines(d.mesh.max_j, kept_j, times)};
+}
+
+/// Throws InputError when a card of `d` (whose scene is `coarse`) cannot keep its meaning on a finer grid:
+/// what refine_deck would refuse, found from the cards alone (before a run that would be wasted).
+inline void refinable(const Deck& d, const Scene& coarse) {
+  const auto [kept_i, kept_j] = gap_layers(d, coarse);
+  Deck pieces;
+  detail::refined_segments(d, refined_indices(d, coarse, 1), kept_i, kept_j, pieces);
+}
+
+/// `d`'s model on its grid refined `times` (>= 1) times, and that model's scene; `coarse` is `d`'s own scene.
+/// Throws InputError when a card cannot keep its meaning (a segment card other than a line across a gap
+/// layer) and for a refined grid past `limits`.
+inline RefinedDeck refine_deck(const Deck& d, const Scene& coarse, int times,
                                const InputLimits& limits = {}) {
-  refinable(d);
-  RefinedDeck out{d, {}};
-  Deck& f          = out.deck;
-  const auto index = [&](int i) { return refined_index(i, times); };
-  f.mesh.max_i = index(d.mesh.max_i), f.mesh.max_j = index(d.mesh.max_j);
+  const IJGrid& g             = coarse.grid;
+  const auto [kept_i, kept_j] = gap_layers(d, coarse);
+  RefinedDeck out{d, {}, refined_indices(d, coarse, times)};
+  Deck& f           = out.deck;
+  const auto& index = out.index;
+  f.mesh.max_i = index.i.back(), f.mesh.max_j = index.j.back();
   if (static_cast<double>(f.mesh.max_i) * f.mesh.max_j > static_cast<double>(limits.max_grid_points))
-    throw InputError("a finer mesh of this deck: its grid, " + std::to_string(f.mesh.max_i) + " x " +
+    throw InputError("--estimate: the finer grid, " + std::to_string(f.mesh.max_i) + " x " +
                      std::to_string(f.mesh.max_j) + " points, is past the limit of " +
                      std::to_string(limits.max_grid_points));
-  for (Segment& s : f.segments)
-    for (GridPoint& p : s.p)
-      if (p.i > 0 && p.j > 0) p.i = index(p.i), p.j = index(p.j);
-  for (BoundaryCard& b : f.boundary)
-    b.i1 = index(b.i1), b.i2 = index(b.i2), b.j1 = index(b.j1), b.j2 = index(b.j2), b.load_spacing <<= times;
-  for (MaterialBlockCard& b : f.blocks)
-    b.i1 = index(b.i1), b.i2 = index(b.i2), b.j1 = index(b.j1), b.j2 = index(b.j2), b.nang <<= times;
-  IJGrid fine = generate_ij_grid(f.mesh.max_i, f.mesh.max_j, f.segments);
+  detail::refined_segments(d, index, kept_i, kept_j, f);
+  const auto box = [&](int& i1, int& i2, int& j1, int& j2) {
+    const auto line = [](const std::vector<int>& lines, int k) {  // a card's index past the grid: its end
+      const int last = static_cast<int>(lines.size()) - 1;
+      return lines[static_cast<std::size_t>(std::clamp(k, 1, last))] + std::max(k - last, 0);
+    };
+    i1 = line(index.i, i1), i2 = line(index.i, i2), j1 = line(index.j, j1), j2 = line(index.j, j2);
+  };
+  for (BoundaryCard& b : f.boundary) box(b.i1, b.i2, b.j1, b.j2);
+  for (MaterialBlockCard& b : f.blocks) box(b.i1, b.i2, b.j1, b.j2);
+  f.own_i     = std::vector<int>(index.i.begin() + 1, index.i.end());
+  f.own_j     = std::vector<int>(index.j.begin() + 1, index.j.end());
+  IJGrid fine = deck_grid(f);
   for (LoadBlock& block : f.program.blocks)
     for (auto* cards : {&block.pressure, &block.shear, &block.transverse_shear})
-      *cards = detail::refined_edges(*cards, coarse, fine, times);
+      *cards = detail::refined_edges(*cards, g, fine, index);
   out.scene = build_scene(f, std::move(fine));
   return out;
 }

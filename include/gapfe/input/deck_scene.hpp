@@ -6,6 +6,7 @@
 // Readings (docs deck section): a BC card applies to the grid points in [I1, I2] x [J1, J2]; a
 // material block to the cells whose corners all lie in [I1, I2] x [J1, J2] (later blocks win); a BC
 // load is a total ring force.
+#include <algorithm>
 #include <array>
 #include <cstdlib>
 #include <string>
@@ -35,6 +36,24 @@ inline IJGrid deck_grid(const Deck& d) {
     throw InputError("DATA NO. 3-4 (mesh generation): " + msg);
   }
 }
+
+namespace detail {
+
+/// Whether grid line `k` is one of a refined deck's own (Deck::own_i, own_j; every line when `own` is empty).
+inline bool own_line(const std::vector<int>& own, int k) {
+  return own.empty() || std::binary_search(own.begin(), own.end(), k);
+}
+
+/// The deck's own cells from line `from` to the cell at `k` (a refined deck counts its own lines).
+inline int own_cells(const std::vector<int>& own, int from, int k) {
+  if (own.empty()) return k - from;
+  const auto upto = [&](int line) {  // own lines at or below `line`
+    return static_cast<int>(std::upper_bound(own.begin(), own.end(), line) - own.begin());
+  };
+  return upto(k) - upto(from);
+}
+
+}  // namespace detail
 
 /// Build the scene (mesh, tags, conditions, temperatures, checked loads) of a read deck on its grid
 /// (deck_grid(d), or a refined deck's, input/deck_refine.hpp).
@@ -73,7 +92,8 @@ inline Scene build_scene(const Deck& d, IJGrid grid) {
         if (e < 0) continue;
         ++selected;
         const double deg = kTwoPi / 360.0;
-        tags[e] = {index, helical_frame(b.beta_deg * deg, b.alpha_deg * deg, b.iang, b.nang, i - b.i1)};
+        tags[e]          = {index, helical_frame(b.beta_deg * deg, b.alpha_deg * deg, b.iang, b.nang,
+                                                 detail::own_cells(d.own_i, b.i1, i))};
         s.material_id[e] = b.material;
         s.ijdir[e]       = b.ijdir;
       }
@@ -120,7 +140,7 @@ inline Scene build_scene(const Deck& d, IJGrid grid) {
     for (int j = j1; j <= j2; ++j)
       for (int i = i1; i <= i2; ++i)
         if (const int n = g.node(i, j); n >= 0) {
-          const bool own = (i - b.i1) % b.load_spacing == 0 && (j - b.j1) % b.load_spacing == 0;
+          const bool own = detail::own_line(d.own_i, i) && detail::own_line(d.own_j, j);
           s.conditions.push_back({n, b.code, own ? b.value : held}), s.condition_card.push_back(card),
               ++found;
         }

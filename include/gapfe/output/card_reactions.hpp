@@ -4,6 +4,7 @@
 // reaction of a card along a direction. history.csv's R_* columns and `--estimate`'s reactions
 // (app/read_quantities.hpp) both sum them so.
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <string>
 #include <vector>
@@ -44,10 +45,13 @@ inline std::vector<CardNodes> card_nodes(const Scene& scene) {
   return cards;
 }
 
-/// The total reaction of card `c` along `direction` (0 r, 1 z, 2 theta) [force, total ring force].
-inline double card_reaction(const Solution& s, const CardNodes& c, int direction) {
-  double total = 0;
-  for (const int n : c.nodes) total += s.reaction(n, direction);
+/// The total reaction of card `c` along `direction` (0 r, 1 z, 2 theta) [force, total ring force]; into
+/// `size`, when given, the sum of its nodes' reactions' sizes, which a total that cancels to round-off is
+/// measured against.
+inline double card_reaction(const Solution& s, const CardNodes& c, int direction, double* size = nullptr) {
+  double total = 0, sizes = 0;
+  for (const int n : c.nodes) total += s.reaction(n, direction), sizes += std::abs(s.reaction(n, direction));
+  if (size) *size = sizes;
   return total;
 }
 

@@ -30,17 +30,18 @@ struct ErrorBar {
   /// Orders below this are taken as not converging: the differences shrink by less than 2^0.5 a level, and
   /// the limit extrapolated would be further than 2.4 times the last difference, a guess.
   static constexpr double kSlowest = 0.5;
-  /// Differences below this fraction of the values are round-off.
-  static constexpr double kRoundOff = 1e-12;
+  /// Differences below this fraction of the values (or of their scale) are round-off: a solve leaves about
+  /// 1e-13 relative in the displacements, and sums add a little.
+  static constexpr double kRoundOff = 1e-10;
 };
 
 /// The error bar of `values[0]` from the values on meshes each twice as fine (two or three of them; more are
-/// not read), with `assumed_order` used when there are two.
-inline ErrorBar error_bar(std::span<const double> values, double assumed_order) {
+/// not read), with `assumed_order` used when there are two. Differences below kRoundOff times the larger of
+/// `scale` and the values are round-off (a sum whose terms cancel has a scale far above its value).
+inline ErrorBar error_bar(std::span<const double> values, double assumed_order, double scale = 0) {
   ErrorBar b;
   b.value = values.empty() ? std::numeric_limits<double>::quiet_NaN() : values[0];
   if (values.size() < 2) return b;
-  double scale = 0;
   for (const double v : values.first(std::min<std::size_t>(values.size(), 3)))
     scale = std::max(scale, std::abs(v));
   const double d1 = values[1] - values[0];
