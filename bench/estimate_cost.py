@@ -7,28 +7,38 @@ Each case's deck (run_vs_ccx.write_inputs, its first gapfe variant's options) ru
 process, one thread, with the estimate (the default) and without it (`--set error_estimate=none`), the two
 interleaved. The estimate's pass also recovers the centroid stresses the files carry, which a run without it
 recovers on its own, so its cost is the difference of the two runs' medians, not the log's `estimate` phase
-(also shown: every accepted increment's pass). The share is that difference over the run with the estimate.
+(also shown: every accepted increment's pass). The share is that difference over the run with the estimate, of
+the wall time and of the CPU time (user + system, steadier on a shared machine).
 """
 import argparse
 import os
 import re
 import statistics
+import subprocess
 import sys
 import tempfile
+import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import run_vs_ccx  # noqa: E402  (the cases and their decks)
 
 
 def timed_run(gapfe, deck, out, work, options):
+    """(wall seconds, CPU seconds: user + system, the log's estimate phase) of one whole run."""
     log = out + ".log"
-    code, wall, _ = run_vs_ccx.run_measured([gapfe, "run", deck, "--out", out, "--overwrite"] + options, work, log)
-    if code != 0:
-        run_vs_ccx.die(f"{deck}: exit {code} (log {log})")
+    with open(log, "wb") as sink:
+        t0 = time.perf_counter()
+        proc = subprocess.Popen([gapfe, "run", deck, "--out", out, "--overwrite"] + options, cwd=work,
+                                env=run_vs_ccx.child_env(), stdin=subprocess.DEVNULL, stdout=sink,
+                                stderr=subprocess.STDOUT)
+        _, status, usage = os.wait4(proc.pid, 0)
+        wall = time.perf_counter() - t0
+    if os.waitstatus_to_exitcode(status) != 0:
+        run_vs_ccx.die(f"{deck}: exit {os.waitstatus_to_exitcode(status)} (log {log})")
     phase = re.search(r"time \[s\]:.* estimate ([0-9.eE+-]+),", open(log).read())
     if not phase:
         run_vs_ccx.die(f"{deck}: no estimate phase in {log}")
-    return wall, float(phase.group(1))
+    return wall, usage.ru_utime + usage.ru_stime, float(phase.group(1))
 
 
 def main():
@@ -41,22 +51,23 @@ def main():
     gapfe = os.path.abspath(args.gapfe)
     work = args.work or tempfile.mkdtemp(prefix="estimate_cost_")
     os.makedirs(work, exist_ok=True)
-    print("| case | equations | increments | run [s] | without [s] | cost [s] | share | estimate phase [s] |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("| case | equations | increments | run [s] | without [s] | cost | CPU [s] | without | CPU cost | "
+          "estimate phase [s] |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for name in args.cases.split(","):
         case = run_vs_ccx.CASES[name]
         deck, _ = run_vs_ccx.write_inputs(case, work)
         _, options = case.variants[0]
-        walls, bare, phases = [], [], []
+        runs = {"energy": [], "none": []}
         for k in range(args.runs):
-            wall, phase = timed_run(gapfe, deck, os.path.join(work, f"{name}_{k}"), work, options)
-            walls.append(wall), phases.append(phase)
-            wall, _ = timed_run(gapfe, deck, os.path.join(work, f"{name}_{k}_none"), work,
-                                options + ["--set", "error_estimate=none"])
-            bare.append(wall)
-        wall, without, phase = statistics.median(walls), statistics.median(bare), statistics.median(phases)
-        print(f"| {name} | {case.equations:,} | {case.steps} | {wall:.3g} | {without:.3g} | {wall - without:.3g} | "
-              f"{100 * (wall - without) / wall:.1f}% | {phase:.3g} |", flush=True)
+            for mode in ("energy", "none"):
+                runs[mode].append(timed_run(gapfe, deck, os.path.join(work, f"{name}_{mode}"), work,
+                                            options + ["--set", f"error_estimate={mode}"]))
+        med = {m: [statistics.median(r[i] for r in runs[m]) for i in range(3)] for m in runs}
+        (wall, cpu, phase), (bare, bare_cpu, _) = med["energy"], med["none"]
+        print(f"| {name} | {case.equations:,} | {case.steps} | {wall:.3g} | {bare:.3g} | "
+              f"{100 * (wall - bare) / wall:.1f}% | {cpu:.3g} | {bare_cpu:.3g} | {100 * (cpu - bare_cpu) / cpu:.1f}% | "
+              f"{phase:.3g} |", flush=True)
 
 
 if __name__ == "__main__":

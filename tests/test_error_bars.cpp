@@ -205,18 +205,22 @@ TEST_CASE("[error bars] a gap layer stays one cell thick: its gap elements are s
   }
 }
 
-TEST_CASE("[error bars] a segment card other than a line across a gap layer is refused, naming it") {
+TEST_CASE("[error bars] what a finer grid could not keep is refused, naming the card or the gap element") {
   const fs::path deck = fs::path(GAPFE_SOURCE_DIR) / "examples" / "decks" / "two_tubes.deck";
-  Deck d              = read_deck(read_input(deck.string(), "deck"));
+  const Deck d        = read_deck(read_input(deck.string(), "deck"));
   const Scene coarse  = build_scene(d);
-  // The lower boundary as one card from the first tube's bore to the second's outside: a line, split.
-  Deck joined        = d;
-  joined.segments[0] = {{GridPoint{1, 1, Vec2(50.0, 0.0)}, GridPoint{42, 1, Vec2(100.0, 0.0)}},
-                        SegmentType::line};
-  joined.segments.erase(joined.segments.begin() + 1);
-  joined.segment_refs.erase(joined.segment_refs.begin() + 1);
-  CHECK_NOTHROW(refinable(joined, coarse));
-  // An arc across the layer cannot keep its even steps.
-  joined.segments[0].type = SegmentType::arc_centre;
-  CHECK_THROWS_WITH_AS(refinable(joined, coarse), doctest::Contains("crosses a gap layer"), InputError);
+  // The lower boundary as one arc from the first tube's bore to the second's outside: across the gap layer
+  // its points could not stay evenly spaced.
+  Deck arc        = d;
+  arc.segments[0] = {{GridPoint{1, 1, Vec2(50.0, 0.0)}, GridPoint{42, 1, Vec2(100.0, 0.0)}},
+                     SegmentType::arc_centre};
+  CHECK_THROWS_WITH_AS(refine_deck(arc, coarse, 1), doctest::Contains("crosses a gap layer"), InputError);
+  // The gap's faces without their segment cards (I = 21 and 22): the Laplace fill places their middle points,
+  // and would place them elsewhere on a finer grid.
+  Deck filled = d;
+  filled.segments.erase(filled.segments.begin() + 5, filled.segments.begin() + 7);
+  filled.segment_refs.erase(filled.segment_refs.begin() + 5, filled.segment_refs.begin() + 7);
+  const Scene filled_scene = build_scene(filled);
+  CHECK_THROWS_WITH_AS(refine_deck(filled, filled_scene, 1),
+                       doctest::Contains("has a corner no segment card places"), InputError);
 }

@@ -136,7 +136,7 @@ inline void list_files(const Args& a, const Plan& p, const ModelDescription& d, 
              fields = d.options.output_vtu != Increments::none;
   log << "wrote " << a.out << "/" << (tables ? "nodes.csv, elements.csv, reactions.csv, " : "")
       << (p.gaps ? "gaps.csv, " : "") << (p.plastic && !p.gaps ? "plasticity.csv, " : "")
-      << (fields ? "result.pvd, " : "") << "deformed.svg\n";
+      << (a.estimate ? "estimates.csv, " : "") << (fields ? "result.pvd, " : "") << "deformed.svg\n";
   std::vector<std::string> pictures = r.pictures;
   if (d.steps() > 1 && !pictures.empty())  // the load-displacement curve of history.csv
     pictures.push_back(draw_curve(a.out, "u_max", "load_factor", d.title));
@@ -156,9 +156,15 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
   check_process(a, plan, launch_size, process.start_mpi);
   check_plan(plan, d, s);
   check_compiled(plan);
-  if (a.estimate) {  // refused before the run, which would leave the last run's files lost for nothing
+  std::optional<RefinedDeck> finer;  // --estimate's first finer mesh: built (or refused) before the run
+  if (a.estimate) {
     if (const std::string why = estimate_refused(cards == nullptr, plan); !why.empty()) throw InputError(why);
-    refinable(*cards, s);
+    try {
+      finer = refine_deck(*cards, s, 1);
+    } catch (const InputError& e) {
+      throw InputError(std::string("--estimate, the mesh at 1/2 of the spacing: ") + e.what());
+    }
+    note_point_supports(*cards, log);
   }
   std::optional<ScenePart> part;
   const int rank = plan.solver == SolverChoice::petsc ? partition(a, s, process.start_mpi, part, log) : 0;
@@ -195,7 +201,8 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
     report_run(log, err, plan, d, result);
     if (a.estimate) {
       std::vector<LevelRun> levels{{0, s.grid.node_count(), since(t0), result.quantities}};
-      for (LevelRun& finer : solve_finer(*cards, s, plan, request, log)) levels.push_back(std::move(finer));
+      for (LevelRun& level : solve_finer(*cards, s, std::move(*finer), plan, request.units, log))
+        levels.push_back(std::move(level));
       report_error_bars(log, a.out, levels);
     }
     list_files(a, plan, d, result, log);

@@ -23,9 +23,10 @@
 
 namespace gapfe::app {
 
-/// The mesh at 1/4 the spacing is solved too when it has at most this many nodes (16 times the deck's; about
-/// 4e5 equations, seconds on one core): three meshes then give each quantity's observed order.
-inline constexpr long kThirdLevelNodes = 200'000;
+/// The mesh at 1/4 the spacing is solved too when it has at most this many nodes (16 times the deck's; 2e6
+/// equations, some seconds on one core per load step): three meshes then give each quantity's observed order,
+/// and show a quantity that does not converge. Two meshes can only assume the order.
+inline constexpr long kThirdLevelNodes = 1'000'000;
 
 /// One mesh's run: its spacing level (0 the deck's own; k: 1 / 2^k of it), size, time and quantities.
 struct LevelRun {
@@ -43,38 +44,65 @@ inline std::string estimate_refused(bool scene_file, const Plan& p) {
   return "";
 }
 
-/// The runs of the finer meshes of `deck` (whose grid is `scene`'s), after the run of its own mesh
-/// (`level0`), with `plan`'s options: one at 1/2 the spacing, and at 1/4 when it has at most kThirdLevelNodes
-/// nodes. Each is reported in `log` as it ends. A run that fails throws, naming its mesh; but the one at 1/4,
-/// which only sharpens the order, is left out with a line in `log`.
-inline std::vector<LevelRun> solve_finer(const Deck& deck, const Scene& scene, const Plan& plan,
-                                         const RunRequest& level0, std::ostream& log) {
-  std::vector<LevelRun> runs;
+/// A note in `log` when BC cards hold single grid points (an edge held node by node): on the finer meshes
+/// they hold those points only, the new points between them free (input/deck_refine.hpp).
+inline void note_point_supports(const Deck& deck, std::ostream& log) {
+  int points = 0;
+  for (const BoundaryCard& b : deck.boundary) points += b.code != 0 && b.i1 == b.i2 && b.j1 == b.j2;
+  if (points > 1)
+    log << "error bars: " << points << " BC cards hold one grid point each; on the finer meshes they hold "
+        << "those points only, not the points between them (an edge held along its length: one card)\n";
+}
+
+/// The run of one finer mesh (`refined`, level `level`) with `plan`'s choices, reported in `log`. The finer
+/// runs make no error estimate of their own (their centroid stresses are the same without it).
+inline LevelRun solve_level(RefinedDeck& refined, int level, const Plan& plan, PlotUnits units,
+                            std::ostream& log) {
+  const auto start                    = std::chrono::steady_clock::now();
+  refined.deck.options.error_estimate = false;
+  const Plan refined_plan             = make_plan(refined.deck, refined.scene, plan.key.kinematics);
+  if (!(refined_plan.key == plan.key) || refined_plan.solver != plan.solver)
+    throw InputError("the finer mesh needs another variant than the deck's (" + refined_plan.variant_reason +
+                     ")");
   std::ostringstream quiet;  // the finer runs' warnings repeat the deck's own run's
-  for (int level = 1; level <= 2; ++level) {
-    const long nodes = static_cast<long>(scene.grid.node_count()) << (2 * level);  // about
-    if (level == 2 && nodes > kThirdLevelNodes) break;
-    const std::string what = "--estimate, the mesh at 1/" + std::to_string(1 << level) + " of the spacing: ";
-    try {
-      const auto start          = std::chrono::steady_clock::now();
-      const RefinedDeck refined = refine_deck(deck, scene, level);
-      const Plan refined_plan   = make_plan(refined.deck, refined.scene, plan.key.kinematics);
-      if (!(refined_plan.key == plan.key) || refined_plan.solver != plan.solver)
-        throw std::logic_error("--estimate: the finer mesh's plan differs from the deck's");
-      const RunRequest r{refined.deck, refined.scene, refined_plan, "",    quiet, false,
-                         {},           level0.units,  nullptr,      false, true};
-      LevelRun finer{level, refined.scene.grid.node_count(), 0, app::run(r).quantities};
-      finer.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      log << "error bars: the mesh at 1/" << (1 << level) << " of the spacing, " << finer.nodes
-          << " nodes, solved in " << finer.seconds << " s\n";
-      runs.push_back(std::move(finer));
-    } catch (const SolveError& e) {  // the deck's own run is done: say which run failed
-      if (level == 1) throw SolveError(what + e.what());
-      log << "error bars: " << what << "not solved (" << e.what() << "); the bars come from two meshes\n";
-      break;
-    } catch (const InputError& e) {
-      throw InputError(what + e.what());
-    }
+  const RunRequest r{refined.deck, refined.scene, refined_plan, "",    quiet, false,
+                     {},           units,         nullptr,      false, true};
+  LevelRun finer{level, refined.scene.grid.node_count(), 0, app::run(r).quantities};
+  finer.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  log << "error bars: the mesh at 1/" << (1 << level) << " of the spacing, " << finer.nodes
+      << " nodes, solved in " << finer.seconds << " s\n";
+  return finer;
+}
+
+/// The runs of the finer meshes of `deck` (whose scene is `scene`), after the run of its own mesh: `first`,
+/// its mesh at 1/2 the spacing (refine_deck, built before the deck's run so that a deck it refuses is refused
+/// first), and the one at 1/4 when it has at most kThirdLevelNodes nodes. A run that fails throws, naming its
+/// mesh; but the one at 1/4, which only sharpens the order, is left out with a line in `log`.
+inline std::vector<LevelRun> solve_finer(const Deck& deck, const Scene& scene, RefinedDeck first,
+                                         const Plan& plan, PlotUnits units, std::ostream& log) {
+  std::vector<LevelRun> runs;
+  const auto what = [](int level) {
+    return "--estimate, the mesh at 1/" + std::to_string(1 << level) + " of the spacing: ";
+  };
+  try {
+    runs.push_back(solve_level(first, 1, plan, units, log));
+  } catch (const SolveError& e) {  // the deck's own run is done: say which run failed
+    throw SolveError(what(1) + e.what());
+  } catch (const InputError& e) {
+    throw InputError(what(1) + e.what());
+  }
+  const long nodes = 4L * first.scene.grid.node_count();  // about
+  if (nodes > kThirdLevelNodes) {
+    log << "error bars: the mesh at 1/4 of the spacing (about " << nodes << " nodes) is past "
+        << kThirdLevelNodes << ": two meshes, the order assumed\n";
+    return runs;
+  }
+  first = {};  // its memory, before the next
+  try {
+    RefinedDeck second = refine_deck(deck, scene, 2);
+    runs.push_back(solve_level(second, 2, plan, units, log));
+  } catch (const std::exception& e) {  // InputError, SolveError, std::bad_alloc: two meshes will do
+    log << "error bars: " << what(2) << "not solved (" << e.what() << "); two meshes, the order assumed\n";
   }
   return runs;
 }
@@ -112,7 +140,8 @@ inline void report_error_bars(std::ostream& log, const std::string& dir, const s
       log << v.value << " (the meshes agree to round-off)\n";
       csv << detail::csv_name(v.name) << "," << v.value << ",0,0," << status << ",," << bar.limit;
     } else if (bar.converges()) {
-      const double relative = bar.limit != 0 ? bar.error / std::abs(bar.limit) : 0.0;
+      const double size     = std::max(std::abs(bar.limit), std::abs(v.value));
+      const double relative = size > 0 ? bar.error / size : 0.0;
       log << v.value << " +- " << bar.error << " (" << 100 * relative << "%";
       if (bar.status == ErrorBar::Status::observed && std::isfinite(bar.order))
         log << "; observed order " << bar.order;
@@ -127,7 +156,10 @@ inline void report_error_bars(std::ostream& log, const std::string& dir, const s
       log << " as the spacing halves: a singular point such as a re-entrant corner or a point load?)\n";
       csv << detail::csv_name(v.name) << "," << v.value << ",,," << status << ",,";
     }
-    csv << "," << (v.located ? v.at(0) : std::nan("")) << "," << (v.located ? v.at(1) : std::nan(""));
+    if (v.located)
+      csv << "," << v.at(0) << "," << v.at(1);
+    else
+      csv << ",,";
     for (const double value : values) csv << "," << value;
     csv << "\n";
   }

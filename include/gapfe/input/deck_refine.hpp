@@ -16,6 +16,7 @@
 //   * an edge load card (Data 13-15) loads the edges its edge became, with the same traction;
 //   * temperature cards give (r, z) points and stay as they are.
 #include <algorithm>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -80,11 +81,11 @@ inline void refined_segments(const Deck& d, const RefinedIndices& f, const std::
       out.segments.push_back(m), out.segment_refs.push_back(d.segment_refs[s]);
       continue;
     }
-    if (c.type != SegmentType::line)
+    if (c.type != SegmentType::line || (a.i != b.i && a.j != b.j))  // a diagonal's steps stay equal
       throw InputError(
           d.segment_refs[s].where() +
           ": --estimate: this segment card crosses a gap layer, which stays one cell thick on the "
-          "finer meshes; only a line (type 1) can be split there");
+          "finer meshes; only a line along I or J (type 1) can be split there");
     const int steps = std::max(std::abs(b.i - a.i), std::abs(b.j - a.j));
     const int di = (b.i - a.i) / steps, dj = (b.j - a.j) / steps;
     int from = 0;
@@ -95,7 +96,8 @@ inline void refined_segments(const Deck& d, const RefinedIndices& f, const std::
           k < steps && ((di != 0 && kept_i[std::min(i, i + di)]) || (dj != 0 && kept_j[std::min(j, j + dj)]));
       if (k < steps && !kept_step && !next_kept) continue;
       const auto at = [&](int n) {
-        return GridPoint{a.i + n * di, a.j + n * dj, a.x + (b.x - a.x) * (static_cast<double>(n) / steps)};
+        return GridPoint{a.i + n * di, a.j + n * dj,
+                         n == steps ? b.x : Vec2(a.x + (b.x - a.x) * (static_cast<double>(n) / steps))};
       };
       Segment piece;
       piece.type = SegmentType::line;
@@ -162,20 +164,56 @@ inline RefinedIndices refined_indices(const Deck& d, const Scene& coarse, int ti
           detail::refined_lines(d.mesh.max_j, kept_j, times)};
 }
 
-/// Throws InputError when a card of `d` (whose scene is `coarse`) cannot keep its meaning on a finer grid:
-/// what refine_deck would refuse, found from the cards alone (before a run that would be wasted).
-inline void refinable(const Deck& d, const Scene& coarse) {
-  const auto [kept_i, kept_j] = gap_layers(d, coarse);
-  Deck pieces;
-  detail::refined_segments(d, refined_indices(d, coarse, 1), kept_i, kept_j, pieces);
+namespace detail {
+
+/// Refuses a gap element whose corners the Laplace fill placed: on a finer grid the fill spreads them anew,
+/// and a gap of 0.02 between two placed faces would come out another size.
+inline void check_gap_corners(const Scene& coarse) {
+  const IJGrid& g = coarse.grid;
+  for (std::size_t e = 0; e < g.cells.size() && e < coarse.gaps.direction.size(); ++e) {
+    if (coarse.gaps.direction[e] == 0) continue;
+    for (int k = 0; k < g.cells[e].corners; ++k)
+      if (!g.placed[static_cast<std::size_t>(g.cells[e].node[k])])
+        throw InputError(
+            "--estimate: gap element " + std::to_string(e + 1) + " " + ij_text(g.cells[e].i, g.cells[e].j) +
+            " has a corner no segment card places; the Laplace fill would place it elsewhere on a "
+            "finer grid, and its gap would change (place the gap's faces with line segment cards)");
+  }
 }
 
+/// Refuses a finer grid whose gap elements close another way than the deck's they split (a gap element of the
+/// deck's with pairs whose pieces would come out corners, soft): `fine` against `coarse` through `index`.
+inline void check_gap_layout(const Scene& coarse, const Scene& fine, const RefinedIndices& index) {
+  std::map<std::pair<int, int>, int> coarse_cell;  // (I, J) of a deck's gap element -> its direction
+  for (std::size_t e = 0; e < coarse.grid.cells.size() && e < coarse.gaps.direction.size(); ++e)
+    if (coarse.material_id[e] == 2)
+      coarse_cell[{coarse.grid.cells[e].i, coarse.grid.cells[e].j}] = coarse.gaps.direction[e];
+  const auto line_below = [](const std::vector<int>& lines, int k) {  // the deck's line at or below finer k
+    return static_cast<int>(std::upper_bound(lines.begin() + 1, lines.end(), k) - lines.begin()) - 1;
+  };
+  for (std::size_t e = 0; e < fine.grid.cells.size() && e < fine.gaps.direction.size(); ++e) {
+    if (fine.material_id[e] != 2) continue;
+    const GridCell& c = fine.grid.cells[e];
+    const auto it     = coarse_cell.find({line_below(index.i, c.i), line_below(index.j, c.j)});
+    if (it != coarse_cell.end() && it->second != fine.gaps.direction[e])
+      throw InputError("--estimate: the deck's gap element at " + ij_text(it->first.first, it->first.second) +
+                       (fine.gaps.direction[e] == 0
+                            ? " would have soft pieces (corners of a thicker gap layer)"
+                            : " would close another way") +
+                       " on a finer grid");
+  }
+}
+
+}  // namespace detail
+
 /// `d`'s model on its grid refined `times` (>= 1) times, and that model's scene; `coarse` is `d`'s own scene.
-/// Throws InputError when a card cannot keep its meaning (a segment card other than a line across a gap
-/// layer) and for a refined grid past `limits`.
+/// Throws InputError when a card cannot keep its meaning (a segment card other than a line along I or J
+/// across a gap layer, a gap whose faces no card places, a gap element that would close another way) and for
+/// a refined grid past `limits`.
 inline RefinedDeck refine_deck(const Deck& d, const Scene& coarse, int times,
                                const InputLimits& limits = {}) {
-  const IJGrid& g             = coarse.grid;
+  const IJGrid& g = coarse.grid;
+  detail::check_gap_corners(coarse);
   const auto [kept_i, kept_j] = gap_layers(d, coarse);
   RefinedDeck out{d, {}, refined_indices(d, coarse, times)};
   Deck& f           = out.deck;
@@ -202,6 +240,7 @@ inline RefinedDeck refine_deck(const Deck& d, const Scene& coarse, int times,
     for (auto* cards : {&block.pressure, &block.shear, &block.transverse_shear})
       *cards = detail::refined_edges(*cards, g, fine, index);
   out.scene = build_scene(f, std::move(fine));
+  detail::check_gap_layout(coarse, out.scene, index);
   return out;
 }
 
