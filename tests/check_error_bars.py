@@ -199,7 +199,7 @@ def refusals():
     lines = [line.replace("   42    3    8    1    3", "   42    3    6    1    3") for line in lines]
     filled = work / "filled_gap.deck"
     filled.write_text("\n".join(lines) + "\n")
-    for model, why in ((scene, "refines card decks"), (filled, "has a corner no segment card places")):
+    for model, why in ((scene, "refines card decks"), (filled, "placed by no segment card")):
         _, _, err = run(model, "kept", "--estimate", expect=1)
         lines = [line for line in err.splitlines() if line.strip()]
         check(len(lines) == 1 and why in err, f"{model.name}: one line naming why: {err.strip()}")

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <iomanip>
+#include <new>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
@@ -23,9 +24,10 @@
 
 namespace gapfe::app {
 
-/// The mesh at 1/4 the spacing is solved too when it has at most this many nodes (16 times the deck's; 2e6
-/// equations, some seconds on one core per load step): three meshes then give each quantity's observed order,
-/// and show a quantity that does not converge. Two meshes can only assume the order.
+/// The mesh at 1/4 the spacing is solved too when it has at most this many nodes (16 times the deck's): 2e6
+/// equations with 2 DOF per node, about 4 GB and 20 s per factorization by BENCHMARKS.md's 1e6-equation tube
+/// (2 GB, 8 s), more for 3 DOF and for steps with many solves. Three meshes give each quantity's observed
+/// order and show one that does not converge; two can only assume the order.
 inline constexpr long kThirdLevelNodes = 1'000'000;
 
 /// One mesh's run: its spacing level (0 the deck's own; k: 1 / 2^k of it), size, time and quantities.
@@ -86,10 +88,12 @@ inline std::vector<LevelRun> solve_finer(const Deck& deck, const Scene& scene, R
   };
   try {
     runs.push_back(solve_level(first, 1, plan, units, log));
-  } catch (const SolveError& e) {  // the deck's own run is done: say which run failed
-    throw SolveError(what(1) + e.what());
-  } catch (const InputError& e) {
+  } catch (const InputError& e) {  // the deck's own run is done: say which run failed
     throw InputError(what(1) + e.what());
+  } catch (const SolveError& e) {
+    throw SolveError(what(1) + e.what());
+  } catch (const std::bad_alloc&) {
+    throw SolveError(what(1) + "out of memory");
   }
   const long nodes = 4L * first.scene.grid.node_count();  // about
   if (nodes > kThirdLevelNodes) {
@@ -101,7 +105,9 @@ inline std::vector<LevelRun> solve_finer(const Deck& deck, const Scene& scene, R
   try {
     RefinedDeck second = refine_deck(deck, scene, 2);
     runs.push_back(solve_level(second, 2, plan, units, log));
-  } catch (const std::exception& e) {  // InputError, SolveError, std::bad_alloc: two meshes will do
+  } catch (const std::bad_alloc&) {  // two meshes will do
+    log << "error bars: " << what(2) << "not solved (out of memory); two meshes, the order assumed\n";
+  } catch (const std::runtime_error& e) {  // InputError, SolveError, FileError: two meshes will do
     log << "error bars: " << what(2) << "not solved (" << e.what() << "); two meshes, the order assumed\n";
   }
   return runs;
@@ -137,7 +143,7 @@ inline void report_error_bars(std::ostream& log, const std::string& dir, const s
                                : bar.status == ErrorBar::Status::assumed  ? "assumed"
                                                                           : "not_converging";
     if (bar.status == ErrorBar::Status::exact) {
-      log << v.value << " (the meshes agree to round-off)\n";
+      log << v.value << " (the meshes agree, to the solvers' tolerance)\n";
       csv << detail::csv_name(v.name) << "," << v.value << ",0,0," << status << ",," << bar.limit;
     } else if (bar.converges()) {
       const double size     = std::max(std::abs(bar.limit), std::abs(v.value));

@@ -82,10 +82,9 @@ inline void refined_segments(const Deck& d, const RefinedIndices& f, const std::
       continue;
     }
     if (c.type != SegmentType::line || (a.i != b.i && a.j != b.j))  // a diagonal's steps stay equal
-      throw InputError(
-          d.segment_refs[s].where() +
-          ": --estimate: this segment card crosses a gap layer, which stays one cell thick on the "
-          "finer meshes; only a line along I or J (type 1) can be split there");
+      throw InputError(d.segment_refs[s].where() +
+                       ": this segment card crosses a gap layer, which stays one cell thick on the "
+                       "finer meshes; only a line along I or J (type 1) can be split there");
     const int steps = std::max(std::abs(b.i - a.i), std::abs(b.j - a.j));
     const int di = (b.i - a.i) / steps, dj = (b.j - a.j) / steps;
     int from = 0;
@@ -166,41 +165,59 @@ inline RefinedIndices refined_indices(const Deck& d, const Scene& coarse, int ti
 
 namespace detail {
 
-/// Refuses a gap element whose corners the Laplace fill placed: on a finer grid the fill spreads them anew,
-/// and a gap of 0.02 between two placed faces would come out another size.
-inline void check_gap_corners(const Scene& coarse) {
-  const IJGrid& g = coarse.grid;
-  for (std::size_t e = 0; e < g.cells.size() && e < coarse.gaps.direction.size(); ++e) {
-    if (coarse.gaps.direction[e] == 0) continue;
-    for (int k = 0; k < g.cells[e].corners; ++k)
-      if (!g.placed[static_cast<std::size_t>(g.cells[e].node[k])])
-        throw InputError(
-            "--estimate: gap element " + std::to_string(e + 1) + " " + ij_text(g.cells[e].i, g.cells[e].j) +
-            " has a corner no segment card places; the Laplace fill would place it elsewhere on a "
-            "finer grid, and its gap would change (place the gap's faces with line segment cards)");
+/// The deck's grid line at or below finer line `k` (lines: RefinedIndices::i or j).
+inline int line_below(const std::vector<int>& lines, int k) {
+  return static_cast<int>(std::upper_bound(lines.begin() + 1, lines.end(), k) - lines.begin()) - 1;
+}
+
+/// Refuses a finer grid that does not fill every quadrilateral of the deck's (rows placed only at the deck's
+/// own lines leave the finer rows between them empty), and one whose gap elements have corners no segment
+/// card places (the Laplace fill spreads those anew on each grid, and a gap of 0.02 between two placed faces
+/// would come out another size).
+inline void check_fine_points(const IJGrid& coarse, const IJGrid& fine, const RefinedIndices& index,
+                              const std::vector<int>& gap_direction) {
+  for (std::size_t e = 0; e < coarse.cells.size(); ++e) {
+    const GridCell& c = coarse.cells[e];
+    if (c.corners != 4) continue;  // a triangle's finer points follow its diagonal
+    const bool gap = e < gap_direction.size() && gap_direction[e] != 0;
+    const int i0 = index.i[static_cast<std::size_t>(c.i)], i1 = index.i[static_cast<std::size_t>(c.i) + 1];
+    const int j0 = index.j[static_cast<std::size_t>(c.j)], j1 = index.j[static_cast<std::size_t>(c.j) + 1];
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        const int n = fine.node(i, j);
+        if (n < 0)
+          throw InputError("element " + std::to_string(e + 1) + " " + ij_text(c.i, c.j) +
+                           ": no segment card places the ends of the finer grid's rows inside it (give the "
+                           "deck's sides as segment cards along J as well as along I)");
+        const bool on_face = gap && (gap_direction[e] == 1 ? (i == i0 || i == i1) : (j == j0 || j == j1));
+        if (on_face && !fine.placed[static_cast<std::size_t>(n)])
+          throw InputError("gap element " + std::to_string(e + 1) + " " + ij_text(c.i, c.j) +
+                           ": a corner of its pieces on the finer grid is placed by no segment card; the "
+                           "Laplace fill would put it elsewhere and the gap would change (place the gap's "
+                           "faces with line segment cards)");
+      }
   }
 }
 
-/// Refuses a finer grid whose gap elements close another way than the deck's they split (a gap element of the
-/// deck's with pairs whose pieces would come out corners, soft): `fine` against `coarse` through `index`.
+/// Refuses a finer grid whose gap elements close another way than the deck's they split: `fine` against
+/// `coarse` through `index`.
 inline void check_gap_layout(const Scene& coarse, const Scene& fine, const RefinedIndices& index) {
   std::map<std::pair<int, int>, int> coarse_cell;  // (I, J) of a deck's gap element -> its direction
   for (std::size_t e = 0; e < coarse.grid.cells.size() && e < coarse.gaps.direction.size(); ++e)
     if (coarse.material_id[e] == 2)
       coarse_cell[{coarse.grid.cells[e].i, coarse.grid.cells[e].j}] = coarse.gaps.direction[e];
-  const auto line_below = [](const std::vector<int>& lines, int k) {  // the deck's line at or below finer k
-    return static_cast<int>(std::upper_bound(lines.begin() + 1, lines.end(), k) - lines.begin()) - 1;
-  };
   for (std::size_t e = 0; e < fine.grid.cells.size() && e < fine.gaps.direction.size(); ++e) {
     if (fine.material_id[e] != 2) continue;
     const GridCell& c = fine.grid.cells[e];
     const auto it     = coarse_cell.find({line_below(index.i, c.i), line_below(index.j, c.j)});
-    if (it != coarse_cell.end() && it->second != fine.gaps.direction[e])
-      throw InputError("--estimate: the deck's gap element at " + ij_text(it->first.first, it->first.second) +
-                       (fine.gaps.direction[e] == 0
-                            ? " would have soft pieces (corners of a thicker gap layer)"
-                            : " would close another way") +
-                       " on a finer grid");
+    if (it == coarse_cell.end() || it->second == fine.gaps.direction[e]) continue;
+    throw InputError(
+        "the deck's gap element at " + ij_text(it->first.first, it->first.second) +
+        (it->second == 0 ? " is soft (a corner, a 3-corner cell or IJDIR 0), but its pieces on a finer "
+                           "grid would close"
+         : fine.gaps.direction[e] == 0
+             ? " closes, but its pieces on a finer grid would be soft (corners of a thicker gap layer)"
+             : " would close another way on a finer grid"));
   }
 }
 
@@ -212,15 +229,14 @@ inline void check_gap_layout(const Scene& coarse, const Scene& fine, const Refin
 /// a refined grid past `limits`.
 inline RefinedDeck refine_deck(const Deck& d, const Scene& coarse, int times,
                                const InputLimits& limits = {}) {
-  const IJGrid& g = coarse.grid;
-  detail::check_gap_corners(coarse);
+  const IJGrid& g             = coarse.grid;
   const auto [kept_i, kept_j] = gap_layers(d, coarse);
   RefinedDeck out{d, {}, refined_indices(d, coarse, times)};
   Deck& f           = out.deck;
   const auto& index = out.index;
   f.mesh.max_i = index.i.back(), f.mesh.max_j = index.j.back();
   if (static_cast<double>(f.mesh.max_i) * f.mesh.max_j > static_cast<double>(limits.max_grid_points))
-    throw InputError("--estimate: the finer grid, " + std::to_string(f.mesh.max_i) + " x " +
+    throw InputError("the finer grid, " + std::to_string(f.mesh.max_i) + " x " +
                      std::to_string(f.mesh.max_j) + " points, is past the limit of " +
                      std::to_string(limits.max_grid_points));
   detail::refined_segments(d, index, kept_i, kept_j, f);
@@ -233,9 +249,18 @@ inline RefinedDeck refine_deck(const Deck& d, const Scene& coarse, int times,
   };
   for (BoundaryCard& b : f.boundary) box(b.i1, b.i2, b.j1, b.j2);
   for (MaterialBlockCard& b : f.blocks) box(b.i1, b.i2, b.j1, b.j2);
-  f.own_i     = std::vector<int>(index.i.begin() + 1, index.i.end());
-  f.own_j     = std::vector<int>(index.j.begin() + 1, index.j.end());
-  IJGrid fine = deck_grid(f);
+  f.own_i = std::vector<int>(index.i.begin() + 1, index.i.end());
+  f.own_j = std::vector<int>(index.j.begin() + 1, index.j.end());
+  IJGrid fine;
+  try {
+    fine = deck_grid(f);
+  } catch (const InputError& e) {
+    throw InputError(
+        std::string(e.what()) +
+        " (on the finer grid, do the deck's cards place the ends of every row and column, along J as "
+        "well as along I?)");
+  }
+  detail::check_fine_points(g, fine, index, coarse.gaps.direction);
   for (LoadBlock& block : f.program.blocks)
     for (auto* cards : {&block.pressure, &block.shear, &block.transverse_shear})
       *cards = detail::refined_edges(*cards, g, fine, index);
