@@ -12,6 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gapfe/app/plan.hpp"
@@ -113,60 +114,123 @@ inline std::vector<LevelRun> solve_finer(const Deck& deck, const Scene& scene, R
   return runs;
 }
 
-/// Each quantity's error bar from the runs (the deck's own first), in the log and in `dir`/estimates.csv.
-inline void report_error_bars(std::ostream& log, const std::string& dir, const std::vector<LevelRun>& runs) {
+/// The runs of the deck's own mesh with its load steps in 2 and 4 times the pieces (ModelOptions::
+/// load_pieces), for a law with history: its load-step error, as the mesh's. A run that fails is left out
+/// with a line in `log` (the load-step error then not measured).
+inline std::vector<LevelRun> solve_finer_steps(const ModelDescription& d, const Scene& s, const Plan& plan,
+                                               PlotUnits units, std::ostream& log) {
+  std::vector<LevelRun> runs;
+  std::ostringstream quiet;
+  for (int level = 1; level <= 2; ++level) {
+    const auto start       = std::chrono::steady_clock::now();
+    ModelDescription finer = d;
+    finer.options.load_pieces *= 1 << level, finer.options.error_estimate = false;
+    try {
+      const RunRequest r{finer, s, plan, "", quiet, false, {}, units, nullptr, false, true};
+      runs.push_back({level, s.grid.node_count(), 0, app::run(r).quantities});
+    } catch (const std::runtime_error& e) {
+      log << "error bars: the load steps in " << finer.options.load_pieces << " pieces not solved ("
+          << e.what() << "); the load-step error not measured\n";
+      return {};
+    }
+    runs.back().seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    log << "error bars: the load steps in " << finer.options.load_pieces << " pieces, solved in "
+        << runs.back().seconds << " s\n";
+  }
+  return runs;
+}
+
+/// Quantity q's values on `runs` (NaN where a run lacks it) and its error bar; `first` is its own run's.
+inline std::pair<std::vector<double>, ErrorBar> quantity_bar(const ReadQuantity& first,
+                                                             const std::vector<LevelRun>& runs, std::size_t q,
+                                                             double assumed_order) {
+  std::vector<double> values{first.value};
+  double scale = first.scale;
+  for (const LevelRun& run : runs) {
+    const bool has = q < run.quantities.size() && run.quantities[q].name == first.name;
+    values.push_back(has ? run.quantities[q].value : std::nan(""));
+    if (has) scale = std::max(scale, run.quantities[q].scale);
+  }
+  return {values, error_bar(values, assumed_order, scale)};
+}
+
+/// A bar's status as estimates.csv gives it.
+inline const char* status_word(const ErrorBar& b) {
+  return b.status == ErrorBar::Status::exact      ? "exact"
+         : b.status == ErrorBar::Status::observed ? "observed"
+         : b.status == ErrorBar::Status::assumed  ? "assumed"
+                                                  : "not_converging";
+}
+
+/// A bar in the log's words: "+- 0.1 (0.5%; observed order 2)", and its CSV fields error,relative,status,
+/// order,limit; `what` names the refinement ("meshes", "load steps") and `halves` what halves.
+inline void write_bar(std::ostream& log, std::ostream& csv, const ErrorBar& bar,
+                      const std::vector<double>& values, const char* what, const char* halves) {
+  if (bar.status == ErrorBar::Status::exact) {
+    log << "(the " << what << " agree, to the solvers' tolerance)";
+    csv << ",0,0," << status_word(bar) << ",," << bar.limit;
+  } else if (bar.converges()) {
+    const double size     = std::max(std::abs(bar.limit), std::abs(bar.value));
+    const double relative = size > 0 ? bar.error / size : 0.0;
+    log << "+- " << bar.error << " (" << 100 * relative << "%";
+    if (bar.status == ErrorBar::Status::observed && std::isfinite(bar.order))
+      log << "; observed order " << bar.order;
+    else if (bar.status == ErrorBar::Status::assumed)
+      log << "; order " << bar.order << " assumed, two " << what;
+    log << ")";
+    csv << "," << bar.error << "," << relative << "," << status_word(bar) << "," << bar.order << ","
+        << bar.limit;
+  } else {
+    log << "not converging (";
+    for (std::size_t k = 0; k < values.size(); ++k) log << (k ? ", " : "") << values[k];
+    log << " as the " << halves << " halves: "
+        << (std::string(halves) == "spacing" ? "a singular point such as a re-entrant corner or a point load?"
+                                             : "steps too large to show their order: more load steps, or "
+                                               "load_pieces")
+        << ")";
+    csv << ",,," << status_word(bar) << ",,";
+  }
+}
+
+/// Each quantity's error bar from the runs (the deck's own first, then the finer meshes), and from `steps`
+/// (the deck's own mesh with finer load steps; empty: not measured), in the log and in `dir`/estimates.csv.
+inline void report_error_bars(std::ostream& log, const std::string& dir, const std::vector<LevelRun>& runs,
+                              const std::vector<LevelRun>& steps = {}) {
   const std::vector<ReadQuantity>& own = runs.front().quantities;
+  const std::vector<LevelRun> finer(runs.begin() + 1, runs.end());
   std::ostringstream csv;
   csv << std::setprecision(17);
   csv << "quantity,value,error,relative_error,status,order,limit,r,z";
   for (const LevelRun& run : runs) csv << ",spacing_1/" << (1 << run.level);
+  if (!steps.empty()) {
+    csv << ",step_error,step_relative_error,step_status,step_order,step_limit";
+    for (const LevelRun& run : steps) csv << ",steps_x" << (1 << run.level);
+  }
   csv << "\n";
-  log << "error bars (" << runs.size()
-      << " meshes; the error of this run's value, from its values on the finer "
-      << "meshes; docs/accuracy.md \"Error bars\"):\n";
+  log << "error bars (" << runs.size() << " meshes"
+      << (steps.empty() ? "" : ", and load steps in 1, 2 and 4 pieces")
+      << "; the error of this run's value, from its values on the finer ones; docs/accuracy.md \"Error "
+         "bars\"):\n";
   for (std::size_t q = 0; q < own.size(); ++q) {
-    std::vector<double> values;
-    for (const LevelRun& run : runs)
-      values.push_back(q < run.quantities.size() && run.quantities[q].name == own[q].name
-                           ? run.quantities[q].value
-                           : std::nan(""));
-    double scale = 0;
-    for (const LevelRun& run : runs)
-      if (q < run.quantities.size()) scale = std::max(scale, run.quantities[q].scale);
-    const ErrorBar bar    = error_bar(values, own[q].order, scale);
-    const ReadQuantity& v = own[q];
+    const ReadQuantity& v    = own[q];
+    const auto [values, bar] = quantity_bar(v, finer, q, v.order);
     log << "  " << v.name;
     if (v.located) log << " (at r = " << v.at(0) << ", z = " << v.at(1) << ")";
-    log << ": ";
-    const std::string status = bar.status == ErrorBar::Status::exact      ? "exact"
-                               : bar.status == ErrorBar::Status::observed ? "observed"
-                               : bar.status == ErrorBar::Status::assumed  ? "assumed"
-                                                                          : "not_converging";
-    if (bar.status == ErrorBar::Status::exact) {
-      log << v.value << " (the meshes agree, to the solvers' tolerance)\n";
-      csv << detail::csv_name(v.name) << "," << v.value << ",0,0," << status << ",," << bar.limit;
-    } else if (bar.converges()) {
-      const double size     = std::max(std::abs(bar.limit), std::abs(v.value));
-      const double relative = size > 0 ? bar.error / size : 0.0;
-      log << v.value << " +- " << bar.error << " (" << 100 * relative << "%";
-      if (bar.status == ErrorBar::Status::observed && std::isfinite(bar.order))
-        log << "; observed order " << bar.order;
-      else if (bar.status == ErrorBar::Status::assumed)
-        log << "; order " << bar.order << " assumed, two meshes";
-      log << ")\n";
-      csv << detail::csv_name(v.name) << "," << v.value << "," << bar.error << "," << relative << ","
-          << status << "," << bar.order << "," << bar.limit;
-    } else {
-      log << "not converging (";
-      for (std::size_t k = 0; k < values.size(); ++k) log << (k ? ", " : "") << values[k];
-      log << " as the spacing halves: a singular point such as a re-entrant corner or a point load?)\n";
-      csv << detail::csv_name(v.name) << "," << v.value << ",,," << status << ",,";
-    }
+    log << ": " << v.value << " ";
+    csv << detail::csv_name(v.name) << "," << v.value;
+    write_bar(log, csv, bar, values, "meshes", "spacing");
     if (v.located)
       csv << "," << v.at(0) << "," << v.at(1);
     else
       csv << ",,";
     for (const double value : values) csv << "," << value;
+    if (!steps.empty()) {  // the load-step error: first order in the step for the integration of a history
+      const auto [step_values, step_bar] = quantity_bar(v, steps, q, 1.0);
+      log << "; load steps: ";
+      write_bar(log, csv, step_bar, step_values, "load steps", "step");
+      for (std::size_t k = 1; k < step_values.size(); ++k) csv << "," << step_values[k];
+    }
+    log << "\n";
     csv << "\n";
   }
   OutputFile file(dir + "/estimates.csv");

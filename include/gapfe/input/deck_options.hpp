@@ -72,6 +72,10 @@ struct ModelOptions {
   /// newton_iterations = the iterations before a step is cut in halves (default 30). NewtonOptions.
   double newton_tolerance = 1e-10;
   int newton_iterations   = 30;
+  /// load_pieces = N: a law with history takes each load step in N equal increments or more (default 1: a
+  /// step whole, cut only when Newton or the time control asks). `--estimate` runs a plastic deck with 2 and
+  /// 4 to measure the load-step error (docs/accuracy.md "Error bars").
+  int load_pieces = 1;
   /// time_tolerance = the largest estimated local error of a rate-dependent law's time integration an
   /// increment may keep (DrysdaleZak::time_error: the stress its plastic-strain error stands for, relative
   /// to yield); a load step is cut into halves until its pieces meet it (plasticity = return-mapping; the
@@ -166,6 +170,11 @@ struct ModelOptions {
     } else if (key == "units") {
       (void)unit_names(value);  // checked here, used by the pictures
       units = value;
+    } else if (key == "load_pieces") {
+      const double n = number(1.0);
+      if (n != std::floor(n) || n > 1024)
+        throw InputError("option load_pieces = '" + value + "': expected a whole number 1 to 1024");
+      load_pieces = static_cast<int>(n);
     } else if (key == "newton_iterations") {
       const double n = number(1.0);
       if (n != std::floor(n) || n > 10000)
@@ -175,7 +184,7 @@ struct ModelOptions {
       throw InputError("unknown option '" + key +
                        "' (known: format, element, solver, bc_loads, contact, friction, slip, gap_penalty, "
                        "events, gap_direction, plasticity, output, output_csv, output_vtu, error_estimate, "
-                       "newton_tolerance, newton_iterations, time_tolerance, fields, units)");
+                       "newton_tolerance, newton_iterations, load_pieces, time_tolerance, fields, units)");
     }
   }
 };

@@ -157,11 +157,12 @@ void run_scene_plastic(const ModelDescription& d, const Scene& s, OnIncrement&& 
   StepLoads loads(d, s);
   const bool time_control = time_controlled<typename M::Material>() && d.options.time_tolerance > 0;
   const double smallest   = time_control ? kSmallestTimePiece : 1.0 / 64;  // Newton's cuts end here
-  double size             = 1;  // the next piece of a step; under the time control kept from step to step
+  const double largest    = 1.0 / d.options.load_pieces;                   // ModelOptions::load_pieces
+  double size = largest;  // the next piece of a step; under the time control kept from step to step
   for (int step = 1; step <= d.steps(); ++step) {
     const StepTotals before = loads.at(step - 1), after = loads.at(step);
     double done = 0;
-    if (!time_control) size = 1;
+    if (!time_control) size = largest;
     while (done < 1 - 1e-12) {
       const double to = std::min(1.0, done + size), piece = to - done;
       set_loads(fe.problem(), interpolate(before, after, to), s);
@@ -195,7 +196,7 @@ void run_scene_plastic(const ModelDescription& d, const Scene& s, OnIncrement&& 
       done = to;
       on_increment(step, step - 1 + done, static_cast<const NonlinearStatic<M>&>(fe));
       if (!time_control || time_error < d.options.time_tolerance / 2)
-        size = std::min(1.0, 2 * size);  // grow again after a cut
+        size = std::min(largest, 2 * size);  // grow again after a cut
     }
   }
 }
