@@ -163,9 +163,11 @@ inline const char* status_word(const ErrorBar& b) {
 }
 
 /// A bar in the log's words: "+- 0.1 (0.5%; observed order 2)", and its CSV fields error,relative,status,
-/// order,limit; `what` names the refinement ("meshes", "load steps") and `halves` what halves.
+/// order,limit; `what` names the refinement ("meshes", "load steps"), `halves` what halves, and `hint` the
+/// likely cause when the values do not converge.
 inline void write_bar(std::ostream& log, std::ostream& csv, const ErrorBar& bar,
-                      const std::vector<double>& values, const char* what, const char* halves) {
+                      const std::vector<double>& values, const char* what, const char* halves,
+                      const char* hint) {
   if (bar.status == ErrorBar::Status::exact) {
     log << "(the " << what << " agree, to the solvers' tolerance)";
     csv << ",0,0," << status_word(bar) << ",," << bar.limit;
@@ -183,11 +185,7 @@ inline void write_bar(std::ostream& log, std::ostream& csv, const ErrorBar& bar,
   } else {
     log << "not converging (";
     for (std::size_t k = 0; k < values.size(); ++k) log << (k ? ", " : "") << values[k];
-    log << " as the " << halves << " halves: "
-        << (std::string(halves) == "spacing" ? "a singular point such as a re-entrant corner or a point load?"
-                                             : "steps too large to show their order: more load steps, or "
-                                               "load_pieces")
-        << ")";
+    log << " as the " << halves << " halves: " << hint << ")";
     csv << ",,," << status_word(bar) << ",,";
   }
 }
@@ -218,7 +216,8 @@ inline void report_error_bars(std::ostream& log, const std::string& dir, const s
     if (v.located) log << " (at r = " << v.at(0) << ", z = " << v.at(1) << ")";
     log << ": " << v.value << " ";
     csv << detail::csv_name(v.name) << "," << v.value;
-    write_bar(log, csv, bar, values, "meshes", "spacing");
+    write_bar(log, csv, bar, values, "meshes", "spacing",
+              "a singular point such as a re-entrant corner or a point load?");
     if (v.located)
       csv << "," << v.at(0) << "," << v.at(1);
     else
@@ -227,7 +226,8 @@ inline void report_error_bars(std::ostream& log, const std::string& dir, const s
     if (!steps.empty()) {  // the load-step error: first order in the step for the integration of a history
       const auto [step_values, step_bar] = quantity_bar(v, steps, q, 1.0);
       log << "; load steps: ";
-      write_bar(log, csv, step_bar, step_values, "load steps", "step");
+      write_bar(log, csv, step_bar, step_values, "load steps", "step",
+                "steps too large to show their order: more load steps, or load_pieces");
       for (std::size_t k = 1; k < step_values.size(); ++k) csv << "," << step_values[k];
     }
     log << "\n";

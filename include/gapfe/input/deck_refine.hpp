@@ -87,13 +87,13 @@ inline void refined_segments(const Deck& d, const RefinedIndices& f, const std::
                        "finer meshes; only a line along I or J (type 1) can be split there");
     const int steps = std::max(std::abs(b.i - a.i), std::abs(b.j - a.j));
     const int di = (b.i - a.i) / steps, dj = (b.j - a.j) / steps;
-    int from = 0;
+    int from             = 0;
+    const auto kept_step = [&](int n) {  // whether the step from point n to n + 1 crosses a kept interval
+      const int i = a.i + n * di, j = a.j + n * dj;
+      return (di != 0 && kept_i[std::min(i, i + di)]) || (dj != 0 && kept_j[std::min(j, j + dj)]);
+    };
     for (int k = 1; k <= steps; ++k) {  // a piece ends before and after every kept interval, and at b
-      const int i = a.i + k * di, j = a.j + k * dj, pi = i - di, pj = j - dj;
-      const bool kept_step = (di != 0 && kept_i[std::min(i, pi)]) || (dj != 0 && kept_j[std::min(j, pj)]);
-      const bool next_kept =
-          k < steps && ((di != 0 && kept_i[std::min(i, i + di)]) || (dj != 0 && kept_j[std::min(j, j + dj)]));
-      if (k < steps && !kept_step && !next_kept) continue;
+      if (k < steps && !kept_step(k - 1) && !kept_step(k)) continue;
       const auto at = [&](int n) {
         return GridPoint{a.i + n * di, a.j + n * dj,
                          n == steps ? b.x : Vec2(a.x + (b.x - a.x) * (static_cast<double>(n) / steps))};
@@ -154,13 +154,6 @@ inline std::pair<std::vector<char>, std::vector<char>> gap_layers(const Deck& d,
     if (dir == 2) kept_j[static_cast<std::size_t>(g.cells[e].j)] = 1;
   }
   return {std::move(kept_i), std::move(kept_j)};
-}
-
-/// The finer grids' lines, refined `times` times.
-inline RefinedIndices refined_indices(const Deck& d, const Scene& coarse, int times) {
-  const auto [kept_i, kept_j] = gap_layers(d, coarse);
-  return {detail::refined_lines(d.mesh.max_i, kept_i, times),
-          detail::refined_lines(d.mesh.max_j, kept_j, times)};
 }
 
 namespace detail {
@@ -231,7 +224,10 @@ inline RefinedDeck refine_deck(const Deck& d, const Scene& coarse, int times,
                                const InputLimits& limits = {}) {
   const IJGrid& g             = coarse.grid;
   const auto [kept_i, kept_j] = gap_layers(d, coarse);
-  RefinedDeck out{d, {}, refined_indices(d, coarse, times)};
+  RefinedDeck out{d,
+                  {},
+                  {detail::refined_lines(d.mesh.max_i, kept_i, times),
+                   detail::refined_lines(d.mesh.max_j, kept_j, times)}};
   Deck& f           = out.deck;
   const auto& index = out.index;
   f.mesh.max_i = index.i.back(), f.mesh.max_j = index.j.back();
