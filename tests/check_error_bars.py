@@ -15,8 +15,14 @@ closed forms (ctest `gapfe_error_bars`):
     the difference to the same model with 64 pieces a step, within the same band;
   * a stepped bar pulled along its axis, with a re-entrant corner of 270 degrees: its largest von Mises
     stress grows without bound as the mesh is refined, and is reported as not converging, with no number;
-  * what --estimate refuses before it runs (a scene file; a gap whose faces no segment card places), with the
-    last run's files left as they were; and estimates.csv gone after a later run without --estimate.
+  * scene files: the Lame tube on Gmsh's quadrangles and triangles (every cell split in four); a thick
+    sphere under bore pressure on Gmsh's quadrangles and triangles, whose bore and outside are circular arcs
+    (the new points put back on them): the support's reaction p pi a^2, the bore's displacement and the
+    Mises stress 3 p b^3 / (2 (b^3 - a^3)); two tubes closed by pressure on a Gmsh mesh with a soft layer,
+    and the press fit's grid scene, each layer kept one cell thick: the contact force (and friction force);
+  * what --estimate refuses before it runs (a gap whose faces no segment card places, in a deck and in a grid
+    scene), with the last run's files left as they were; and estimates.csv gone after a later
+    run without --estimate.
 
     /usr/bin/python3 tests/check_error_bars.py build/release/examples/gapfe WORKDIR
 """
@@ -91,14 +97,19 @@ def fit_force(a, b, w, c, height, p_bore, q_outer, nu):
     return (lo + hi) / 2
 
 
-def compare(name, rows, truth):
-    """Each quantity of `truth` (name -> closed form of its size) against its row of estimates.csv."""
+def compare(name, rows, truth, unsettled=()):
+    """Each quantity of `truth` (name -> closed form of its size) against its row of estimates.csv. Those in
+    `unsettled` may be reported as not converging (with no number), but a bar they get must hold."""
     for quantity, exact in truth.items():
         row = rows.get(quantity)
         if not check(row is not None, f"{name}: {quantity} reported"):
             continue
         value, bar = float(row["value"]), float(row["error"] or "nan")
         true_error = abs(abs(value) - exact)
+        if quantity in unsettled and row["status"] == "not_converging":
+            print(f"{name}: {quantity} = {value:.8g}, not converging (true error {true_error:.3g})")
+            check(row["error"] == "", f"{name}: {quantity}: no number when not converging")
+            continue
         check(row["status"] in ("observed", "exact"), f"{name}: {quantity} converges: {row['status']}")
         if true_error < 1e-7 * exact:  # exact to round-off: the bar must say so
             check(bar < 1e-6 * exact, f"{name}: {quantity}: exact to {true_error:.3g}, bar {bar:.3g}")
@@ -213,13 +224,79 @@ def reentrant_corner():
           f"stepped bar: the support carries the pull: {reaction}")
 
 
+def scene(name, mesh, body):
+    """A scene file `name`.toml in the work folder on the committed mesh tests/data/scenes/`mesh` (copied)."""
+    shutil.copy(root / "tests" / "data" / "scenes" / mesh, work / mesh)
+    path = work / f"{name}.toml"
+    path.write_text(f'title = "{name}"\n[mesh]\nfile = "{mesh}"\n' + body)
+    return path
+
+
+STEEL = "[materials.steel]\nE = 200000.0\nnu = 0.3\n"
+
+
+def scenes():
+    s = P * A * A / (B * B - A * A)
+    sigma = (-P, 2 * NU * s, s * (B * B + A * A) / (A * A))
+    tube = {"reaction bottom R_z": 2 * math.pi * NU * P * A * A, "reaction top R_z": 2 * math.pi * NU * P * A * A,
+            "largest |u|": (1 + NU) / E * s * ((1 - 2 * NU) * A + B * B / A),
+            "largest von Mises": math.sqrt(0.5 * sum((sigma[k] - sigma[(k + 1) % 3]) ** 2 for k in range(3)))}
+    hold = '[[boundary]]\ngroups = "bottom"\nfix = "z"\n[[boundary]]\ngroups = "top"\nfix = "z"\n'
+    for kind in ("quad", "tri"):
+        model = scene(f"lame_gmsh_{kind}", f"lame_{kind}_h20.msh",
+                      STEEL + hold + '[[load]]\ncurves = "bore"\npressure = 100.0\n')
+        out, log, _ = run(model, model.stem, "--estimate")
+        check("every cell split in four" in log, f"{model.stem}: the Gmsh mesh split: {log[-600:]}")
+        # Constant-strain triangles: the largest nodal |u| (a maximum over the bore's nodes, each off the
+        # closed form by its own sign) is still pre-asymptotic on these meshes (errors -3.9e-6, 1.3e-5, 6.7e-6)
+        compare(model.stem, estimates(out), tube, unsettled=("largest |u|",) if kind == "tri" else ())
+    cube = B ** 3 - A ** 3
+    sphere = {"reaction bottom R_z": P * math.pi * A * A,
+              "largest |u|": P * A / (E * cube) * ((1 - 2 * NU) * A ** 3 + (1 + NU) * B ** 3 / 2),
+              "largest von Mises": 3 * P * B ** 3 / (2 * cube)}
+    for kind in ("quad", "tri"):
+        model = scene(f"sphere_{kind}", f"sphere_{kind}.msh",
+                      STEEL + '[[boundary]]\ngroups = "bottom"\nfix = "z"\n[[boundary]]\ngroups = "axis"\n'
+                      'fix = "r"\n[[load]]\ncurves = "bore"\npressure = 100.0\n')
+        out, log, _ = run(model, model.stem, "--estimate")
+        arcs = [line for line in log.splitlines() if "new points put on circular arcs" in line]
+        check(len(arcs) == 2 and all(" 0 new points" not in line for line in arcs),
+              f"{model.stem}: new points on the arcs: {arcs}")
+        # The largest |u| is the axis node's at the bore, where the error is pre-asymptotic on these meshes
+        # (Gmsh's own meshes of size 25, 12.5, 6.25, 3.125: errors 2.8e-4, 2.5e-4, 1.1e-4, 3.4e-5)
+        compare(model.stem, estimates(out), sphere, unsettled=("largest |u|",))
+    # two_tubes.toml (tests/data/scenes): the deck's gap elements as a soft layer on a Gmsh mesh, height 2.5
+    text = (root / "tests" / "data" / "scenes" / "two_tubes.toml").read_text()
+    shutil.copy(root / "tests" / "data" / "scenes" / "two_tubes.msh", work / "two_tubes.msh")
+    model = work / "two_tubes_scene.toml"
+    model.write_text(text.replace("count = 20", "count = 4"))
+    out, log, _ = run(model, model.stem, "--estimate")
+    a, b, w, c = 50.0, 75.0, 0.02, 100.0
+    force = fit_force(a, b, w, c, 2.5, P, 0.0, NU)
+    q = force / (2 * math.pi * b * 2.5)
+    s_rr, s_tt = -P, (P * a * a - q * b * b + (P - q) * b * b) / (b * b - a * a)
+    s_zz = NU * (s_rr + s_tt)
+    mises = math.sqrt(0.5 * ((s_rr - s_zz) ** 2 + (s_zz - s_tt) ** 2 + (s_tt - s_rr) ** 2))
+    # The soft layer (E = 0.0002, nu = 0), closed across its whole thickness (strain -1), carries
+    # 0.0002 x 2 pi r_mid x height of the force beside the gap pairs (1.2e-5 of it, half the mesh's error)
+    soft = 0.0002 * 2 * math.pi * (b + w / 2) * 2.5
+    compare(model.stem, estimates(out), {"contact normal force": force - soft,
+                                         "largest |u|": lame_u(a, a, b, P, q, NU), "largest von Mises": mises})
+    # examples/scenes/press_fit.toml in 4 steps (the grid scene's soft column kept one cell)
+    text = (root / "examples" / "scenes" / "press_fit.toml").read_text()
+    model = work / "press_fit_scene.toml"
+    model.write_text(text.replace("count = 40", "count = 4").replace("z = -0.04", "z = -0.01"))
+    out, log, _ = run(model, model.stem, "--estimate")
+    force = fit_force(12.5, 25.0, 0.001, 50.0, 50.0, 0.0, 75.0, 0.0)
+    compare(model.stem, estimates(out), {"contact normal force": force, "contact friction force": 0.15 * force})
+
+
 def refusals():
     # A folder with a finished run, which a refused --estimate must leave as it is.
     deck = work / "lame_small.deck"
     deck.write_text(deckgen.tube_deck(5, 3))
     out, _, _ = run(deck, "kept")
     before = sorted(p.name for p in out.iterdir())
-    scene = root / "examples" / "scenes" / "notched_tube.toml"
     # two_tubes.deck without the segment cards of the gap's faces (I = 21, 22): the Laplace fill places their
     # middle points, which a finer grid would move (more in tests/test_error_bars.cpp)
     lines = (root / "examples" / "decks" / "two_tubes.deck").read_text().splitlines()
@@ -227,7 +304,14 @@ def refusals():
     lines = [line.replace("   42    3    8    1    3", "   42    3    6    1    3") for line in lines]
     filled = work / "filled_gap.deck"
     filled.write_text("\n".join(lines) + "\n")
-    for model, why in ((scene, "refines card decks"), (filled, "placed by no segment card")):
+    # The press fit's grid scene without the segment cards of its faces (I = 7, 8), likewise
+    text = (root / "examples" / "scenes" / "press_fit.toml").read_text()
+    for face in ("points = [[7, 1, 25.0, 0.0], [7, 11, 25.0, 50.0]]", "points = [[8, 1, 25.001, 0.0], [8, 11, 25.001, 50.0]]"):
+        check(f"[[mesh.segments]]\n{face}\n" in text, f"press_fit.toml has {face}")
+        text = text.replace(f"[[mesh.segments]]\n{face}\n", "")
+    filled_scene = work / "filled_gap.toml"
+    filled_scene.write_text(text)
+    for model, why in ((filled_scene, "placed by no segment card"), (filled, "placed by no segment card")):
         _, _, err = run(model, "kept", "--estimate", expect=1)
         lines = [line for line in err.splitlines() if line.strip()]
         check(len(lines) == 1 and why in err, f"{model.name}: one line naming why: {err.strip()}")
@@ -244,5 +328,6 @@ lame()
 gaps()
 load_steps()
 reentrant_corner()
+scenes()
 refusals()
 finish("check_error_bars: ")

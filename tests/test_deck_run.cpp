@@ -152,7 +152,7 @@ TEST_CASE("[library] a C++ user's run is the command's: make_plan, check_plan, r
   // The thick tube through the library's three calls, as the command makes them (app/command_impl.hpp).
   // A deck becomes a description and its scene, as a scene file does (input/scene.hpp).
   const Deck tube = read_deck(read_input((kExamples / "thick_tube.deck").string(), "deck"));
-  const SceneModel model{tube, build_scene(tube), {}};
+  const SceneModel model{tube, build_scene(tube), {}, {}};
   const app::Plan plan = app::make_plan(model.description, model.scene);
   CHECK(plan.key == app::VariantKey{VariantChoice::saas, ElementChoice::legacy, app::LawKind::elastic,
                                     PlasticityChoice::return_mapping, ContactChoice::none,
@@ -185,7 +185,7 @@ TEST_CASE("[library] a C++ user's run is the command's: make_plan, check_plan, r
   // A refusal is the same from either side: the plastic tube on the legacy quad.
   const Deck plastic_deck =
       read_deck(read_input((kExamples / "plastic_tube.deck").string(), "deck"), {{"element", "legacy"}});
-  const SceneModel plastic{plastic_deck, build_scene(plastic_deck), {}};
+  const SceneModel plastic{plastic_deck, build_scene(plastic_deck), {}, {}};
   const app::Plan refused = app::make_plan(plastic.description, plastic.scene);
   CHECK(refused.key.law == app::LawKind::plastic);
   CHECK_THROWS_WITH_AS(app::check_plan(refused, plastic.description, plastic.scene),

@@ -5,13 +5,16 @@
 #include <cmath>
 #include <filesystem>
 #include <numbers>
+#include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <doctest/doctest.h>
 
 #include "gapfe/input/deck.hpp"
 #include "gapfe/input/deck_refine.hpp"
+#include "gapfe/input/gmsh_refine.hpp"
 #include "gapfe/input/input_file.hpp"
 #include "gapfe/post/extrapolation.hpp"
 
@@ -327,4 +330,125 @@ TEST_CASE("[error bars] what a finer grid could not keep is refused, naming the 
   const Scene filled_scene = build_scene(filled);
   CHECK_THROWS_WITH_AS(refine_deck(filled, filled_scene, 1), doctest::Contains("placed by no segment card"),
                        InputError);
+}
+
+// ---- a Gmsh mesh split in four (input/gmsh_refine.hpp)
+
+namespace {
+
+const std::filesystem::path kGmshData = std::filesystem::path(GAPFE_SOURCE_DIR) / "tests" / "data";
+
+gapfe::GmshMesh gmsh_file(const std::filesystem::path& path) {
+  return gapfe::read_gmsh(gapfe::read_input(path.string(), "mesh"));
+}
+
+/// The area of the mesh's cells (shoelace), and of those in physical group `tag` when >= 0.
+double cell_area(const gapfe::GmshMesh& g, int tag = -1) {
+  double area = 0;
+  for (const gapfe::GmshElement& c : g.cells) {
+    if (tag >= 0 && !c.in(tag)) continue;
+    for (int k = 0; k < c.node_count; ++k) {
+      const gapfe::Vec2 &a = g.nodes[c.nodes[k]], &b = g.nodes[c.nodes[(k + 1) % c.node_count]];
+      area += 0.5 * (a(0) * b(1) - b(0) * a(1));
+    }
+  }
+  return area;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "a Gmsh mesh split in four keeps its area, its nodes and its groups, and its straight sides straight") {
+  const gapfe::GmshMesh coarse = gmsh_file(kGmshData / "tube_quad4_v41.msh");
+  const gapfe::GmshSplit split = gapfe::split_gmsh(coarse, 1);
+  const gapfe::GmshMesh& fine  = split.mesh;
+  // Euler on a quadrangle mesh: V' = V + sides + cells
+  std::set<std::pair<int, int>> sides;
+  for (const auto& c : coarse.cells)
+    for (int k = 0; k < c.node_count; ++k) {
+      const int a = c.nodes[k], b = c.nodes[(k + 1) % c.node_count];
+      sides.insert({std::min(a, b), std::max(a, b)});
+    }
+  CHECK(fine.cells.size() == 4 * coarse.cells.size());
+  CHECK(fine.edges.size() == 2 * coarse.edges.size());
+  CHECK(split.coarse_nodes == coarse.nodes.size());
+  CHECK(fine.nodes.size() == coarse.nodes.size() + sides.size() + coarse.cells.size());
+  CHECK(split.arc_points == 0);  // a rectangle's corners are not an arc
+  for (std::size_t n = 0; n < coarse.nodes.size(); ++n) CHECK(fine.nodes[n] == coarse.nodes[n]);
+  CHECK(cell_area(fine) == doctest::Approx(cell_area(coarse)).epsilon(1e-13));
+  for (const auto& [key, name] : coarse.physical_names)
+    if (key.first == 2) CHECK(cell_area(fine, key.second) == doctest::Approx(cell_area(coarse, key.second)));
+  for (const auto& c : fine.cells) {  // counterclockwise, every one
+    gapfe::GmshMesh one = fine;
+    one.cells           = {c};
+    CHECK(cell_area(one) > 0);
+  }
+}
+
+TEST_CASE("a Gmsh mesh split in four puts the new points of its arcs on their circles") {
+  for (const char* file : {"sphere_quad.msh", "sphere_tri.msh"}) {
+    CAPTURE(file);
+    const gapfe::GmshMesh coarse = gmsh_file(kGmshData / "scenes" / file);
+    const double a = 100, b = 200, exact = std::numbers::pi / 4 * (b * b - a * a);
+    double error = std::abs(cell_area(coarse) - exact);
+    for (int times = 1; times <= 2; ++times) {
+      const gapfe::GmshSplit split = gapfe::split_gmsh(coarse, times);
+      CHECK(split.arc_points > 0);
+      for (const auto& [radius, name] : {std::pair{a, "bore"}, std::pair{b, "outer"}}) {
+        const int tag = split.mesh.physical(1, name);
+        for (const auto& e : split.mesh.edges)
+          if (e.in(tag))
+            for (int k = 0; k < 2; ++k)
+              CHECK(split.mesh.nodes[e.nodes[k]].norm() == doctest::Approx(radius).epsilon(1e-13));
+      }
+      // The polygon's area error, the chords' segments, falls 4 times a split (16 times in two).
+      const double finer = std::abs(cell_area(split.mesh) - exact);
+      CHECK(finer < error / (times == 1 ? 3.5 : 12.0));
+      CHECK(cell_area(split.mesh) < exact);  // inscribed
+    }
+  }
+}
+
+TEST_CASE("a Gmsh mesh split in four keeps a soft layer one cell thick, and refuses one it cannot") {
+  const gapfe::GmshMesh coarse = gmsh_file(kGmshData / "matrix" / "fit.msh");
+  const gapfe::GmshSplit split = gapfe::split_gmsh(coarse, 2, {"gap"}, {"shaft_face", "hub_face"});
+  const int soft               = coarse.physical(2, "gap");
+  std::size_t before = 0, after = 0;
+  for (const auto& c : coarse.cells) before += c.in(soft);
+  for (const auto& c : split.mesh.cells) {
+    if (!c.in(soft)) continue;
+    ++after;
+    int inner = 0, outer = 0;  // corners on r = 15 and on r = 15.001
+    for (int k = 0; k < 4; ++k) {
+      const double r = split.mesh.nodes[c.nodes[k]](0);
+      inner += std::abs(r - 15.0) < 1e-9, outer += std::abs(r - 15.001) < 1e-9;
+    }
+    CHECK((inner == 2 && outer == 2));
+  }
+  CHECK(after == 4 * before);  // 2 x 2 along the faces, none across
+  CHECK(cell_area(split.mesh, soft) == doctest::Approx(cell_area(coarse, soft)).epsilon(1e-12));
+
+  // A 2 x 2 block whose lower-left cell is soft between its left and right sides: the cell above it shares
+  // the soft cell's top, a side across the layer, which the split keeps whole.
+  gapfe::GmshMesh block;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i)
+      block.nodes.push_back(gapfe::Vec2(1 + i, j)), block.node_tags.push_back(3 * j + i + 1);
+  block.physical_names = {{{2, 1}, "soft"}, {{2, 2}, "body"}, {{1, 3}, "left"}, {{1, 4}, "right"}};
+  const auto element   = [](int type, std::vector<int> nodes, int group) {
+    gapfe::GmshElement e;
+    e.type = type, e.node_count = static_cast<int>(nodes.size()), e.physical = {group}, e.line = 10 + group;
+    std::copy(nodes.begin(), nodes.end(), e.nodes.begin());
+    return e;
+  };
+  block.cells = {element(3, {0, 1, 4, 3}, 1), element(3, {1, 2, 5, 4}, 2), element(3, {3, 4, 7, 6}, 2),
+                 element(3, {4, 5, 8, 7}, 2)};
+  block.edges = {element(1, {0, 3}, 3), element(1, {1, 4}, 4)};
+  CHECK_THROWS_WITH_AS(gapfe::split_gmsh(block, 1, {"soft"}, {"left", "right"}),
+                       doctest::Contains("shares a side with a soft layer's cell across the layer"),
+                       gapfe::InputError);
+  CHECK_THROWS_WITH_AS(gapfe::split_gmsh(block, 1, {"soft"}, {"left"}),
+                       doctest::Contains("whose two opposite sides are not on the contact's faces"),
+                       gapfe::InputError);
+  CHECK_NOTHROW(gapfe::split_gmsh(block, 1));  // without the soft layer: every cell in four
 }

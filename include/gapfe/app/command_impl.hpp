@@ -55,12 +55,13 @@ inline bool is_scene_file(const std::string& path) {
   return std::filesystem::path(path).extension() == ".toml";
 }
 
-/// A scene file with the command line's --set options, read whole (its mesh too).
-inline SceneModel read_scene_model(const Args& a) {
+/// A scene file with the command line's --set options, read whole (its mesh too); `refine` > 0: on its mesh
+/// refined that many times (--estimate's finer meshes).
+inline SceneModel read_scene_model(const Args& a, int refine = 0) {
 #ifdef GAPFE_HAS_SCENE
-  return read_scene_file(a.deck, a.options);
+  return read_scene_file(a.deck, a.options, refine);
 #else
-  (void)a;
+  (void)a, (void)refine;
   throw InputError("this gapfe was built without toml++ (libtomlplusplus-dev), so it reads decks only");
 #endif
 }
@@ -156,15 +157,19 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
   check_process(a, plan, launch_size, process.start_mpi);
   check_plan(plan, d, s);
   check_compiled(plan);
-  std::optional<RefinedDeck> finer;  // --estimate's first finer mesh: built (or refused) before the run
+  // --estimate's finer meshes: a deck's from its grid cards, a scene file's read again; the first built (or
+  // refused) before the run.
+  const Refiner refine =
+      cards ? deck_refiner(*cards, s) : [&a](int times) { return read_scene_model(a, times); };
+  std::optional<SceneModel> finer;
   if (a.estimate) {
-    if (const std::string why = estimate_refused(cards == nullptr, plan); !why.empty()) throw InputError(why);
+    if (const std::string why = estimate_refused(plan); !why.empty()) throw InputError(why);
     try {
-      finer = refine_deck(*cards, s, 1);
+      finer = refine(1);
     } catch (const InputError& e) {
       throw InputError(std::string("--estimate, the mesh at 1/2 of the spacing: ") + e.what());
     }
-    note_point_supports(*cards, log);
+    if (cards) note_point_supports(*cards, log);
   }
   std::optional<ScenePart> part;
   const int rank = plan.solver == SolverChoice::petsc ? partition(a, s, process.start_mpi, part, log) : 0;
@@ -201,7 +206,7 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
     report_run(log, err, plan, d, result);
     if (a.estimate) {
       std::vector<LevelRun> levels{{0, s.grid.node_count(), since(t0), result.quantities}};
-      for (LevelRun& level : solve_finer(*cards, s, std::move(*finer), plan, request.units, log))
+      for (LevelRun& level : solve_finer(refine, std::move(*finer), plan, request.units, log))
         levels.push_back(std::move(level));
       // A law with history (without gaps: the contact loop splits its own steps) has a load-step error too.
       const std::vector<LevelRun> steps = plan.plastic && !plan.gaps
@@ -244,7 +249,7 @@ inline int execute(const Args& a, std::ostream& out, std::ostream& err, const Pr
   t0                  = Clock::now();
   if (!scene) model.scene = build_scene(*deck);
   const double t_mesh = since(t0);
-  std::optional<Deck> cards;  // the grid cards, which --estimate refines
+  std::optional<Deck> cards;  // a deck's grid cards, which --estimate refines
   if (scene) {
     describe_scene(log, model);
   } else {

@@ -72,9 +72,8 @@ inline constexpr OptionSpec kOptions[] = {
     {"--png", nullptr, "run",
      "also rasterize the run's pictures to PNG (rsvg-convert, Debian's librsvg2-bin)"},
     {"--estimate", nullptr, "run",
-     "error bars on the reactions, the largest displacement and the largest von Mises stress: the deck "
-     "solved "
-     "again on its grid at 1/2 (and 1/4) of the spacing, extrapolated; in the log and estimates.csv"},
+     "error bars on the reactions, the largest displacement and the largest von Mises stress: the model "
+     "solved again on its mesh at 1/2 (and 1/4) of the spacing, extrapolated; in the log and estimates.csv"},
     {"--threads", "N", "run", "OpenBLAS threads for the factorization's dense kernels (default 1)"},
     {"--overwrite", nullptr, "run",
      "replace results in --out that no gapfe run wrote there (without it such a folder is refused; a folder "

@@ -1,11 +1,13 @@
 #pragma once
-// `gapfe run --estimate`: error bars on the quantities a user reads (app/read_quantities.hpp). The deck is
-// solved again on its grid at 1/2 the spacing, and at 1/4 where that mesh is small enough (kThirdLevelNodes),
-// from the same cards (input/deck_refine.hpp); each quantity's values are extrapolated
+// `gapfe run --estimate`: error bars on the quantities a user reads (app/read_quantities.hpp). The model is
+// solved again on its mesh at 1/2 the spacing, and at 1/4 where that mesh is small enough (kThirdLevelNodes):
+// a deck's or a grid scene's grid from the same cards (input/deck_refine.hpp), a Gmsh mesh with every cell
+// split in four (input/gmsh_refine.hpp); each quantity's values are extrapolated
 // (post/extrapolation.hpp) and its error bar is the distance of this run's value to the limit. The finer runs
 // write no files: the log and estimates.csv carry what they found. docs/accuracy.md "Error bars".
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <iomanip>
 #include <new>
 #include <ostream>
@@ -19,6 +21,7 @@
 #include "gapfe/app/read_quantities.hpp"
 #include "gapfe/app/run.hpp"
 #include "gapfe/input/deck_refine.hpp"
+#include "gapfe/input/scene.hpp"
 #include "gapfe/output/csv_rows.hpp"
 #include "gapfe/output/output_file.hpp"
 #include "gapfe/post/extrapolation.hpp"
@@ -39,10 +42,21 @@ struct LevelRun {
   std::vector<ReadQuantity> quantities;
 };
 
+/// The model on its mesh refined `times` times (1: half the spacing): a deck's from its grid cards
+/// (refine_deck), a scene file's read again refined (read_scene_file). Throws InputError when it cannot.
+using Refiner = std::function<SceneModel(int times)>;
+
+/// A deck's Refiner: `deck`, whose scene is `scene`, through refine_deck (both must outlive it).
+inline Refiner deck_refiner(const Deck& deck, const Scene& scene) {
+  return [&deck, &scene](int times) {
+    RefinedDeck r = refine_deck(deck, scene, times);
+    return SceneModel{std::move(r.deck), std::move(r.scene), "",
+                      "the grid at 1/" + std::to_string(1 << times) + " of its spacing"};
+  };
+}
+
 /// Why `gapfe run --estimate` cannot refine this model, before any run: empty when it can.
-inline std::string estimate_refused(bool scene_file, const Plan& p) {
-  if (scene_file)
-    return "--estimate refines card decks (their I-J grids) only so far; a scene file's mesh is not refined";
+inline std::string estimate_refused(const Plan& p) {
   if (p.solver == SolverChoice::petsc) return "--estimate runs on one process: not with solver = petsc";
   return "";
 }
@@ -59,30 +73,31 @@ inline void note_point_supports(const Deck& deck, std::ostream& log) {
 
 /// The run of one finer mesh (`refined`, level `level`) with `plan`'s choices, reported in `log`. The finer
 /// runs make no error estimate of their own (their centroid stresses are the same without it).
-inline LevelRun solve_level(RefinedDeck& refined, int level, const Plan& plan, PlotUnits units,
+inline LevelRun solve_level(SceneModel& refined, int level, const Plan& plan, PlotUnits units,
                             std::ostream& log) {
-  const auto start                    = std::chrono::steady_clock::now();
-  refined.deck.options.error_estimate = false;
-  const Plan refined_plan             = make_plan(refined.deck, refined.scene, plan.key.kinematics);
+  const auto start                           = std::chrono::steady_clock::now();
+  refined.description.options.error_estimate = false;
+  const Plan refined_plan = make_plan(refined.description, refined.scene, plan.key.kinematics);
   if (!(refined_plan.key == plan.key) || refined_plan.solver != plan.solver)
     throw InputError("the finer mesh needs another variant than the deck's (" + refined_plan.variant_reason +
                      ")");
   std::ostringstream quiet;  // the finer runs' warnings repeat the deck's own run's
-  const RunRequest r{refined.deck, refined.scene, refined_plan, "",    quiet, false,
-                     {},           units,         nullptr,      false, true};
+  const RunRequest r{
+      refined.description, refined.scene, refined_plan, "", quiet, false, {}, units, nullptr, false, true};
   LevelRun finer{level, refined.scene.grid.node_count(), 0, app::run(r).quantities};
   finer.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  log << "error bars: the mesh at 1/" << (1 << level) << " of the spacing, " << finer.nodes
+  log << "error bars: the mesh at 1/" << (1 << level) << " of the spacing ("
+      << (refined.refined.empty() ? "refined" : refined.refined) << "), " << finer.nodes
       << " nodes, solved in " << finer.seconds << " s\n";
   return finer;
 }
 
-/// The runs of the finer meshes of `deck` (whose scene is `scene`), after the run of its own mesh: `first`,
-/// its mesh at 1/2 the spacing (refine_deck, built before the deck's run so that a deck it refuses is refused
-/// first), and the one at 1/4 when it has at most kThirdLevelNodes nodes. A run that fails throws, naming its
-/// mesh; but the one at 1/4, which only sharpens the order, is left out with a line in `log`.
-inline std::vector<LevelRun> solve_finer(const Deck& deck, const Scene& scene, RefinedDeck first,
-                                         const Plan& plan, PlotUnits units, std::ostream& log) {
+/// The runs of the finer meshes after the run of the model's own: `first`, its mesh at 1/2 the spacing
+/// (`refine(1)`, built before the model's run so that a model it refuses is refused first), and the one at
+/// 1/4 (`refine(2)`) when it has at most kThirdLevelNodes nodes. A run that fails throws, naming its mesh;
+/// but the one at 1/4, which only sharpens the order, is left out with a line in `log`.
+inline std::vector<LevelRun> solve_finer(const Refiner& refine, SceneModel first, const Plan& plan,
+                                         PlotUnits units, std::ostream& log) {
   std::vector<LevelRun> runs;
   const auto what = [](int level) {
     return "--estimate, the mesh at 1/" + std::to_string(1 << level) + " of the spacing: ";
@@ -104,7 +119,7 @@ inline std::vector<LevelRun> solve_finer(const Deck& deck, const Scene& scene, R
   }
   first = {};  // its memory, before the next
   try {
-    RefinedDeck second = refine_deck(deck, scene, 2);
+    SceneModel second = refine(2);
     runs.push_back(solve_level(second, 2, plan, units, log));
   } catch (const std::bad_alloc&) {  // two meshes will do
     log << "error bars: " << what(2) << "not solved (out of memory); two meshes, the order assumed\n";

@@ -60,29 +60,31 @@ inline bool crosses_kept(const GridPoint& a, const GridPoint& b, const std::vect
   return false;
 }
 
-/// The segment cards on the finer grid, into `out` (each with its deck card's reference): each point moved to
-/// its line; a line (type 1) across a kept interval split into lines between the intervals' ends, its points
-/// there where the deck's grid put them (evenly in index). Other types across one are refused (their steps
-/// could not stay even).
-inline void refined_segments(const Deck& d, const RefinedIndices& f, const std::vector<char>& kept_i,
-                             const std::vector<char>& kept_j, Deck& out) {
-  out.segments.clear(), out.segment_refs.clear();
+/// The segment cards on the finer grid, into `out` (each with its card's reference, into `out_refs`): each
+/// point moved to its line; a line (type 1) across a kept interval split into lines between the intervals'
+/// ends, its points there where the deck's grid put them (evenly in index). Other types across one are
+/// refused (their steps could not stay even).
+inline void refined_segments(const std::vector<Segment>& segments, const std::vector<CardRef>& refs,
+                             const RefinedIndices& f, const std::vector<char>& kept_i,
+                             const std::vector<char>& kept_j, std::vector<Segment>& out,
+                             std::vector<CardRef>& out_refs) {
+  out.clear(), out_refs.clear();
   const auto moved = [&](GridPoint p) {
     if (p.i >= 1 && p.i < static_cast<int>(f.i.size()) && p.j >= 1 && p.j < static_cast<int>(f.j.size()))
       p.i = f.i[static_cast<std::size_t>(p.i)], p.j = f.j[static_cast<std::size_t>(p.j)];
     return p;  // an unused point (an arc's centre) keeps its indices
   };
-  for (std::size_t s = 0; s < d.segments.size(); ++s) {
-    const Segment& c  = d.segments[s];
+  for (std::size_t s = 0; s < segments.size(); ++s) {
+    const Segment& c  = segments[s];
     const GridPoint a = c.p[0], b = c.type == SegmentType::arc_three_points ? c.p[2] : c.p[1];
     if (c.type == SegmentType::point || !crosses_kept(a, b, kept_i, kept_j)) {
       Segment m = c;
       for (GridPoint& p : m.p) p = moved(p);
-      out.segments.push_back(m), out.segment_refs.push_back(d.segment_refs[s]);
+      out.push_back(m), out_refs.push_back(refs[s]);
       continue;
     }
     if (c.type != SegmentType::line || (a.i != b.i && a.j != b.j))  // a diagonal's steps stay equal
-      throw InputError(d.segment_refs[s].where() +
+      throw InputError(refs[s].where() +
                        ": this segment card crosses a gap layer, which stays one cell thick on the "
                        "finer meshes; only a line along I or J (type 1) can be split there");
     const int steps = std::max(std::abs(b.i - a.i), std::abs(b.j - a.j));
@@ -101,7 +103,7 @@ inline void refined_segments(const Deck& d, const RefinedIndices& f, const std::
       Segment piece;
       piece.type = SegmentType::line;
       piece.p[0] = moved(at(from)), piece.p[1] = moved(at(k));
-      out.segments.push_back(piece), out.segment_refs.push_back(d.segment_refs[s]);
+      out.push_back(piece), out_refs.push_back(refs[s]);
       from = k;
     }
   }
@@ -181,7 +183,7 @@ inline void check_fine_points(const IJGrid& coarse, const IJGrid& fine, const Re
         if (n < 0)
           throw InputError("element " + std::to_string(e + 1) + " " + ij_text(c.i, c.j) +
                            ": no segment card places the ends of the finer grid's rows inside it (give the "
-                           "deck's sides as segment cards along J as well as along I)");
+                           "sides as segment cards along J as well as along I)");
         const bool on_face = gap && (gap_direction[e] == 1 ? (i == i0 || i == i1) : (j == j0 || j == j1));
         if (on_face && !fine.placed[static_cast<std::size_t>(n)])
           throw InputError("gap element " + std::to_string(e + 1) + " " + ij_text(c.i, c.j) +
@@ -216,6 +218,27 @@ inline void check_gap_layout(const Scene& coarse, const Scene& fine, const Refin
 
 }  // namespace detail
 
+/// An I-J grid's lines and segment cards on the grid refined `times` (>= 1) times, the intervals `kept_i`
+/// and `kept_j` one cell (see the top); its size checked against `limits`.
+struct RefinedCards {
+  RefinedIndices index;
+  int max_i = 0, max_j = 0;
+  std::vector<Segment> segments;
+  std::vector<CardRef> refs;
+};
+inline RefinedCards refine_cards(int max_i, int max_j, const std::vector<Segment>& segments,
+                                 const std::vector<CardRef>& refs, const std::vector<char>& kept_i,
+                                 const std::vector<char>& kept_j, int times, const InputLimits& limits) {
+  RefinedCards out;
+  out.index = {detail::refined_lines(max_i, kept_i, times), detail::refined_lines(max_j, kept_j, times)};
+  out.max_i = out.index.i.back(), out.max_j = out.index.j.back();
+  if (static_cast<double>(out.max_i) * out.max_j > static_cast<double>(limits.max_grid_points))
+    throw InputError("the finer grid, " + std::to_string(out.max_i) + " x " + std::to_string(out.max_j) +
+                     " points, is past the limit of " + std::to_string(limits.max_grid_points));
+  detail::refined_segments(segments, refs, out.index, kept_i, kept_j, out.segments, out.refs);
+  return out;
+}
+
 /// `d`'s model on its grid refined `times` (>= 1) times, and that model's scene; `coarse` is `d`'s own scene.
 /// Throws InputError when a card cannot keep its meaning (a segment card other than a line along I or J
 /// across a gap layer, a gap whose faces no card places, a gap element that would close another way) and for
@@ -224,18 +247,13 @@ inline RefinedDeck refine_deck(const Deck& d, const Scene& coarse, int times,
                                const InputLimits& limits = {}) {
   const IJGrid& g             = coarse.grid;
   const auto [kept_i, kept_j] = gap_layers(d, coarse);
-  RefinedDeck out{d,
-                  {},
-                  {detail::refined_lines(d.mesh.max_i, kept_i, times),
-                   detail::refined_lines(d.mesh.max_j, kept_j, times)}};
+  RefinedCards grid =
+      refine_cards(d.mesh.max_i, d.mesh.max_j, d.segments, d.segment_refs, kept_i, kept_j, times, limits);
+  RefinedDeck out{d, {}, std::move(grid.index)};
   Deck& f           = out.deck;
   const auto& index = out.index;
-  f.mesh.max_i = index.i.back(), f.mesh.max_j = index.j.back();
-  if (static_cast<double>(f.mesh.max_i) * f.mesh.max_j > static_cast<double>(limits.max_grid_points))
-    throw InputError("the finer grid, " + std::to_string(f.mesh.max_i) + " x " +
-                     std::to_string(f.mesh.max_j) + " points, is past the limit of " +
-                     std::to_string(limits.max_grid_points));
-  detail::refined_segments(d, index, kept_i, kept_j, f);
+  f.mesh.max_i = grid.max_i, f.mesh.max_j = grid.max_j;
+  f.segments = std::move(grid.segments), f.segment_refs = std::move(grid.refs);
   const auto box = [&](int& i1, int& i2, int& j1, int& j2) {
     const auto line = [](const std::vector<int>& lines, int k) {  // a card's index past the grid: its end
       const int last = static_cast<int>(lines.size()) - 1;

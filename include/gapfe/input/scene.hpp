@@ -80,6 +80,7 @@ struct SceneModel {
   ModelDescription description;
   Scene scene;
   std::string mesh_file;  ///< a scene file's Gmsh mesh ([mesh] file, resolved by read_scene_file)
+  std::string refined;    ///< how the scene's mesh was refined (`gapfe run --estimate`); empty: it was not
 };
 
 namespace detail {

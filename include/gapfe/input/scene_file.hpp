@@ -12,7 +12,7 @@
 //   title = "..."
 //   [mesh]        file = "part.msh" (relative to the scene file; physical groups name its parts), or
 //                 grid = [MAXI, MAXJ] with [[mesh.segments]] type, points = [[I, J, r, z], ...], centre and
-//                 [mesh.groups] NAME = {i = [I1, I2], j = [J1, J2]} (input/scene_mesh.hpp)
+//                 [mesh.groups] NAME = {i = [I1, I2], j = [J1, J2]} (input/scene_grid.hpp)
 //   [options]     any deck option (input/deck_options.hpp) except format, which the scene implies
 //   [steps]       count = N (load steps, default 1); time = dt (a step's duration, with [rate])
 //   [materials.NAME]  surfaces = [...] (default [NAME]); number = k (its number in the output, default
@@ -68,6 +68,7 @@
 #include "gapfe/input/input_file.hpp"
 #include "gapfe/input/model_description.hpp"
 #include "gapfe/input/scene.hpp"
+#include "gapfe/input/scene_grid.hpp"
 #include "gapfe/input/scene_materials.hpp"
 #include "gapfe/input/scene_mesh.hpp"
 #include "gapfe/input/scene_table.hpp"
@@ -84,7 +85,9 @@ namespace detail {
 /// other: options and steps, the mesh and its cells, materials, conditions, loads, temperature, contact.
 class SceneBuilder {
  public:
-  SceneBuilder(const SceneTable& top, const InputLimits& limits) : top_(top), limits_(limits) {}
+  /// `refine`: the mesh refined that many times (SceneRefinement), for `gapfe run --estimate`.
+  SceneBuilder(const SceneTable& top, const InputLimits& limits, int refine = 0)
+      : top_(top), limits_(limits), refine_(refine) {}
 
   SceneModel build(const SceneMeshLoader& load_mesh,
                    const std::vector<std::pair<std::string, std::string>>& overrides) {
@@ -98,6 +101,7 @@ class SceneBuilder {
     temperature();
     contact();
     finish_scene(model_.description, model_.scene);
+    model_.refined = mesh_->refined();
     return std::move(model_);
   }
 
@@ -190,7 +194,8 @@ class SceneBuilder {
       throw InputError("scene: [rate] has b != 0, so a load step's duration matters: give key 'steps.time'");
   }
 
-  /// [mesh]: a Gmsh file, or the I-J generator's grid, segments and groups (input/scene_mesh.hpp).
+  /// [mesh]: a Gmsh file, or the I-J generator's grid, segments and groups (input/scene_mesh.hpp,
+  /// scene_grid.hpp).
   void mesh(const SceneMeshLoader& load_mesh) {
     const auto table = top_.table("mesh", {"file", "grid", "segments", "groups"});
     if (!table)
@@ -200,9 +205,16 @@ class SceneBuilder {
     if (table->has("file") == table->has("grid"))
       throw InputError("scene: " + table->where() +
                        ": give either file (a Gmsh mesh) or grid with segments (the I-J generator)");
+    SceneRefinement refine{refine_, {}, {}};
+    if (refine_ > 0)  // the layers between contact faces stay one cell (their names are checked later)
+      for (const SceneTable& c : contact_tables()) {
+        const std::vector<std::string> faces = c.names("faces");
+        if (faces.size() == 2) refine.faces.push_back({faces[0], faces[1]});
+        if (c.has("soft")) refine.soft.push_back(c.text("soft"));
+      }
     if (!table->has("file")) {
       mesh_name_ = "the I-J grid";
-      mesh_      = std::make_unique<GridSceneMesh>(*table, model_.scene, limits_);
+      mesh_      = std::make_unique<GridSceneMesh>(*table, model_.scene, limits_, refine);
       return;
     }
     for (const char* key : {"segments", "groups"})
@@ -218,7 +230,7 @@ class SceneBuilder {
     } catch (const FileError& e) {  // still a file problem (exit 3), now naming the key that named the file
       throw FileError("scene: " + table->where("file") + ": " + e.what());
     }
-    mesh_ = std::make_unique<GmshSceneMesh>(mesh_name_, text, model_.scene);
+    mesh_ = std::make_unique<GmshSceneMesh>(mesh_name_, text, model_.scene, refine);
   }
 
   CellTag& tag(int cell) {
@@ -339,6 +351,7 @@ class SceneBuilder {
 
   const SceneTable& top_;
   InputLimits limits_;
+  int refine_ = 0;
   SceneModel model_;
   std::string mesh_name_;
   std::unique_ptr<SceneMesh> mesh_;
@@ -351,9 +364,10 @@ class SceneBuilder {
 /// Read a scene file's text; `load_mesh` reads the mesh it names (read_scene_file: a file beside the
 /// scene). `overrides` are option settings (the command's --set) applied after the scene's [options];
 /// `limits` bound the grid and the load steps as a deck's (InputLimits, input/model_description.hpp).
+/// `refine` > 0: the model on its mesh refined that many times (SceneRefinement), for `gapfe run --estimate`.
 inline SceneModel read_scene(std::string_view text, const SceneMeshLoader& load_mesh,
                              const std::vector<std::pair<std::string, std::string>>& overrides = {},
-                             const InputLimits& limits                                         = {}) {
+                             const InputLimits& limits = {}, int refine = 0) {
   toml::table root;
   try {
     root = toml::parse(text);
@@ -364,16 +378,18 @@ inline SceneModel read_scene(std::string_view text, const SceneMeshLoader& load_
   const detail::SceneTable top(root, "",
                                {"title", "mesh", "options", "steps", "materials", "boundary", "load",
                                 "inertia", "temperature", "rate", "contact"});
-  return detail::SceneBuilder(top, limits).build(load_mesh, overrides);
+  return detail::SceneBuilder(top, limits, refine).build(load_mesh, overrides);
 }
 
-/// Read a scene file from disk, its mesh path relative to the file's directory.
+/// Read a scene file from disk, its mesh path relative to the file's directory; `refine` as read_scene's.
 inline SceneModel read_scene_file(const std::string& path,
-                                  const std::vector<std::pair<std::string, std::string>>& overrides = {}) {
+                                  const std::vector<std::pair<std::string, std::string>>& overrides = {},
+                                  int refine                                                        = 0) {
   const std::filesystem::path base = std::filesystem::path(path).parent_path();
   SceneModel m                     = read_scene(
                           read_input(path, "scene file"),
-                          [&](const std::string& name) { return read_input((base / name).string(), "mesh"); }, overrides);
+                          [&](const std::string& name) { return read_input((base / name).string(), "mesh"); }, overrides, {},
+                          refine);
   if (!m.mesh_file.empty()) m.mesh_file = (base / m.mesh_file).string();
   return m;
 }

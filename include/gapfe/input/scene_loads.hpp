@@ -38,7 +38,14 @@ inline void SceneBuilder::boundary() {
     for (const std::string& name : groups) {
       s.condition_cards.back() += (s.condition_cards.back().empty() ? "" : "+") + name;
       for (const int n : in_group(b, "groups", [&](const SceneMesh& g) { return g.nodes(name); })) {
-        s.conditions.push_back({n, code, value, given});
+        // A refined mesh's new nodes take the displacements (an edge held stays held all along) but not
+        // the ring forces, which stay on the mesh's own nodes: the same total load.
+        const bool own = mesh_->own(n);
+        if (!own && (code & given) == 0) continue;
+        std::array<double, 3> v = value;
+        for (int k = 0; k < 3; ++k)
+          if (!own && !((code >> k) & 1)) v[k] = 0;
+        s.conditions.push_back({n, code, v, own ? given : (code & given)});
         s.condition_amplitude.push_back(history);
         s.condition_card.push_back(card);
       }

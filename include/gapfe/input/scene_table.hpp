@@ -132,6 +132,8 @@ class SceneTable {
   const toml::table& raw() const { return table_; }
 
   static int line(const toml::node& n) { return static_cast<int>(n.source().begin.line); }
+  /// The line the table starts on.
+  int line() const { return line(table_); }
   static std::optional<double> as_number(const toml::node& n) {
     if (const auto* i = n.as_integer()) return static_cast<double>(i->get());
     if (const auto* f = n.as_floating_point()) return f->get();
