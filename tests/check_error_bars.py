@@ -20,6 +20,9 @@ closed forms (ctest `gapfe_error_bars`):
     (the new points put back on them): the support's reaction p pi a^2, the bore's displacement and the
     Mises stress 3 p b^3 / (2 (b^3 - a^3)); two tubes closed by pressure on a Gmsh mesh with a soft layer,
     and the press fit's grid scene, each layer kept one cell thick: the contact force (and friction force);
+  * `--accuracy TOL`: the Lame tube's deck to 1e-3 and the thick sphere's Gmsh scene to 1e-2 end with every
+    quantity's true error within TOL; a plastic tube climbs its load steps too; the stepped bar stops with its
+    corner's stress not converging, and a time limit with the time named, exit 2 and one line each;
   * what --estimate refuses before it runs (a gap whose faces no segment card places, in a deck and in a grid
     scene), with the last run's files left as they were; and estimates.csv gone after a later
     run without --estimate.
@@ -291,6 +294,48 @@ def scenes():
     compare(model.stem, estimates(out), {"contact normal force": force, "contact friction force": 0.15 * force})
 
 
+def accuracy():
+    """`--accuracy TOL`: the last run's values (estimates.csv's value column) within TOL of the closed forms."""
+    s = P * A * A / (B * B - A * A)
+    sigma = (-P, 2 * NU * s, s * (B * B + A * A) / (A * A))
+    mises = math.sqrt(0.5 * sum((sigma[k] - sigma[(k + 1) % 3]) ** 2 for k in range(3)))
+    axial = 2 * math.pi * NU * P * A * A
+    cube = B ** 3 - A ** 3
+    cases = [(work / "lame_quad4.deck", 1e-3,
+              {"reaction bc1 R_z": axial, "reaction bc2 R_z": axial, "largest von Mises": mises,
+               "largest |u|": (1 + NU) / E * s * ((1 - 2 * NU) * A + B * B / A)}),
+             (work / "sphere_quad.toml", 1e-2,
+              {"reaction bottom R_z": P * math.pi * A * A, "largest von Mises": 3 * P * B ** 3 / (2 * cube),
+               "largest |u|": P * A / (E * cube) * ((1 - 2 * NU) * A ** 3 + (1 + NU) * B ** 3 / 2)})]
+    for model, tolerance, truth in cases:
+        name = f"accuracy_{model.stem}"
+        out, log, _ = run(model, name, "--accuracy", str(tolerance))
+        check("accuracy: reached on the mesh at" in log, f"{name}: reached: {log[-400:]}")
+        rows = estimates(out)
+        for quantity, exact in truth.items():
+            value = abs(float(rows.get(quantity, {}).get("value", "nan")))
+            error = abs(value - exact) / exact
+            print(f"{name}: {quantity} = {value:.8g}, true relative error {error:.3g} (target {tolerance:g})")
+            check(error <= tolerance, f"{name}: {quantity}: true error {error:.3g} above {tolerance:g}")
+        nodes = sum(1 for _ in open(out / "nodes.csv")) - 1
+        sizes = [int(line.split()[3]) for line in log.splitlines() if line.startswith("accuracy: mesh ")]
+        check(nodes == sizes[-1], f"{name}: the files are the last mesh's ({nodes} nodes, path {sizes})")
+    out, log, _ = run(work / "plastic_steps.deck", "accuracy_plastic", "--accuracy", "1e-2")
+    check("accuracy: load-step split 2" in log and "with every load step in" in log,
+          f"plastic tube: the load steps split after the mesh: {log[-600:]}")
+    rows = estimates(out)
+    check(all(float(r["step_relative_error"] or "0") <= 1e-2 for r in rows.values()),
+          "plastic tube: every load-step error within the target")
+    for model, name, options, why in ((work / "stepped_bar.deck", "accuracy_corner", [], "does not converge"),
+                                      (work / "lame_quad4.deck", "accuracy_time", ["--time-limit", "0.2"],
+                                       "past the time left")):
+        out, _, err = run(model, name, "--accuracy", "1e-4", *options, expect=2)
+        lines = [line for line in err.splitlines() if line.strip()]
+        check(len(lines) == 1 and why in err and "--accuracy 0.0001 not reached" in err,
+              f"{name}: one line naming why: {err.strip()}")
+        check("stopped: --accuracy" in (out / "gapfe-run.txt").read_text(), f"{name}: the manifest says stopped")
+
+
 def refusals():
     # A folder with a finished run, which a refused --estimate must leave as it is.
     deck = work / "lame_small.deck"
@@ -329,5 +374,6 @@ gaps()
 load_steps()
 reentrant_corner()
 scenes()
+accuracy()
 refusals()
 finish("check_error_bars: ")

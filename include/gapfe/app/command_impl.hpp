@@ -13,6 +13,7 @@
 #include <sstream>
 #include <vector>
 
+#include "gapfe/app/accuracy.hpp"
 #include "gapfe/app/command.hpp"
 #include "gapfe/app/command_line.hpp"
 #include "gapfe/app/error_bars.hpp"
@@ -137,7 +138,8 @@ inline void list_files(const Args& a, const Plan& p, const ModelDescription& d, 
              fields = d.options.output_vtu != Increments::none;
   log << "wrote " << a.out << "/" << (tables ? "nodes.csv, elements.csv, reactions.csv, " : "")
       << (p.gaps ? "gaps.csv, " : "") << (p.plastic && !p.gaps ? "plasticity.csv, " : "")
-      << (a.estimate ? "estimates.csv, " : "") << (fields ? "result.pvd, " : "") << "deformed.svg\n";
+      << (a.estimate || a.accuracy > 0 ? "estimates.csv, " : "") << (fields ? "result.pvd, " : "")
+      << "deformed.svg\n";
   std::vector<std::string> pictures = r.pictures;
   if (d.steps() > 1 && !pictures.empty())  // the load-displacement curve of history.csv
     pictures.push_back(draw_curve(a.out, "u_max", "load_factor", d.title));
@@ -162,12 +164,14 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
   const Refiner refine =
       cards ? deck_refiner(*cards, s) : [&a](int times) { return read_scene_model(a, times); };
   std::optional<SceneModel> finer;
-  if (a.estimate) {
-    if (const std::string why = estimate_refused(plan); !why.empty()) throw InputError(why);
+  const bool refines = a.estimate || a.accuracy > 0;
+  if (refines) {
+    const std::string option = a.accuracy > 0 ? "--accuracy" : "--estimate";
+    if (const std::string why = estimate_refused(plan); !why.empty()) throw InputError(option + ": " + why);
     try {
       finer = refine(1);
     } catch (const InputError& e) {
-      throw InputError(std::string("--estimate, the mesh at 1/2 of the spacing: ") + e.what());
+      throw InputError(option + ", the mesh at 1/2 of the spacing: " + e.what());
     }
     if (cards) note_point_supports(*cards, log);
   }
@@ -188,7 +192,7 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
                            plot_units(d.options.units),
                            part ? &*part : nullptr,
                            rank == 0,
-                           a.estimate};
+                           refines};
   // Rank 0 of a launch writes the files; a run's folder holds one run (run_folder.hpp). Made ready only
   // now, after every check of the request: a run refused before it starts leaves the last run's files.
   const std::string run_what = "gapfe run " + a.deck;
@@ -204,7 +208,12 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
         << result.assemble << ", factorize " << result.factorize << ", solve " << result.solve
         << ", estimate " << result.estimate << ", write " << result.write << "\n";
     report_run(log, err, plan, d, result);
-    if (a.estimate) {
+    if (a.accuracy > 0) {
+      finer.reset();  // the ladder makes its own
+      reach_accuracy(
+          refine, request, result.quantities, since(t0), {a.accuracy, 0, a.time_limit},
+          [&] { RunFolder::prepare(a.out, true, run_what); }, log);
+    } else if (a.estimate) {
       std::vector<LevelRun> levels{{0, s.grid.node_count(), since(t0), result.quantities}};
       for (LevelRun& level : solve_finer(refine, std::move(*finer), plan, request.units, log))
         levels.push_back(std::move(level));
@@ -254,7 +263,7 @@ inline int execute(const Args& a, std::ostream& out, std::ostream& err, const Pr
     describe_scene(log, model);
   } else {
     describe_deck(log, *deck, model.scene);
-    if (a.estimate) cards = *deck;
+    if (a.estimate || a.accuracy > 0) cards = *deck;
     model.description = std::move(*deck);  // the description; the grid cards are done with
     deck.reset();
   }

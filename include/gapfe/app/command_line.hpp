@@ -7,6 +7,7 @@
 // setter the deck's `$ key = value` lines use.
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstddef>
 #include <optional>
 #include <stdexcept>
@@ -74,6 +75,10 @@ inline constexpr OptionSpec kOptions[] = {
     {"--estimate", nullptr, "run",
      "error bars on the reactions, the largest displacement and the largest von Mises stress: the model "
      "solved again on its mesh at 1/2 (and 1/4) of the spacing, extrapolated; in the log and estimates.csv"},
+    {"--accuracy", "TOL", "run",
+     "refine the mesh, then the load steps, until every quantity --estimate reports has an estimated "
+     "relative error of at most TOL (e.g. 1e-3); the files are the last run's"},
+    {"--time-limit", "SECONDS", "run", "with --accuracy: the time it may take in all (default 3600)"},
     {"--threads", "N", "run", "OpenBLAS threads for the factorization's dense kernels (default 1)"},
     {"--overwrite", nullptr, "run",
      "replace results in --out that no gapfe run wrote there (without it such a folder is refused; a folder "
@@ -98,8 +103,10 @@ struct Args {
   std::optional<VariantChoice> variant;  ///< --variant: forced kinematics
   std::vector<std::pair<std::string, std::string>> options;
   bool quiet = false, help = false, version = false, png = false, no_png = false, overwrite = false;
-  bool estimate = false;  ///< run --estimate: error bars from finer meshes (app/error_bars.hpp)
-  int threads   = 1;
+  bool estimate     = false;  ///< run --estimate: error bars from finer meshes (app/error_bars.hpp)
+  double accuracy   = 0;      ///< run --accuracy TOL (app/accuracy.hpp); 0: none
+  double time_limit = 3600;   ///< run --time-limit [s]: what --accuracy may take
+  int threads       = 1;
   std::optional<std::vector<std::string>> plots;  ///< --plot / --field; unset: the default
   int step = 0;                                   ///< plot --step (0: the last)
   std::string curve_x, curve_y, units;
@@ -246,6 +253,21 @@ inline Args parse(const std::vector<std::string>& a) {
                          (s == "--threads" ? "a thread count" : std::string("a load step")) +
                          " (a whole number from 1 to " + std::to_string(most) + ")");
       (s == "--threads" ? r.threads : r.step) = count;
+    } else if (s == "--accuracy" || s == "--time-limit") {
+      std::size_t used = 0;
+      double number    = 0;
+      try {
+        number = std::stod(value, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      const bool fine = used == value.size() && std::isfinite(number) &&
+                        (s == "--accuracy" ? number > 0 && number < 1 : number > 0);
+      if (!fine)
+        throw UsageError(s + ": '" + value + "' is not " +
+                         (s == "--accuracy" ? "a relative error between 0 and 1 (1e-3: 0.1%)"
+                                            : "a time in seconds (a number > 0)"));
+      (s == "--accuracy" ? r.accuracy : r.time_limit) = number;
     } else if (s == "--plot" || s == "--field") {
       if (!r.plots) r.plots.emplace();
       if (value != "none") r.plots->push_back(value);

@@ -73,14 +73,19 @@ inline void note_point_supports(const Deck& deck, std::ostream& log) {
 
 /// The run of one finer mesh (`refined`, level `level`) with `plan`'s choices, reported in `log`. The finer
 /// runs make no error estimate of their own (their centroid stresses are the same without it).
+/// The plan of a finer mesh of the model `plan` is for: the same, or InputError.
+inline Plan finer_plan(const SceneModel& refined, const Plan& plan) {
+  Plan p = make_plan(refined.description, refined.scene, plan.key.kinematics);
+  if (!(p.key == plan.key) || p.solver != plan.solver)
+    throw InputError("the finer mesh needs another variant than the model's (" + p.variant_reason + ")");
+  return p;
+}
+
 inline LevelRun solve_level(SceneModel& refined, int level, const Plan& plan, PlotUnits units,
                             std::ostream& log) {
   const auto start                           = std::chrono::steady_clock::now();
   refined.description.options.error_estimate = false;
-  const Plan refined_plan = make_plan(refined.description, refined.scene, plan.key.kinematics);
-  if (!(refined_plan.key == plan.key) || refined_plan.solver != plan.solver)
-    throw InputError("the finer mesh needs another variant than the deck's (" + refined_plan.variant_reason +
-                     ")");
+  const Plan refined_plan                    = finer_plan(refined, plan);
   std::ostringstream quiet;  // the finer runs' warnings repeat the deck's own run's
   const RunRequest r{
       refined.description, refined.scene, refined_plan, "", quiet, false, {}, units, nullptr, false, true};
@@ -169,6 +174,20 @@ inline std::pair<std::vector<double>, ErrorBar> quantity_bar(const ReadQuantity&
   return {values, error_bar(values, assumed_order, scale)};
 }
 
+/// What quantity q's error is relative to: its value's size, and for a force (a reaction, a contact force)
+/// at least the largest force among `all`'s, so that a reaction that tends to 0 (a support on the axis) is
+/// small against the model's loads, not large against itself.
+inline double relative_size(const std::vector<ReadQuantity>& all, std::size_t q, double value) {
+  const auto force = [](const std::string& name) {
+    return name.rfind("reaction ", 0) == 0 || name.rfind("contact ", 0) == 0;
+  };
+  double size = std::abs(value);
+  if (force(all[q].name))
+    for (const ReadQuantity& other : all)
+      if (force(other.name)) size = std::max(size, std::abs(other.value));
+  return size;
+}
+
 /// A bar's status as estimates.csv gives it.
 inline const char* status_word(const ErrorBar& b) {
   return b.status == ErrorBar::Status::exact      ? "exact"
@@ -178,16 +197,17 @@ inline const char* status_word(const ErrorBar& b) {
 }
 
 /// A bar in the log's words: "+- 0.1 (0.5%; observed order 2)", and its CSV fields error,relative,status,
-/// order,limit; `what` names the refinement ("meshes", "load steps"), `halves` what halves, and `hint` the
-/// likely cause when the values do not converge.
+/// order,limit; the relative error against `size` (relative_size) or the limit, whichever is larger; `what`
+/// names the refinement ("meshes", "load steps"), `halves` what halves, and `hint` the likely cause when the
+/// values do not converge.
 inline void write_bar(std::ostream& log, std::ostream& csv, const ErrorBar& bar,
-                      const std::vector<double>& values, const char* what, const char* halves,
+                      const std::vector<double>& values, double size_of, const char* what, const char* halves,
                       const char* hint) {
   if (bar.status == ErrorBar::Status::exact) {
     log << "(the " << what << " agree, to the solvers' tolerance)";
     csv << ",0,0," << status_word(bar) << ",," << bar.limit;
   } else if (bar.converges()) {
-    const double size     = std::max(std::abs(bar.limit), std::abs(bar.value));
+    const double size     = std::max({std::abs(bar.limit), std::abs(bar.value), size_of});
     const double relative = size > 0 ? bar.error / size : 0.0;
     log << "+- " << bar.error << " (" << 100 * relative << "%";
     if (bar.status == ErrorBar::Status::observed && std::isfinite(bar.order))
@@ -205,11 +225,21 @@ inline void write_bar(std::ostream& log, std::ostream& csv, const ErrorBar& bar,
   }
 }
 
-/// Each quantity's error bar from the runs (the deck's own first, then the finer meshes), and from `steps`
-/// (the deck's own mesh with finer load steps; empty: not measured), in the log and in `dir`/estimates.csv.
+/// The bar of the last of `values` instead of the first: its distance to the same limit.
+inline ErrorBar bar_of_last(ErrorBar b, const std::vector<double>& values) {
+  if (b.converges())
+    b.value = values.back(),
+    b.error = b.status == ErrorBar::Status::exact ? 0.0 : std::abs(b.value - b.limit);
+  return b;
+}
+
+/// Each quantity's error bar from the runs (the model's own first, then the finer meshes), and from `steps`
+/// (the model's own mesh with finer load steps; empty: not measured), in the log and in `dir`/estimates.csv.
+/// `finest`: the bars of the last runs' values instead (`gapfe run --accuracy`: `runs` the last meshes,
+/// `steps` the last mesh with finer steps).
 inline void report_error_bars(std::ostream& log, const std::string& dir, const std::vector<LevelRun>& runs,
-                              const std::vector<LevelRun>& steps = {}) {
-  const std::vector<ReadQuantity>& own = runs.front().quantities;
+                              const std::vector<LevelRun>& steps = {}, bool finest = false) {
+  const std::vector<ReadQuantity>& own = (finest ? runs.back() : runs.front()).quantities;
   const std::vector<LevelRun> finer(runs.begin() + 1, runs.end());
   std::ostringstream csv;
   csv << std::setprecision(17);
@@ -221,17 +251,24 @@ inline void report_error_bars(std::ostream& log, const std::string& dir, const s
   }
   csv << "\n";
   log << "error bars (" << runs.size() << " meshes"
-      << (steps.empty() ? "" : ", and load steps in 1, 2 and 4 pieces")
-      << "; the error of this run's value, from its values on the finer ones; docs/accuracy.md \"Error "
-         "bars\"):\n";
+      << (steps.empty() ? ""
+          : finest      ? ", and load steps split"
+                        : ", and load steps in 1, 2 and 4 pieces")
+      << (finest ? "; the error of the last run's value" : "; the error of this run's value")
+      << ", from its values on the " << (finest ? "coarser" : "finer")
+      << " ones; docs/accuracy.md \"Error bars\"):\n";
   for (std::size_t q = 0; q < own.size(); ++q) {
-    const ReadQuantity& v    = own[q];
-    const auto [values, bar] = quantity_bar(v, finer, q, v.order);
+    const ReadQuantity& v = own[q];
+    auto [values, bar]    = quantity_bar(runs.front().quantities[q], finer, q, v.order);
+    if (finest) bar = bar_of_last(bar, values);
+    const double shown = finest && !steps.empty() && q < steps.back().quantities.size()
+                             ? steps.back().quantities[q].value
+                             : v.value;
     log << "  " << v.name;
     if (v.located) log << " (at r = " << v.at(0) << ", z = " << v.at(1) << ")";
-    log << ": " << v.value << " ";
-    csv << detail::csv_name(v.name) << "," << v.value;
-    write_bar(log, csv, bar, values, "meshes", "spacing",
+    log << ": " << shown << " ";
+    csv << detail::csv_name(v.name) << "," << shown;
+    write_bar(log, csv, bar, values, relative_size(own, q, shown), "meshes", "spacing",
               "a singular point such as a re-entrant corner or a point load?");
     if (v.located)
       csv << "," << v.at(0) << "," << v.at(1);
@@ -239,11 +276,13 @@ inline void report_error_bars(std::ostream& log, const std::string& dir, const s
       csv << ",,";
     for (const double value : values) csv << "," << value;
     if (!steps.empty()) {  // the load-step error: first order in the step for the integration of a history
-      const auto [step_values, step_bar] = quantity_bar(v, steps, q, 1.0);
+      const std::vector<LevelRun> split(steps.begin() + (finest ? 1 : 0), steps.end());
+      auto [step_values, step_bar] = quantity_bar(finest ? steps.front().quantities[q] : v, split, q, 1.0);
+      if (finest) step_bar = bar_of_last(step_bar, step_values);
       log << "; load steps: ";
-      write_bar(log, csv, step_bar, step_values, "load steps", "step",
+      write_bar(log, csv, step_bar, step_values, relative_size(own, q, shown), "load steps", "step",
                 "steps too large to show their order: more load steps, or load_pieces");
-      for (std::size_t k = 1; k < step_values.size(); ++k) csv << "," << step_values[k];
+      for (std::size_t k = finest ? 0 : 1; k < step_values.size(); ++k) csv << "," << step_values[k];
     }
     log << "\n";
     csv << "\n";

@@ -1,0 +1,240 @@
+#pragma once
+// `gapfe run --accuracy TOL`: the mesh halved, then (for a law with history) the load steps split, until
+// every quantity `--estimate` reports (app/read_quantities.hpp) has an estimated relative error of at most
+// TOL on the last run, which writes the run's files; docs/accuracy.md "A target accuracy". Each rung of the
+// ladder is one run: rung k of the mesh's is the model at 1/2^k of its spacing (the Refiner of
+// app/error_bars.hpp), rung k of the steps' the finest mesh with every load step in 2^k pieces. A quantity's
+// error on rung k is its value's distance to the limit Richardson's extrapolation gives from rungs k - 2, k -
+// 1 and k (post/extrapolation.hpp; from two rungs, the order assumed). Before each rung, its size and time
+// are foreseen from the last ones; one past the memory or the time left stops the ladder with the reason, and
+// so does a quantity that does not converge.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <ostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "gapfe/app/error_bars.hpp"
+#include "gapfe/app/run.hpp"
+#include "gapfe/output/run_folder.hpp"
+
+namespace gapfe::app {
+
+/// What `--accuracy` aims at and may spend.
+struct AccuracyTarget {
+  double tolerance = 1e-3;  ///< every quantity's estimated relative error at most this [-]
+  long max_nodes   = 0;     ///< the largest mesh it may solve (0: what the memory available allows)
+  double seconds   = 3600;  ///< the time the whole ladder may take [s]
+};
+
+/// The nodes a mesh may have in `bytes` of memory: about 6 KB a node with 3 DOF, 4 KB with 2
+/// (BENCHMARKS.md: the 1e6-equation tube peaks at 2.1 GB, 4.2 KB a node, most of it the factor).
+inline long nodes_in_memory(double bytes, int dofs_per_node) {
+  return static_cast<long>(bytes / (2100.0 * std::max(2, dofs_per_node)));
+}
+
+/// This machine's available memory (MemAvailable of /proc/meminfo) [bytes]; 0 when it cannot tell.
+inline double available_memory() {
+  std::ifstream in("/proc/meminfo");
+  std::string key;
+  double kb = 0;
+  while (in >> key >> kb) {
+    if (key == "MemAvailable:") return kb * 1024;
+    in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+  }
+  return 0;
+}
+
+/// A rung's quantities judged: the largest relative error among them and which, or why there is none.
+struct RungVerdict {
+  double worst = 0;    ///< the largest estimated relative error of the last rung's values
+  std::string which;   ///< its quantity
+  std::string failed;  ///< a quantity that does not converge, or "" (then worst is meaningful)
+  double rate = 2;     ///< the smallest order among the quantities not yet within the target
+};
+
+/// The error of the last of `rungs` (each twice as fine as the one before) for every quantity, against
+/// `target`: from the last three rungs (two: the order `assumed`, 0 for the quantity's own).
+inline RungVerdict judge(const std::vector<LevelRun>& rungs, double target, double assumed) {
+  RungVerdict v;
+  const std::size_t from = rungs.size() >= 3 ? rungs.size() - 3 : 0;
+  const std::vector<LevelRun> last(rungs.begin() + static_cast<std::ptrdiff_t>(from) + 1, rungs.end());
+  const std::vector<ReadQuantity>& first = rungs[from].quantities;
+  v.rate                                 = std::numeric_limits<double>::infinity();
+  const std::vector<ReadQuantity>& now   = rungs.back().quantities;
+  for (std::size_t q = 0; q < first.size(); ++q) {
+    const auto [values, bar] = quantity_bar(first[q], last, q, assumed > 0 ? assumed : first[q].order);
+    const double finest      = values.back();
+    const double size = std::max(bar.converges() ? std::abs(bar.limit) : 0.0, relative_size(now, q, finest));
+    // Values that do not converge but move by less than a tenth of the target (a reaction on the axis,
+    // tending to 0 and changing sign on the way) are within it: their last difference bounds the error.
+    const double step = std::abs(finest - values[values.size() - 2]);
+    double rel        = 0;
+    if (bar.converges()) {
+      rel = bar.status == ErrorBar::Status::exact || !(size > 0) ? 0.0 : std::abs(finest - bar.limit) / size;
+    } else if (step <= 0.1 * target * size) {
+      rel = step / size;
+    } else {
+      v.failed = first[q].name;
+      return v;
+    }
+    if (!(rel <= v.worst)) v.worst = rel, v.which = first[q].name;
+    if (rel > target) v.rate = std::min(v.rate, bar.order);
+  }
+  if (!std::isfinite(v.rate)) v.rate = 2;
+  return v;
+}
+
+/// The line of the path for the last of `rungs`, and its verdict (none for the first).
+inline void log_rung(std::ostream& log, const std::vector<LevelRun>& rungs, const char* what,
+                     const std::optional<RungVerdict>& v) {
+  log << "accuracy: " << what << " " << rungs.back().level << ": " << rungs.back().nodes << " nodes, "
+      << rungs.back().seconds << " s";
+  if (v && !v->failed.empty())
+    log << "; " << v->failed << " does not converge yet";
+  else if (v)
+    log << "; largest estimated error " << v->worst << " (" << v->which << ")";
+  log << "\n";
+}
+
+/// One ladder of `gapfe run --accuracy` (see the top): rungs made by `make(k)` from k = rungs.size() on,
+/// after `rungs` (the first: the model's own run, its files written), each run through `solve(model,
+/// files)`; `growth` the factor its nodes grow by a rung (4 for the mesh, 1 for the steps), `assumed` the
+/// order with two rungs (0: each quantity's own). The target counts as reached on three rungs or more (an
+/// observed order). Returns the rung it was reached on, whose files are written; throws SolveError naming
+/// why it cannot be: the next rung past `max_nodes` or the time left, or a quantity that does not converge
+/// on two rungs in a row.
+template <class Make, class Solve>
+int climb(std::vector<LevelRun>& rungs, Make&& make, Solve&& solve, const AccuracyTarget& target,
+          long max_nodes, double growth, double assumed, const char* what, double start_seconds,
+          std::ostream& log) {
+  const auto now = [] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  };
+  const std::string aim = "--accuracy " + detail::number_text(target.tolerance) + " not reached: ";
+  std::optional<RungVerdict> v;
+  if (rungs.size() >= 2) v = judge(rungs, target.tolerance, assumed);
+  int diverging = 0;  // rungs in a row on which a quantity did not converge
+  for (int k = static_cast<int>(rungs.size());; ++k) {
+    // The next rung, foreseen: its nodes, and its time from the last two rungs' ratio (at least `growth`).
+    const LevelRun& last = rungs.back();
+    const double ratio   = rungs.size() >= 2 && rungs[rungs.size() - 2].seconds > 0
+                               ? std::max(growth, last.seconds / rungs[rungs.size() - 2].seconds)
+                               : std::max(2.0, growth * 1.5);
+    const double nodes = static_cast<double>(last.nodes) * growth, spent = now() - start_seconds;
+    std::ostringstream why;
+    if (nodes > static_cast<double>(max_nodes))
+      why << "the next " << what << " would have about " << static_cast<long>(nodes) << " nodes, past the "
+          << max_nodes << " this machine's memory allows";
+    else if (spent + last.seconds * ratio > target.seconds)
+      why << "the next " << what << " would take about " << last.seconds * ratio << " s, past the time left ("
+          << target.seconds - spent << " s of " << target.seconds << "; --time-limit)";
+    if (!why.str().empty()) {
+      const bool known = v && v->failed.empty() && v->worst > 0;
+      const double needed =
+          known ? std::ceil(std::log2(v->worst / target.tolerance) / std::max(v->rate, 0.5)) : 0;
+      throw SolveError(
+          aim + why.str() +
+          (needed > 0 ? " (about " + detail::number_text(needed) + " more halvings needed)" : "") +
+          "; the files hold the run at the last " + what + " they were written on");
+    }
+    // Written when it is foreseen to be the last: three rungs with it, its error within the target at the
+    // slowest order of those still outside.
+    const bool files =
+        rungs.size() >= 2 && v && v->failed.empty() && v->worst / std::exp2(v->rate) <= target.tolerance;
+    SceneModel model = make(k);
+    rungs.push_back(solve(model, files));
+    rungs.back().level = k;
+    v                  = judge(rungs, target.tolerance, assumed);
+    log_rung(log, rungs, what, v);
+    if (!v->failed.empty()) {
+      // Three rungs can still be short of the asymptotic range (noise between a maximum's nodes): two
+      // verdicts in a row end the ladder.
+      if (++diverging >= 2 && rungs.size() >= 3)
+        throw SolveError(aim + v->failed + " does not converge as the " + what +
+                         " is refined (a singular point, such as a re-entrant corner or a point load?)");
+      continue;
+    }
+    diverging = 0;
+    if (rungs.size() < 3 || v->worst > target.tolerance) continue;
+    if (!files) {
+      log << "accuracy: reached on " << what << " " << k << ", which is solved again to write its files\n";
+      rungs.back()       = solve(model, true);
+      rungs.back().level = k;
+    }
+    return k;
+  }
+}
+
+/// `gapfe run --accuracy` (see the top) after the model's own run, `own` (its files written into own.dir),
+/// which took `own_seconds` and found `quantities`: the mesh's ladder through `refine`, then for a law with
+/// history (and no gaps) the load steps', the path in `log`, the last runs' error bars in the log and in
+/// estimates.csv. `clear_folder` empties own.dir before a run that writes there. SolveError when the target
+/// cannot be reached within `target`'s memory and time, or a quantity does not converge.
+inline void reach_accuracy(const Refiner& refine, const RunRequest& own, std::vector<ReadQuantity> quantities,
+                           double own_seconds, const AccuracyTarget& target,
+                           const std::function<void()>& clear_folder, std::ostream& log) {
+  using clock        = std::chrono::steady_clock;
+  const auto seconds = [](clock::time_point t) {
+    return std::chrono::duration<double>(clock::now() - t).count();
+  };
+  const double start = std::chrono::duration<double>(clock::now().time_since_epoch()).count() - own_seconds;
+  const int dofs     = own.plan.key.kinematics == VariantChoice::saga ? 3 : 2;
+  const long max_nodes =
+      target.max_nodes > 0 ? target.max_nodes : nodes_in_memory(0.8 * available_memory(), dofs);
+  log << "accuracy: every quantity within " << target.tolerance << " (relative); meshes up to " << max_nodes
+      << " nodes (this machine's memory), " << target.seconds << " s in all\n";
+  std::ostringstream quiet;  // the finer runs' warnings repeat the model's own
+  const auto solve = [&](SceneModel& m, bool files) {
+    const auto t = clock::now();
+    const Plan p = finer_plan(m, own.plan);
+    if (files) clear_folder();
+    const RunRequest r{m.description,
+                       m.scene,
+                       p,
+                       files ? own.dir : std::string(),
+                       files ? own.err : quiet,
+                       false,
+                       own.pictures,
+                       own.units,
+                       nullptr,
+                       true,
+                       true};
+    LevelRun out{0, m.scene.grid.node_count(), 0, run(r).quantities};
+    out.seconds = seconds(t);
+    return out;
+  };
+  std::vector<LevelRun> mesh{{0, own.scene.grid.node_count(), own_seconds, std::move(quantities)}};
+  log_rung(log, mesh, "mesh", std::nullopt);
+  const int level = climb(mesh, refine, solve, target, max_nodes, 4.0, 0.0, "mesh", start, log);
+  std::vector<LevelRun> steps;
+  if (own.plan.plastic && !own.plan.gaps) {  // a law with history: the load steps' error on that mesh
+    const SceneModel finest = level > 0 ? refine(level) : SceneModel{own.model, own.scene, "", ""};
+    steps.push_back(mesh.back());
+    steps.back().level = 0;
+    const auto split   = [&](int k) {
+      SceneModel m = finest;
+      m.description.options.load_pieces *= 1 << k;
+      return m;
+    };
+    climb(steps, split, solve, target, max_nodes, 1.0, 1.0, "load-step split", start, log);
+  }
+  const auto last_three = [](const std::vector<LevelRun>& v) {
+    return std::vector<LevelRun>(v.end() - static_cast<std::ptrdiff_t>(std::min<std::size_t>(v.size(), 3)),
+                                 v.end());
+  };
+  log << "accuracy: reached on the mesh at 1/" << (1 << level) << " of the spacing"
+      << (steps.size() > 1 ? " with every load step in " + std::to_string(1 << steps.back().level) + " pieces"
+                           : std::string())
+      << "; the files are that run's\n";
+  report_error_bars(log, own.dir, last_three(mesh),
+                    steps.size() > 1 ? last_three(steps) : std::vector<LevelRun>{}, true);
+}
+
+}  // namespace gapfe::app
