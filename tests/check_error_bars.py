@@ -324,8 +324,16 @@ def accuracy():
     check("accuracy: load-step split 2" in log and "with every load step in" in log,
           f"plastic tube: the load steps split after the mesh: {log[-600:]}")
     rows = estimates(out)
-    check(all(float(r["step_relative_error"] or "0") <= 1e-2 for r in rows.values()),
-          "plastic tube: every load-step error within the target")
+    check(all(r["step_status"] in ("observed", "exact", "settled") and float(r["step_relative_error"]) <= 1e-2
+              for r in rows.values()), f"plastic tube: every load-step error within the target: {rows}")
+    check(all(r["status"] in ("observed", "exact", "settled") and float(r["relative_error"]) <= 1e-2
+              for r in rows.values()), f"plastic tube: every mesh error within the target: {rows}")
+    last = [line for line in log.splitlines() if line.startswith("accuracy: load-step split ")][-1]
+    check(last.endswith(")") and "its files written" in last, f"plastic tube: the last run wrote the files: {last}")
+    nodes = len({r["node"] for r in csv.DictReader(open(out / "nodes.csv"))})
+    check(nodes == int(last.split()[4]), f"plastic tube: the files are the last mesh's ({nodes} nodes)")
+    _, _, err = run(work / "lame_quad4.deck", "accuracy_usage", "--accuracy", "1e-2", "--estimate", expect=64)
+    check("give one" in err, f"--estimate with --accuracy: {err.strip()}")
     for model, name, options, why in ((work / "stepped_bar.deck", "accuracy_corner", [], "does not converge"),
                                       (work / "lame_quad4.deck", "accuracy_time", ["--time-limit", "0.2"],
                                        "past the time left")):

@@ -2,16 +2,19 @@
 // (post/extrapolation.hpp) on sequences whose limit is known, and a deck's grid refined from its own cards
 // (input/deck_refine.hpp), which must describe the same model: the same points, loads and supports.
 // The error bars through the command, against closed forms: tests/check_error_bars.py.
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
 #include <set>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <doctest/doctest.h>
 
+#include "gapfe/app/accuracy.hpp"
 #include "gapfe/input/deck.hpp"
 #include "gapfe/input/deck_refine.hpp"
 #include "gapfe/input/gmsh_refine.hpp"
@@ -451,4 +454,98 @@ TEST_CASE("a Gmsh mesh split in four keeps a soft layer one cell thick, and refu
                        doctest::Contains("whose two opposite sides are not on the contact's faces"),
                        gapfe::InputError);
   CHECK_NOTHROW(gapfe::split_gmsh(block, 1));  // without the soft layer: every cell in four
+}
+
+// ---- --accuracy's ladder (app/accuracy.hpp), on made-up runs: no model is solved
+
+namespace {
+
+/// Rung k of a made-up ladder: 100 x 4^k nodes, 1 ms x 4^k; the largest stress 1 + 0.1 h (h = 2^-k),
+/// exactly first order, unless `wobble` (then 1 + 0.1 (-1)^k: no limit); a support's reaction 1e5; one on
+/// the axis, 1e-3 (-1)^k (tending to nothing against the loads, changing sign).
+gapfe::app::LevelRun made_up_rung(int k, bool wobble = false) {
+  gapfe::app::LevelRun r{k, 100L << (2 * k), 1e-3 * std::exp2(2 * k), {}};
+  const double h = std::exp2(-k);
+  r.quantities   = {{"reaction bottom R_z", 1e5, gapfe::Vec2::Zero(), false, 2, 1e5},
+                    {"reaction axis R_r", 1e-3 * (k % 2 ? -1 : 1), gapfe::Vec2::Zero(), false, 2, 0},
+                    {"largest von Mises", wobble ? 1 + 0.1 * (k % 2 ? -1 : 1) : 1 + 0.1 * h,
+                     gapfe::Vec2::Zero(), true, 1, 0}};
+  return r;
+}
+
+struct MadeUpLadder {
+  bool wobble = false;
+  std::vector<bool> files;  ///< whether each rung solved wrote its files
+  int climb(const gapfe::app::AccuracyTarget& target, long max_nodes, std::string& written) {
+    std::vector<gapfe::app::LevelRun> rungs{made_up_rung(0, wobble)};
+    std::ostringstream log;
+    int solved      = 0;
+    const auto make = [](int) { return gapfe::SceneModel{}; };
+    const auto run  = [&](gapfe::SceneModel&, bool write) {
+      files.push_back(write);
+      return made_up_rung(++solved, wobble);
+    };
+    const double start =
+        std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+    return gapfe::app::climb(rungs, make, run, target, max_nodes, 4.0, 0.0, "mesh", start, written, log);
+  }
+};
+
+}  // namespace
+
+TEST_CASE(
+    "--accuracy's ladder ends on the rung whose estimated error is within the target, its files written") {
+  MadeUpLadder ladder;
+  std::string written = "mesh 0";
+  // The stress's error on rung k is 0.1 / 2^k, estimated exactly at first order: within 1e-2 from k = 4 on
+  // (0.00625 over 1.00625), and never on two rungs (an assumed order is not enough).
+  CHECK(ladder.climb({1e-2, 0, 3600}, 1'000'000, written) == 4);
+  CHECK(ladder.files == std::vector<bool>{false, true, true, true});
+  CHECK(written == "mesh 4");
+  // The axis reaction changes sign at 1e-8 of the loads: settled, not a failure.
+  std::vector<gapfe::app::LevelRun> rungs;
+  for (int k = 2; k <= 4; ++k) rungs.push_back(made_up_rung(k));
+  const gapfe::app::RungVerdict v = gapfe::app::judge(rungs, 1e-3, 0);  // the stress still outside: its rate
+  CHECK(v.failed.empty());
+  CHECK(v.which == "largest von Mises");
+  CHECK(v.worst == doctest::Approx(0.1 / 16 / (1 + 0.1 / 16)).epsilon(1e-9));
+  CHECK(v.rate == doctest::Approx(1.0).epsilon(1e-9));
+}
+
+/// The message of the SolveError `f` throws ("" when it throws none).
+template <class F>
+std::string solve_error(F&& f) {
+  try {
+    f();
+  } catch (const gapfe::SolveError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST_CASE(
+    "--accuracy's ladder stops before a rung past the memory or the time, and at a quantity that wobbles") {
+  const auto has = [](const std::string& text, const char* part) {
+    return text.find(part) != std::string::npos;
+  };
+  std::string written = "mesh 0";
+  MadeUpLadder small;  // rung 3 would have 6,400 nodes
+  const std::string memory = solve_error([&] { small.climb({1e-2, 0, 3600}, 5'000, written); });
+  CAPTURE(memory);
+  CHECK(has(memory, "would have about 6400 nodes, past the 5000"));
+  CHECK(has(memory, "about 2 more halvings needed"));  // 0.025 at first order to 0.01
+  CHECK(has(memory, "the files are those of mesh 2"));
+  MadeUpLadder slow;  // rung 2 ends at 16 ms, past 10 ms
+  written                = "mesh 0";
+  const std::string time = solve_error([&] { slow.climb({1e-2, 0, 0.010}, 1'000'000, written); });
+  CAPTURE(time);
+  CHECK(has(time, "past the time left"));
+  CHECK(has(time, "--time-limit"));
+  MadeUpLadder wobbly;
+  wobbly.wobble             = true;
+  written                   = "mesh 0";
+  const std::string wobbles = solve_error([&] { wobbly.climb({1e-2, 0, 3600}, 1'000'000, written); });
+  CAPTURE(wobbles);
+  CHECK(has(wobbles, "largest von Mises does not converge as the mesh is refined"));
+  CHECK(wobbly.files.size() == 3);  // two verdicts in a row: rungs 2 and 3
 }

@@ -1,19 +1,20 @@
 #pragma once
 // `gapfe run --accuracy TOL`: the mesh halved, then (for a law with history) the load steps split, until
 // every quantity `--estimate` reports (app/read_quantities.hpp) has an estimated relative error of at most
-// TOL on the last run, which writes the run's files; docs/accuracy.md "A target accuracy". Each rung of the
+// TOL on the last run, whose files the folder holds; docs/accuracy.md "A target accuracy". Each rung of the
 // ladder is one run: rung k of the mesh's is the model at 1/2^k of its spacing (the Refiner of
 // app/error_bars.hpp), rung k of the steps' the finest mesh with every load step in 2^k pieces. A quantity's
 // error on rung k is its value's distance to the limit Richardson's extrapolation gives from rungs k - 2, k -
-// 1 and k (post/extrapolation.hpp; from two rungs, the order assumed). Before each rung, its size and time
-// are foreseen from the last ones; one past the memory or the time left stops the ladder with the reason, and
-// so does a quantity that does not converge.
+// 1 and k (post/extrapolation.hpp); the target counts only from three rungs on, so every run from the third
+// writes its files. Before each rung, its size and time are foreseen from the last ones; one past the memory
+// or the time left stops the ladder with the reason, and so does a quantity that does not converge.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <new>
 #include <optional>
 #include <ostream>
 #include <sstream>
@@ -22,7 +23,6 @@
 
 #include "gapfe/app/error_bars.hpp"
 #include "gapfe/app/run.hpp"
-#include "gapfe/output/run_folder.hpp"
 
 namespace gapfe::app {
 
@@ -39,16 +39,26 @@ inline long nodes_in_memory(double bytes, int dofs_per_node) {
   return static_cast<long>(bytes / (2100.0 * std::max(2, dofs_per_node)));
 }
 
-/// This machine's available memory (MemAvailable of /proc/meminfo) [bytes]; 0 when it cannot tell.
+/// The memory this process may still use [bytes]: the machine's MemAvailable (/proc/meminfo), no more than
+/// what its cgroup (a container, a batch job) has left; 0 when neither tells.
 inline double available_memory() {
-  std::ifstream in("/proc/meminfo");
-  std::string key;
-  double kb = 0;
-  while (in >> key >> kb) {
-    if (key == "MemAvailable:") return kb * 1024;
-    in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+  double available = 0;
+  {
+    std::ifstream in("/proc/meminfo");
+    std::string key;
+    double kb = 0;
+    while (in >> key >> kb) {
+      if (key == "MemAvailable:") available = kb * 1024;
+      in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+    }
   }
-  return 0;
+  double limit = 0, used = 0;  // cgroup v2; "max" reads as no limit
+  if (std::ifstream in("/sys/fs/cgroup/memory.max"); in >> limit) {
+    std::ifstream current("/sys/fs/cgroup/memory.current");
+    if (current >> used && limit > used)
+      available = available > 0 ? std::min(available, limit - used) : limit - used;
+  }
+  return available;
 }
 
 /// A rung's quantities judged: the largest relative error among them and which, or why there is none.
@@ -60,42 +70,35 @@ struct RungVerdict {
 };
 
 /// The error of the last of `rungs` (each twice as fine as the one before) for every quantity, against
-/// `target`: from the last three rungs (two: the order `assumed`, 0 for the quantity's own).
+/// `target`: its bar (bar_of_last) from the last three rungs (two: the order `assumed`, 0 for the quantity's
+/// own), relative as the report gives it (relative_error).
 inline RungVerdict judge(const std::vector<LevelRun>& rungs, double target, double assumed) {
   RungVerdict v;
   const std::size_t from = rungs.size() >= 3 ? rungs.size() - 3 : 0;
   const std::vector<LevelRun> last(rungs.begin() + static_cast<std::ptrdiff_t>(from) + 1, rungs.end());
   const std::vector<ReadQuantity>& first = rungs[from].quantities;
   v.rate                                 = std::numeric_limits<double>::infinity();
-  const std::vector<ReadQuantity>& now   = rungs.back().quantities;
   for (std::size_t q = 0; q < first.size(); ++q) {
     const auto [values, bar] = quantity_bar(first[q], last, q, assumed > 0 ? assumed : first[q].order);
-    const double finest      = values.back();
-    const double size = std::max(bar.converges() ? std::abs(bar.limit) : 0.0, relative_size(now, q, finest));
-    // Values that do not converge but move by less than a tenth of the target (a reaction on the axis,
-    // tending to 0 and changing sign on the way) are within it: their last difference bounds the error.
-    const double step = std::abs(finest - values[values.size() - 2]);
-    double rel        = 0;
-    if (bar.converges()) {
-      rel = bar.status == ErrorBar::Status::exact || !(size > 0) ? 0.0 : std::abs(finest - bar.limit) / size;
-    } else if (step <= 0.1 * target * size) {
-      rel = step / size;
-    } else {
+    const double size        = relative_size(rungs.back().quantities, q, values.back());
+    const ErrorBar finest    = bar_of_last(bar, values, size, target);
+    if (!finest.converges()) {
       v.failed = first[q].name;
       return v;
     }
+    const double rel = relative_error(finest, size);
     if (!(rel <= v.worst)) v.worst = rel, v.which = first[q].name;
-    if (rel > target) v.rate = std::min(v.rate, bar.order);
+    if (rel > target && std::isfinite(finest.order)) v.rate = std::min(v.rate, finest.order);
   }
   if (!std::isfinite(v.rate)) v.rate = 2;
   return v;
 }
 
 /// The line of the path for the last of `rungs`, and its verdict (none for the first).
-inline void log_rung(std::ostream& log, const std::vector<LevelRun>& rungs, const char* what,
+inline void log_rung(std::ostream& log, const std::vector<LevelRun>& rungs, const char* what, bool files,
                      const std::optional<RungVerdict>& v) {
   log << "accuracy: " << what << " " << rungs.back().level << ": " << rungs.back().nodes << " nodes, "
-      << rungs.back().seconds << " s";
+      << rungs.back().seconds << " s" << (files ? ", its files written" : "");
   if (v && !v->failed.empty())
     log << "; " << v->failed << " does not converge yet";
   else if (v)
@@ -104,16 +107,16 @@ inline void log_rung(std::ostream& log, const std::vector<LevelRun>& rungs, cons
 }
 
 /// One ladder of `gapfe run --accuracy` (see the top): rungs made by `make(k)` from k = rungs.size() on,
-/// after `rungs` (the first: the model's own run, its files written), each run through `solve(model,
-/// files)`; `growth` the factor its nodes grow by a rung (4 for the mesh, 1 for the steps), `assumed` the
-/// order with two rungs (0: each quantity's own). The target counts as reached on three rungs or more (an
-/// observed order). Returns the rung it was reached on, whose files are written; throws SolveError naming
-/// why it cannot be: the next rung past `max_nodes` or the time left, or a quantity that does not converge
-/// on two rungs in a row.
+/// after `rungs` (the first: a run whose files are written, `written` naming it), each run through
+/// `solve(model, files)`; `growth` the factor its nodes grow by a rung (4 for the mesh, 1 for the steps),
+/// `assumed` the order with two rungs (0: each quantity's own). Returns the rung the target was reached on,
+/// the last, whose files are written; throws SolveError naming why it cannot be: the next rung past
+/// `max_nodes` or the time left, a quantity that does not converge on two rungs in a row, or a run that
+/// fails.
 template <class Make, class Solve>
 int climb(std::vector<LevelRun>& rungs, Make&& make, Solve&& solve, const AccuracyTarget& target,
           long max_nodes, double growth, double assumed, const char* what, double start_seconds,
-          std::ostream& log) {
+          std::string& written, std::ostream& log) {
   const auto now = [] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
   };
@@ -142,59 +145,78 @@ int climb(std::vector<LevelRun>& rungs, Make&& make, Solve&& solve, const Accura
       throw SolveError(
           aim + why.str() +
           (needed > 0 ? " (about " + detail::number_text(needed) + " more halvings needed)" : "") +
-          "; the files hold the run at the last " + what + " they were written on");
+          "; the files are those of " + written);
     }
-    // Written when it is foreseen to be the last: three rungs with it, its error within the target at the
-    // slowest order of those still outside.
-    const bool files =
-        rungs.size() >= 2 && v && v->failed.empty() && v->worst / std::exp2(v->rate) <= target.tolerance;
-    SceneModel model = make(k);
-    rungs.push_back(solve(model, files));
+    // From the third rung on, a run may be the last: it writes its files (replacing the last ones).
+    const bool files       = rungs.size() >= 2;
+    const std::string name = std::string(what) + " " + std::to_string(k);
+    try {
+      SceneModel model = make(k);
+      rungs.push_back(solve(model, files));
+    } catch (const FileError&) {  // the folder or the disk: a file problem still (exit 3)
+      throw;
+    } catch (const std::bad_alloc&) {
+      throw SolveError(aim + name + " ran out of memory; the files are those of " +
+                       (files ? name + " (stopped)" : written));
+    } catch (const std::runtime_error& e) {  // InputError, SolveError: the rung named
+      throw SolveError(aim + name + ": " + e.what() + "; the files are those of " +
+                       (files ? name + " (stopped)" : written));
+    }
+    if (files) written = name;
     rungs.back().level = k;
     v                  = judge(rungs, target.tolerance, assumed);
-    log_rung(log, rungs, what, v);
+    log_rung(log, rungs, what, files, v);
     if (!v->failed.empty()) {
       // Three rungs can still be short of the asymptotic range (noise between a maximum's nodes): two
       // verdicts in a row end the ladder.
       if (++diverging >= 2 && rungs.size() >= 3)
         throw SolveError(aim + v->failed + " does not converge as the " + what +
-                         " is refined (a singular point, such as a re-entrant corner or a point load?)");
+                         " is refined (a singular point, such as a re-entrant corner or a point load?); the "
+                         "files are those of " +
+                         written);
       continue;
     }
     diverging = 0;
-    if (rungs.size() < 3 || v->worst > target.tolerance) continue;
-    if (!files) {
-      log << "accuracy: reached on " << what << " " << k << ", which is solved again to write its files\n";
-      rungs.back()       = solve(model, true);
-      rungs.back().level = k;
-    }
-    return k;
+    if (rungs.size() >= 3 && v->worst <= target.tolerance) return k;
   }
 }
+
+/// What `gapfe run --accuracy` leaves: the last run's result (its files in the run's folder), and the error
+/// bars reported.
+struct AccuracyRun {
+  RunResult result;
+  std::string reached;  ///< "the mesh at 1/8 of the spacing with every load step in 4 pieces"
+};
 
 /// `gapfe run --accuracy` (see the top) after the model's own run, `own` (its files written into own.dir),
 /// which took `own_seconds` and found `quantities`: the mesh's ladder through `refine`, then for a law with
 /// history (and no gaps) the load steps', the path in `log`, the last runs' error bars in the log and in
 /// estimates.csv. `clear_folder` empties own.dir before a run that writes there. SolveError when the target
-/// cannot be reached within `target`'s memory and time, or a quantity does not converge.
-inline void reach_accuracy(const Refiner& refine, const RunRequest& own, std::vector<ReadQuantity> quantities,
-                           double own_seconds, const AccuracyTarget& target,
-                           const std::function<void()>& clear_folder, std::ostream& log) {
-  using clock        = std::chrono::steady_clock;
-  const auto seconds = [](clock::time_point t) {
-    return std::chrono::duration<double>(clock::now() - t).count();
-  };
-  const double start = std::chrono::duration<double>(clock::now().time_since_epoch()).count() - own_seconds;
-  const int dofs     = own.plan.key.kinematics == VariantChoice::saga ? 3 : 2;
-  const long max_nodes =
-      target.max_nodes > 0 ? target.max_nodes : nodes_in_memory(0.8 * available_memory(), dofs);
-  log << "accuracy: every quantity within " << target.tolerance << " (relative); meshes up to " << max_nodes
-      << " nodes (this machine's memory), " << target.seconds << " s in all\n";
+/// cannot be reached within `target`'s memory and time, a quantity does not converge, or a run fails.
+inline AccuracyRun reach_accuracy(const Refiner& refine, const RunRequest& own,
+                                  std::vector<ReadQuantity> quantities, double own_seconds,
+                                  const AccuracyTarget& target, const std::function<void()>& clear_folder,
+                                  std::ostream& log) {
+  using clock          = std::chrono::steady_clock;
+  const double start   = std::chrono::duration<double>(clock::now().time_since_epoch()).count() - own_seconds;
+  const int dofs       = own.plan.key.kinematics == VariantChoice::saga ? 3 : 2;
+  const double bytes   = available_memory();
+  const long max_nodes = target.max_nodes > 0 ? target.max_nodes
+                         : bytes > 0          ? nodes_in_memory(0.8 * bytes, dofs)
+                                              : std::numeric_limits<long>::max();
+  log << "accuracy: every quantity within " << target.tolerance << " (relative); meshes up to "
+      << (bytes > 0 || target.max_nodes > 0 ? std::to_string(max_nodes) + " nodes" : std::string("any size"))
+      << (target.max_nodes > 0 ? ""
+          : bytes > 0          ? " (this machine's memory)"
+                               : " (the memory available unknown)")
+      << ", " << target.seconds << " s in all\n";
   std::ostringstream quiet;  // the finer runs' warnings repeat the model's own
+  AccuracyRun out;
   const auto solve = [&](SceneModel& m, bool files) {
     const auto t = clock::now();
     const Plan p = finer_plan(m, own.plan);
     if (files) clear_folder();
+    m.description.options.error_estimate = files && own.model.options.error_estimate;  // the VTU's field
     const RunRequest r{m.description,
                        m.scene,
                        p,
@@ -206,16 +228,20 @@ inline void reach_accuracy(const Refiner& refine, const RunRequest& own, std::ve
                        nullptr,
                        true,
                        true};
-    LevelRun out{0, m.scene.grid.node_count(), 0, run(r).quantities};
-    out.seconds = seconds(t);
-    return out;
+    RunResult result = run(r);
+    LevelRun level{0, m.scene.grid.node_count(), std::chrono::duration<double>(clock::now() - t).count(),
+                   std::move(result.quantities)};
+    if (files) out.result = std::move(result);
+    return level;
   };
   std::vector<LevelRun> mesh{{0, own.scene.grid.node_count(), own_seconds, std::move(quantities)}};
-  log_rung(log, mesh, "mesh", std::nullopt);
-  const int level = climb(mesh, refine, solve, target, max_nodes, 4.0, 0.0, "mesh", start, log);
+  log_rung(log, mesh, "mesh", true, std::nullopt);
+  std::string written = "mesh 0 (the model's own run)";
+  const int level     = climb(mesh, refine, solve, target, max_nodes, 4.0, 0.0, "mesh", start, written, log);
+  out.reached         = "the mesh at 1/" + std::to_string(1 << level) + " of the spacing";
   std::vector<LevelRun> steps;
   if (own.plan.plastic && !own.plan.gaps) {  // a law with history: the load steps' error on that mesh
-    const SceneModel finest = level > 0 ? refine(level) : SceneModel{own.model, own.scene, "", ""};
+    const SceneModel finest = refine(level);
     steps.push_back(mesh.back());
     steps.back().level = 0;
     const auto split   = [&](int k) {
@@ -223,18 +249,18 @@ inline void reach_accuracy(const Refiner& refine, const RunRequest& own, std::ve
       m.description.options.load_pieces *= 1 << k;
       return m;
     };
-    climb(steps, split, solve, target, max_nodes, 1.0, 1.0, "load-step split", start, log);
+    const int pieces =
+        climb(steps, split, solve, target, max_nodes, 1.0, 1.0, "load-step split", start, written, log);
+    out.reached += " with every load step in " + std::to_string(1 << pieces) + " pieces";
   }
   const auto last_three = [](const std::vector<LevelRun>& v) {
     return std::vector<LevelRun>(v.end() - static_cast<std::ptrdiff_t>(std::min<std::size_t>(v.size(), 3)),
                                  v.end());
   };
-  log << "accuracy: reached on the mesh at 1/" << (1 << level) << " of the spacing"
-      << (steps.size() > 1 ? " with every load step in " + std::to_string(1 << steps.back().level) + " pieces"
-                           : std::string())
-      << "; the files are that run's\n";
+  log << "accuracy: reached on " << out.reached << "; the files are that run's\n";
   report_error_bars(log, own.dir, last_three(mesh),
-                    steps.size() > 1 ? last_three(steps) : std::vector<LevelRun>{}, true);
+                    steps.empty() ? std::vector<LevelRun>{} : last_three(steps), target.tolerance);
+  return out;
 }
 
 }  // namespace gapfe::app

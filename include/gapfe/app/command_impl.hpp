@@ -210,9 +210,15 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
     report_run(log, err, plan, d, result);
     if (a.accuracy > 0) {
       finer.reset();  // the ladder makes its own
-      reach_accuracy(
-          refine, request, result.quantities, since(t0), {a.accuracy, 0, a.time_limit},
+      const AccuracyRun last = reach_accuracy(
+          refine, request, result.quantities, since(t0),
+          {a.accuracy, 0, a.time_limit > 0 ? a.time_limit : AccuracyTarget{}.seconds},
           [&] { RunFolder::prepare(a.out, true, run_what); }, log);
+      log << "the last run (" << last.reached << "), whose files these are:\n";
+      report_run(log, err, plan, d, last.result);
+      list_files(a, plan, d, last.result, log);
+      RunFolder::record(a.out, run_what, "complete");
+      return ok;
     } else if (a.estimate) {
       std::vector<LevelRun> levels{{0, s.grid.node_count(), since(t0), result.quantities}};
       for (LevelRun& level : solve_finer(refine, std::move(*finer), plan, request.units, log))

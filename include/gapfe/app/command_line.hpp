@@ -105,7 +105,7 @@ struct Args {
   bool quiet = false, help = false, version = false, png = false, no_png = false, overwrite = false;
   bool estimate     = false;  ///< run --estimate: error bars from finer meshes (app/error_bars.hpp)
   double accuracy   = 0;      ///< run --accuracy TOL (app/accuracy.hpp); 0: none
-  double time_limit = 3600;   ///< run --time-limit [s]: what --accuracy may take
+  double time_limit = 0;      ///< run --time-limit [s]: what --accuracy may take; 0: its default
   int threads       = 1;
   std::optional<std::vector<std::string>> plots;  ///< --plot / --field; unset: the default
   int step = 0;                                   ///< plot --step (0: the last)
@@ -289,6 +289,10 @@ inline Args parse(const std::vector<std::string>& a) {
   if (r.deck.empty()) throw UsageError(r.command == "plot" ? "no run directory given" : "no deck given");
   if ((r.command == "run" || r.command == "mesh") && r.out.empty())
     throw UsageError(r.command + " needs --out DIR");
+  if (r.estimate && r.accuracy > 0)
+    throw UsageError("--estimate and --accuracy: give one (--accuracy reports the error bars too)");
+  if (r.time_limit > 0 && r.accuracy == 0)
+    throw UsageError("--time-limit goes with --accuracy (the time its ladder of runs may take)");
   if (r.curve_x.empty() != r.curve_y.empty())
     throw UsageError("--x and --y go together (the curve's two columns)");
   return r;

@@ -71,8 +71,6 @@ inline void note_point_supports(const Deck& deck, std::ostream& log) {
         << "those points only, not the points between them (an edge held along its length: one card)\n";
 }
 
-/// The run of one finer mesh (`refined`, level `level`) with `plan`'s choices, reported in `log`. The finer
-/// runs make no error estimate of their own (their centroid stresses are the same without it).
 /// The plan of a finer mesh of the model `plan` is for: the same, or InputError.
 inline Plan finer_plan(const SceneModel& refined, const Plan& plan) {
   Plan p = make_plan(refined.description, refined.scene, plan.key.kinematics);
@@ -81,6 +79,8 @@ inline Plan finer_plan(const SceneModel& refined, const Plan& plan) {
   return p;
 }
 
+/// The run of one finer mesh (`refined`, level `level`) with `plan`'s choices, reported in `log`. The finer
+/// runs make no error estimate of their own (their centroid stresses are the same without it).
 inline LevelRun solve_level(SceneModel& refined, int level, const Plan& plan, PlotUnits units,
                             std::ostream& log) {
   const auto start                           = std::chrono::steady_clock::now();
@@ -188,11 +188,21 @@ inline double relative_size(const std::vector<ReadQuantity>& all, std::size_t q,
   return size;
 }
 
+/// The relative error a bar stands for: its error over the largest of its limit, its value and `size`
+/// (relative_size); 0 when the values agree.
+inline double relative_error(const ErrorBar& bar, double size) {
+  if (bar.status == ErrorBar::Status::exact) return 0;
+  const double of =
+      std::max({std::isfinite(bar.limit) ? std::abs(bar.limit) : 0.0, std::abs(bar.value), size});
+  return of > 0 ? bar.error / of : 0.0;
+}
+
 /// A bar's status as estimates.csv gives it.
 inline const char* status_word(const ErrorBar& b) {
   return b.status == ErrorBar::Status::exact      ? "exact"
          : b.status == ErrorBar::Status::observed ? "observed"
          : b.status == ErrorBar::Status::assumed  ? "assumed"
+         : b.status == ErrorBar::Status::settled  ? "settled"
                                                   : "not_converging";
 }
 
@@ -207,13 +217,14 @@ inline void write_bar(std::ostream& log, std::ostream& csv, const ErrorBar& bar,
     log << "(the " << what << " agree, to the solvers' tolerance)";
     csv << ",0,0," << status_word(bar) << ",," << bar.limit;
   } else if (bar.converges()) {
-    const double size     = std::max({std::abs(bar.limit), std::abs(bar.value), size_of});
-    const double relative = size > 0 ? bar.error / size : 0.0;
+    const double relative = relative_error(bar, size_of);
     log << "+- " << bar.error << " (" << 100 * relative << "%";
     if (bar.status == ErrorBar::Status::observed && std::isfinite(bar.order))
       log << "; observed order " << bar.order;
     else if (bar.status == ErrorBar::Status::assumed)
       log << "; order " << bar.order << " assumed, two " << what;
+    else if (bar.status == ErrorBar::Status::settled)
+      log << "; not converging, but moving by less than a tenth of the target: the last difference";
     log << ")";
     csv << "," << bar.error << "," << relative << "," << status_word(bar) << "," << bar.order << ","
         << bar.limit;
@@ -225,20 +236,28 @@ inline void write_bar(std::ostream& log, std::ostream& csv, const ErrorBar& bar,
   }
 }
 
-/// The bar of the last of `values` instead of the first: its distance to the same limit.
-inline ErrorBar bar_of_last(ErrorBar b, const std::vector<double>& values) {
-  if (b.converges())
+/// The bar of the last of `values` instead of the first (`gapfe run --accuracy`): its distance to the same
+/// limit; and values that do not converge but whose last difference is below a tenth of `target` x `size`
+/// (a reaction on the axis, tending to 0 and changing sign on the way) settled, that difference their error.
+inline ErrorBar bar_of_last(ErrorBar b, const std::vector<double>& values, double size, double target) {
+  if (b.converges()) {
     b.value = values.back(),
     b.error = b.status == ErrorBar::Status::exact ? 0.0 : std::abs(b.value - b.limit);
+  } else if (values.size() >= 2) {
+    const double step = std::abs(values.back() - values[values.size() - 2]);
+    if (step <= 0.1 * target * size)
+      b.status = ErrorBar::Status::settled, b.value = b.limit = values.back(), b.error = step;
+  }
   return b;
 }
 
 /// Each quantity's error bar from the runs (the model's own first, then the finer meshes), and from `steps`
 /// (the model's own mesh with finer load steps; empty: not measured), in the log and in `dir`/estimates.csv.
-/// `finest`: the bars of the last runs' values instead (`gapfe run --accuracy`: `runs` the last meshes,
-/// `steps` the last mesh with finer steps).
+/// `target` > 0 (`gapfe run --accuracy TOL`): the bars of the last runs' values instead (bar_of_last), `runs`
+/// the last meshes, `steps` the last mesh with its load steps split.
 inline void report_error_bars(std::ostream& log, const std::string& dir, const std::vector<LevelRun>& runs,
-                              const std::vector<LevelRun>& steps = {}, bool finest = false) {
+                              const std::vector<LevelRun>& steps = {}, double target = 0) {
+  const bool finest                    = target > 0;
   const std::vector<ReadQuantity>& own = (finest ? runs.back() : runs.front()).quantities;
   const std::vector<LevelRun> finer(runs.begin() + 1, runs.end());
   std::ostringstream csv;
@@ -260,15 +279,16 @@ inline void report_error_bars(std::ostream& log, const std::string& dir, const s
   for (std::size_t q = 0; q < own.size(); ++q) {
     const ReadQuantity& v = own[q];
     auto [values, bar]    = quantity_bar(runs.front().quantities[q], finer, q, v.order);
-    if (finest) bar = bar_of_last(bar, values);
-    const double shown = finest && !steps.empty() && q < steps.back().quantities.size()
-                             ? steps.back().quantities[q].value
-                             : v.value;
+    const double shown    = finest && !steps.empty() && q < steps.back().quantities.size()
+                                ? steps.back().quantities[q].value
+                                : v.value;
+    const double size     = relative_size(own, q, shown);
+    if (finest) bar = bar_of_last(bar, values, size, target);
     log << "  " << v.name;
     if (v.located) log << " (at r = " << v.at(0) << ", z = " << v.at(1) << ")";
     log << ": " << shown << " ";
     csv << detail::csv_name(v.name) << "," << shown;
-    write_bar(log, csv, bar, values, relative_size(own, q, shown), "meshes", "spacing",
+    write_bar(log, csv, bar, values, size, "meshes", "spacing",
               "a singular point such as a re-entrant corner or a point load?");
     if (v.located)
       csv << "," << v.at(0) << "," << v.at(1);
@@ -278,9 +298,9 @@ inline void report_error_bars(std::ostream& log, const std::string& dir, const s
     if (!steps.empty()) {  // the load-step error: first order in the step for the integration of a history
       const std::vector<LevelRun> split(steps.begin() + (finest ? 1 : 0), steps.end());
       auto [step_values, step_bar] = quantity_bar(finest ? steps.front().quantities[q] : v, split, q, 1.0);
-      if (finest) step_bar = bar_of_last(step_bar, step_values);
+      if (finest) step_bar = bar_of_last(step_bar, step_values, size, target);
       log << "; load steps: ";
-      write_bar(log, csv, step_bar, step_values, relative_size(own, q, shown), "load steps", "step",
+      write_bar(log, csv, step_bar, step_values, size, "load steps", "step",
                 "steps too large to show their order: more load steps, or load_pieces");
       for (std::size_t k = finest ? 0 : 1; k < step_values.size(); ++k) csv << "," << step_values[k];
     }

@@ -100,6 +100,11 @@ inline GmshMesh split_gmsh_once(const GmshMesh& g, const std::set<int>& soft, co
     return "the cell at line " + std::to_string(e.line) + " of the mesh";
   };
   std::unordered_set<std::uint64_t> face_sides, kept;  // sides on the faces; sides across a soft layer
+  for (const GmshElement& e : g.edges)  // a 3-node line's middle node would be a point of no cell side
+    if (e.node_count != 2)
+      throw InputError("line " + std::to_string(e.line) +
+                       ": a 3-node line element in a mesh of linear cells; --estimate splits first-order "
+                       "meshes (mesh with Mesh.ElementOrder = 1)");
   for (const GmshElement& e : g.edges)
     if (e.node_count == 2 && in_any(e, faces)) face_sides.insert(side_key(e.nodes[0], e.nodes[1]));
   // Which sides of each cell split: every side, but a soft quadrangle's across its layer.

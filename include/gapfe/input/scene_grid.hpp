@@ -152,21 +152,31 @@ class GridSceneMesh final : public SceneMesh {
                  const SceneRefinement& refine, const InputLimits& limits) {
     std::vector<char> kept_i(static_cast<std::size_t>(coarse.max_i) + 1, 0),
         kept_j(static_cast<std::size_t>(coarse.max_j) + 1, 0);
+    // The cells between two faces (gap_direction as a deck's gap elements: 1 across I, 2 across J), whose
+    // finer corners on the faces a segment card must place (check_fine_points).
+    std::vector<int> gap_direction(coarse.cells.size(), 0);
     for (const auto& [a, b] : refine.faces) {
       const auto p = groups_.find(a), q = groups_.find(b);
       if (p == groups_.end() || q == groups_.end()) continue;  // contact() names it
-      for (const auto& [lines, kept] :
-           {std::pair{&Rectangle::i, &kept_i}, std::pair{&Rectangle::j, &kept_j}}) {
-        const auto &u = p->second.*lines, &v = q->second.*lines;
-        if (u[0] == u[1] && v[0] == v[1] && std::abs(u[0] - v[0]) == 1) (*kept)[std::min(u[0], v[0])] = 1;
+      for (int dir = 1; dir <= 2; ++dir) {
+        const auto& u = dir == 1 ? p->second.i : p->second.j;  // across the gap
+        const auto& v = dir == 1 ? q->second.i : q->second.j;
+        const auto& s = dir == 1 ? p->second.j : p->second.i;  // along it
+        const auto& t = dir == 1 ? q->second.j : q->second.i;
+        if (u[0] != u[1] || v[0] != v[1] || std::abs(u[0] - v[0]) != 1) continue;
+        const int k = std::min(u[0], v[0]), lo = std::min(s[0], t[0]), hi = std::max(s[1], t[1]);
+        (dir == 1 ? kept_i : kept_j)[static_cast<std::size_t>(k)] = 1;
+        for (std::size_t e = 0; e < coarse.cells.size(); ++e) {
+          const GridCell& c = coarse.cells[e];
+          const int across = dir == 1 ? c.i : c.j, along = dir == 1 ? c.j : c.i;
+          if (across == k && along >= lo && along < hi) gap_direction[e] = dir;
+        }
       }
     }
     const RefinedCards f =
         refine_cards(coarse.max_i, coarse.max_j, segments, refs, kept_i, kept_j, refine.times, limits);
     IJGrid fine = generate(f.max_i, f.max_j, f.segments,
                            [&](int k) { return f.refs[k].where() + " (on the finer grid)"; });
-    std::vector<int> gap_direction;  // the cells between two faces, whose finer corners must be placed
-    for (const GridCell& c : coarse.cells) gap_direction.push_back(kept_i[c.i] ? 1 : kept_j[c.j] ? 2 : 0);
     check_fine_points(coarse, fine, f.index, gap_direction);
     for (auto& [name, r] : groups_)
       r.i = {f.index.i[r.i[0]], f.index.i[r.i[1]]}, r.j = {f.index.j[r.j[0]], f.index.j[r.j[1]]};

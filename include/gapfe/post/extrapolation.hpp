@@ -19,6 +19,9 @@ struct ErrorBar {
     observed,        ///< three values, converging at the observed order
     assumed,         ///< two values, the order assumed
     not_converging,  ///< the differences do not shrink (or shrink slower than order kSlowest): no error bar
+    /// (`gapfe run --accuracy`) not converging, but moving by less than a tenth of the target: the last
+    /// difference is the error (app/accuracy.hpp)
+    settled,
   };
   Status status = Status::not_converging;
   double value  = 0;                                         ///< on the first mesh
