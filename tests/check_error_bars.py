@@ -32,6 +32,7 @@ closed forms (ctest `gapfe_error_bars`):
 import csv
 import math
 import pathlib
+import re
 import shutil
 import subprocess
 import sys
@@ -331,7 +332,10 @@ def accuracy():
     last = [line for line in log.splitlines() if line.startswith("accuracy: load-step split ")][-1]
     check(last.endswith(")") and "its files written" in last, f"plastic tube: the last run wrote the files: {last}")
     nodes = len({r["node"] for r in csv.DictReader(open(out / "nodes.csv"))})
-    check(nodes == int(last.split()[4]), f"plastic tube: the files are the last mesh's ({nodes} nodes)")
+    pieces = re.search(r"with every load step in (\d+) pieces", log)
+    increments = sum(1 for _ in csv.DictReader(open(out / "history.csv")))
+    check(nodes == int(last.split()[4]) and pieces and increments == 15 * int(pieces.group(1)),
+          f"plastic tube: the files are the last run's ({nodes} nodes, {increments} increments)")
     _, _, err = run(work / "lame_quad4.deck", "accuracy_usage", "--accuracy", "1e-2", "--estimate", expect=64)
     check("give one" in err, f"--estimate with --accuracy: {err.strip()}")
     for model, name, options, why in ((work / "stepped_bar.deck", "accuracy_corner", [], "does not converge"),

@@ -474,15 +474,18 @@ gapfe::app::LevelRun made_up_rung(int k, bool wobble = false) {
 }
 
 struct MadeUpLadder {
-  bool wobble = false;
+  bool wobble  = false;
+  int fails_at = 0;         ///< the rung whose run throws (0: none)
   std::vector<bool> files;  ///< whether each rung solved wrote its files
   int climb(const gapfe::app::AccuracyTarget& target, long max_nodes, std::string& written) {
     std::vector<gapfe::app::LevelRun> rungs{made_up_rung(0, wobble)};
     std::ostringstream log;
     int solved      = 0;
     const auto make = [](int) { return gapfe::SceneModel{}; };
-    const auto run  = [&](gapfe::SceneModel&, bool write) {
+    const auto run  = [&](gapfe::SceneModel&, bool write, bool& cleared) {
       files.push_back(write);
+      cleared = write;
+      if (solved + 1 == fails_at) throw gapfe::SolveError("load step 3: Newton did not converge");
       return made_up_rung(++solved, wobble);
     };
     const double start =
@@ -548,4 +551,14 @@ TEST_CASE(
   CAPTURE(wobbles);
   CHECK(has(wobbles, "largest von Mises does not converge as the mesh is refined"));
   CHECK(wobbly.files.size() == 3);  // two verdicts in a row: rungs 2 and 3
+  for (const int rung : {1, 3}) {   // a run that fails: named, and whose files the folder holds
+    MadeUpLadder failing;
+    failing.fails_at        = rung;
+    written                 = "mesh 0";
+    const std::string stops = solve_error([&] { failing.climb({1e-2, 0, 3600}, 1'000'000, written); });
+    CAPTURE(stops);
+    CHECK(has(stops, ("mesh " + std::to_string(rung) + ": load step 3: Newton did not converge").c_str()));
+    CHECK(
+        has(stops, rung == 1 ? "the files are those of mesh 0" : "the files are those of mesh 3 (stopped)"));
+  }
 }

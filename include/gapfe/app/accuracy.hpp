@@ -40,23 +40,32 @@ inline long nodes_in_memory(double bytes, int dofs_per_node) {
 }
 
 /// The memory this process may still use [bytes]: the machine's MemAvailable (/proc/meminfo), no more than
-/// what its cgroup (a container, a batch job) has left; 0 when neither tells.
+/// what its cgroup v2 (a container, a batch job: its path in /proc/self/cgroup) has left below memory.max,
+/// counting the page cache the kernel would drop (memory.stat's inactive_file) as free; 0 when neither tells
+/// (cgroup v1 is not read).
 inline double available_memory() {
-  double available = 0;
-  {
-    std::ifstream in("/proc/meminfo");
+  const auto field = [](const std::string& path, const std::string& name) {
+    std::ifstream in(path);
     std::string key;
-    double kb = 0;
-    while (in >> key >> kb) {
-      if (key == "MemAvailable:") available = kb * 1024;
+    double value = 0;
+    while (in >> key >> value) {
+      if (key == name) return value;
       in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
     }
-  }
-  double limit = 0, used = 0;  // cgroup v2; "max" reads as no limit
-  if (std::ifstream in("/sys/fs/cgroup/memory.max"); in >> limit) {
-    std::ifstream current("/sys/fs/cgroup/memory.current");
-    if (current >> used && limit > used)
-      available = available > 0 ? std::min(available, limit - used) : limit - used;
+    return -1.0;
+  };
+  double available = std::max(0.0, field("/proc/meminfo", "MemAvailable:") * 1024);
+  std::string group, line;
+  for (std::ifstream in("/proc/self/cgroup"); std::getline(in, line);)
+    if (line.rfind("0::", 0) == 0) group = line.substr(3);
+  const std::string dir = "/sys/fs/cgroup" + (group == "/" ? std::string() : group);
+  double limit = 0, used = 0;  // "max" does not read as a number: no limit
+  if (std::ifstream in(dir + "/memory.max"); in >> limit) {
+    if (std::ifstream current(dir + "/memory.current"); current >> used) {
+      const double cache = std::max(0.0, field(dir + "/memory.stat", "inactive_file"));
+      const double left  = std::max(0.0, limit - std::max(0.0, used - cache));
+      available          = available > 0 ? std::min(available, left) : left;
+    }
   }
   return available;
 }
@@ -150,17 +159,20 @@ int climb(std::vector<LevelRun>& rungs, Make&& make, Solve&& solve, const Accura
     // From the third rung on, a run may be the last: it writes its files (replacing the last ones).
     const bool files       = rungs.size() >= 2;
     const std::string name = std::string(what) + " " + std::to_string(k);
+    bool cleared           = false;  // whether the folder was emptied for this rung's files
+    const auto failed      = [&](const std::string& why) {
+      return SolveError(aim + name + ": " + why + "; the files are those of " +
+                             (cleared ? name + " (stopped)" : written));
+    };
     try {
       SceneModel model = make(k);
-      rungs.push_back(solve(model, files));
-    } catch (const FileError&) {  // the folder or the disk: a file problem still (exit 3)
-      throw;
+      rungs.push_back(solve(model, files, cleared));
     } catch (const std::bad_alloc&) {
-      throw SolveError(aim + name + " ran out of memory; the files are those of " +
-                       (files ? name + " (stopped)" : written));
-    } catch (const std::runtime_error& e) {  // InputError, SolveError: the rung named
-      throw SolveError(aim + name + ": " + e.what() + "; the files are those of " +
-                       (files ? name + " (stopped)" : written));
+      throw failed("out of memory");
+    } catch (const InputError& e) {  // a finer mesh refused
+      throw failed(e.what());
+    } catch (const SolveError& e) {  // a step not solved; file errors keep their own kind (exit 3)
+      throw failed(e.what());
     }
     if (files) written = name;
     rungs.back().level = k;
@@ -210,24 +222,17 @@ inline AccuracyRun reach_accuracy(const Refiner& refine, const RunRequest& own,
           : bytes > 0          ? " (this machine's memory)"
                                : " (the memory available unknown)")
       << ", " << target.seconds << " s in all\n";
-  std::ostringstream quiet;  // the finer runs' warnings repeat the model's own
+  std::ostringstream quiet;  // the rungs' warnings: the last run's report gives them
   AccuracyRun out;
-  const auto solve = [&](SceneModel& m, bool files) {
+  const auto solve = [&](SceneModel& m, bool files, bool& cleared) {
     const auto t = clock::now();
     const Plan p = finer_plan(m, own.plan);
-    if (files) clear_folder();
+    if (files) clear_folder(), cleared = true;
     m.description.options.error_estimate = files && own.model.options.error_estimate;  // the VTU's field
-    const RunRequest r{m.description,
-                       m.scene,
-                       p,
-                       files ? own.dir : std::string(),
-                       files ? own.err : quiet,
-                       false,
-                       own.pictures,
-                       own.units,
-                       nullptr,
-                       true,
-                       true};
+    const RunRequest r{m.description, m.scene,      p,         files ? own.dir : std::string(),
+                       quiet,  // its warnings: in the last run's report (report_run), once
+                       false,         own.pictures, own.units, nullptr,
+                       true,          true};
     RunResult result = run(r);
     LevelRun level{0, m.scene.grid.node_count(), std::chrono::duration<double>(clock::now() - t).count(),
                    std::move(result.quantities)};

@@ -217,7 +217,7 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
       log << "the last run (" << last.reached << "), whose files these are:\n";
       report_run(log, err, plan, d, last.result);
       list_files(a, plan, d, last.result, log);
-      RunFolder::record(a.out, run_what, "complete");
+      if (writes) RunFolder::record(a.out, run_what, "complete");
       return ok;
     } else if (a.estimate) {
       std::vector<LevelRun> levels{{0, s.grid.node_count(), since(t0), result.quantities}};

@@ -226,8 +226,9 @@ inline void write_bar(std::ostream& log, std::ostream& csv, const ErrorBar& bar,
     else if (bar.status == ErrorBar::Status::settled)
       log << "; not converging, but moving by less than a tenth of the target: the last difference";
     log << ")";
-    csv << "," << bar.error << "," << relative << "," << status_word(bar) << "," << bar.order << ","
-        << bar.limit;
+    csv << "," << bar.error << "," << relative << "," << status_word(bar) << ",";
+    if (!std::isnan(bar.order)) csv << bar.order;  // settled: no order
+    csv << "," << bar.limit;
   } else {
     log << "not converging (";
     for (std::size_t k = 0; k < values.size(); ++k) log << (k ? ", " : "") << values[k];
@@ -237,16 +238,19 @@ inline void write_bar(std::ostream& log, std::ostream& csv, const ErrorBar& bar,
 }
 
 /// The bar of the last of `values` instead of the first (`gapfe run --accuracy`): its distance to the same
-/// limit; and values that do not converge but whose last difference is below a tenth of `target` x `size`
-/// (a reaction on the axis, tending to 0 and changing sign on the way) settled, that difference their error.
+/// limit; and values that do not converge because their differences change sign, the last below a tenth of
+/// `target` x `size` (a reaction on the axis, tending to 0 and changing sign on the way), settled: the limit
+/// lies between the last two values, so their difference bounds the error. (Differences of one sign that
+/// shrink too slowly bound nothing.)
 inline ErrorBar bar_of_last(ErrorBar b, const std::vector<double>& values, double size, double target) {
   if (b.converges()) {
     b.value = values.back(),
     b.error = b.status == ErrorBar::Status::exact ? 0.0 : std::abs(b.value - b.limit);
-  } else if (values.size() >= 2) {
-    const double step = std::abs(values.back() - values[values.size() - 2]);
-    if (step <= 0.1 * target * size)
-      b.status = ErrorBar::Status::settled, b.value = b.limit = values.back(), b.error = step;
+  } else if (values.size() >= 3) {  // changing sign: the limit lies between the last two values
+    const std::size_t n = values.size();
+    const double d1 = values[n - 2] - values[n - 3], d2 = values[n - 1] - values[n - 2];
+    if (d1 * d2 < 0 && std::abs(d2) <= 0.1 * target * size)
+      b.status = ErrorBar::Status::settled, b.value = b.limit = values.back(), b.error = std::abs(d2);
   }
   return b;
 }
@@ -298,9 +302,11 @@ inline void report_error_bars(std::ostream& log, const std::string& dir, const s
     if (!steps.empty()) {  // the load-step error: first order in the step for the integration of a history
       const std::vector<LevelRun> split(steps.begin() + (finest ? 1 : 0), steps.end());
       auto [step_values, step_bar] = quantity_bar(finest ? steps.front().quantities[q] : v, split, q, 1.0);
-      if (finest) step_bar = bar_of_last(step_bar, step_values, size, target);
+      // A force's load-step error against the forces of the run it ends on, as the ladder judged it.
+      const double step_size = finest ? relative_size(steps.back().quantities, q, shown) : size;
+      if (finest) step_bar = bar_of_last(step_bar, step_values, step_size, target);
       log << "; load steps: ";
-      write_bar(log, csv, step_bar, step_values, size, "load steps", "step",
+      write_bar(log, csv, step_bar, step_values, step_size, "load steps", "step",
                 "steps too large to show their order: more load steps, or load_pieces");
       for (std::size_t k = finest ? 0 : 1; k < step_values.size(); ++k) csv << "," << step_values[k];
     }

@@ -102,11 +102,12 @@ inline GmshMesh split_gmsh_once(const GmshMesh& g, const std::set<int>& soft, co
   std::unordered_set<std::uint64_t> face_sides, kept;  // sides on the faces; sides across a soft layer
   for (const GmshElement& e : g.edges)  // a 3-node line's middle node would be a point of no cell side
     if (e.node_count != 2)
-      throw InputError("line " + std::to_string(e.line) +
-                       ": a 3-node line element in a mesh of linear cells; --estimate splits first-order "
-                       "meshes (mesh with Mesh.ElementOrder = 1)");
+      throw InputError(
+          "line " + std::to_string(e.line) +
+          ": a 3-node line element in a mesh of linear cells; --estimate and --accuracy split first-order "
+          "meshes (mesh with Mesh.ElementOrder = 1)");
   for (const GmshElement& e : g.edges)
-    if (e.node_count == 2 && in_any(e, faces)) face_sides.insert(side_key(e.nodes[0], e.nodes[1]));
+    if (in_any(e, faces)) face_sides.insert(side_key(e.nodes[0], e.nodes[1]));
   // Which sides of each cell split: every side, but a soft quadrangle's across its layer.
   std::vector<std::array<char, 4>> splits(g.cells.size(), {1, 1, 1, 1});
   for (std::size_t c = 0; c < g.cells.size(); ++c) {
@@ -148,8 +149,7 @@ inline GmshMesh split_gmsh_once(const GmshMesh& g, const std::set<int>& soft, co
   };
   for (const auto& [s, count] : uses)
     if (count == 1) add_curve(static_cast<int>(s >> 32), static_cast<int>(s & 0xffffffffu));
-  for (const GmshElement& e : g.edges)
-    if (e.node_count == 2) add_curve(e.nodes[0], e.nodes[1]);
+  for (const GmshElement& e : g.edges) add_curve(e.nodes[0], e.nodes[1]);
   const auto next = [&](int from, int at) {  // the point after `at` coming from `from`, -1 at a junction
     const auto it = along.find(at);
     if (it == along.end() || it->second.size() != 2) return -1;
@@ -206,7 +206,7 @@ inline GmshMesh split_gmsh_once(const GmshMesh& g, const std::set<int>& soft, co
       out.cells.push_back(cell(e, {q[0], q[1], q[2], q[3]}));
   }
   for (const GmshElement& e : g.edges) {
-    if (e.node_count != 2 || kept.count(side_key(e.nodes[0], e.nodes[1]))) {
+    if (kept.count(side_key(e.nodes[0], e.nodes[1]))) {
       out.edges.push_back(e);
       continue;
     }

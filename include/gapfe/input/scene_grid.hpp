@@ -152,8 +152,8 @@ class GridSceneMesh final : public SceneMesh {
                  const SceneRefinement& refine, const InputLimits& limits) {
     std::vector<char> kept_i(static_cast<std::size_t>(coarse.max_i) + 1, 0),
         kept_j(static_cast<std::size_t>(coarse.max_j) + 1, 0);
-    // The cells between two faces (gap_direction as a deck's gap elements: 1 across I, 2 across J), whose
-    // finer corners on the faces a segment card must place (check_fine_points).
+    // The cells between two faces, where both span (gap_direction as a deck's gap elements: 1 across I, 2
+    // across J), whose finer corners on the faces a segment card must place (check_fine_points).
     std::vector<int> gap_direction(coarse.cells.size(), 0);
     for (const auto& [a, b] : refine.faces) {
       const auto p = groups_.find(a), q = groups_.find(b);
@@ -164,7 +164,7 @@ class GridSceneMesh final : public SceneMesh {
         const auto& s = dir == 1 ? p->second.j : p->second.i;  // along it
         const auto& t = dir == 1 ? q->second.j : q->second.i;
         if (u[0] != u[1] || v[0] != v[1] || std::abs(u[0] - v[0]) != 1) continue;
-        const int k = std::min(u[0], v[0]), lo = std::min(s[0], t[0]), hi = std::max(s[1], t[1]);
+        const int k = std::min(u[0], v[0]), lo = std::max(s[0], t[0]), hi = std::min(s[1], t[1]);
         (dir == 1 ? kept_i : kept_j)[static_cast<std::size_t>(k)] = 1;
         for (std::size_t e = 0; e < coarse.cells.size(); ++e) {
           const GridCell& c = coarse.cells[e];
