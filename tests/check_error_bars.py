@@ -150,7 +150,22 @@ def gaps():
     force = fit_force(12.5, 25.0, 0.001, 50.0, 50.0, 0.0, 75.0, 0.0)
     # (Not the push card's reaction: the gap elements' soft material, sheared by the whole slide across its
     # 0.001 thickness, adds about 30 N to the friction's mu F.)
-    compare("press fit", estimates(out), {"contact normal force": force, "contact friction force": 0.15 * force})
+    # load_pieces on a contact run: each step in 3 advances, the end the same (frictionless contact ends where
+    # its loads end), to the augmented Lagrangian's tolerance (1e-5 of the force; 4e-9 of u_r seen)
+    pieces, _, _ = run(work / "two_tubes.deck", "two_tubes_pieces", "--set", "load_pieces=3")
+    end = lambda folder: [r for r in csv.DictReader(open(folder / "nodes.csv"))][-1]
+    whole, split = end(work / "two_tubes"), end(pieces)
+    increments = sum(1 for _ in csv.DictReader(open(pieces / "history.csv")))
+    check(increments >= 3 * 4 and abs(float(split["u_r"]) - float(whole["u_r"])) <= 1e-6 * abs(float(whole["u_r"])),
+          f"two tubes in 3 pieces a step: {increments} increments, u_r {split['u_r']} against {whole['u_r']}")
+    rows = estimates(out)
+    compare("press fit", rows, {"contact normal force": force, "contact friction force": 0.15 * force})
+    # Friction makes the answer depend on the load path: the load steps get their error too (frictionless
+    # contact, above, does not)
+    friction = rows.get("contact friction force", {})
+    check(friction.get("step_status") in ("observed", "exact"), f"press fit: a load-step error: {friction}")
+    check(all("step_status" not in r for r in estimates(work / "two_tubes").values()),
+          "two tubes (frictionless): no load-step columns")
 
 
 def load_steps():

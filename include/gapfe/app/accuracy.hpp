@@ -1,5 +1,5 @@
 #pragma once
-// `gapfe run --accuracy TOL`: the mesh halved, then (for a law with history) the load steps split, until
+// `gapfe run --accuracy TOL`: the mesh halved, then (plasticity, friction) the load steps split, until
 // every quantity `--estimate` reports (app/read_quantities.hpp) has an estimated relative error of at most
 // TOL on the last run, whose files the folder holds; docs/accuracy.md "A target accuracy". Each rung of the
 // ladder is one run: rung k of the mesh's is the model at 1/2^k of its spacing (the Refiner of
@@ -201,10 +201,11 @@ struct AccuracyRun {
 };
 
 /// `gapfe run --accuracy` (see the top) after the model's own run, `own` (its files written into own.dir),
-/// which took `own_seconds` and found `quantities`: the mesh's ladder through `refine`, then for a law with
-/// history (and no gaps) the load steps', the path in `log`, the last runs' error bars in the log and in
-/// estimates.csv. `clear_folder` empties own.dir before a run that writes there. SolveError when the target
-/// cannot be reached within `target`'s memory and time, a quantity does not converge, or a run fails.
+/// which took `own_seconds` and found `quantities`: the mesh's ladder through `refine`, then for a
+/// path-dependent model (path_dependent: plasticity, friction) the load steps', the path in `log`, the last
+/// runs' error bars in the log and in estimates.csv. `clear_folder` empties own.dir before a run that writes
+/// there. SolveError when the target cannot be reached within `target`'s memory and time, a quantity does not
+/// converge, or a run fails.
 inline AccuracyRun reach_accuracy(const Refiner& refine, const RunRequest& own,
                                   std::vector<ReadQuantity> quantities, double own_seconds,
                                   const AccuracyTarget& target, const std::function<void()>& clear_folder,
@@ -245,7 +246,7 @@ inline AccuracyRun reach_accuracy(const Refiner& refine, const RunRequest& own,
   const int level     = climb(mesh, refine, solve, target, max_nodes, 4.0, 0.0, "mesh", start, written, log);
   out.reached         = "the mesh at 1/" + std::to_string(1 << level) + " of the spacing";
   std::vector<LevelRun> steps;
-  if (own.plan.plastic && !own.plan.gaps) {  // a law with history: the load steps' error on that mesh
+  if (path_dependent(own.plan)) {  // plasticity or friction: the load steps' error on that mesh
     const SceneModel finest = refine(level);
     steps.push_back(mesh.back());
     steps.back().level = 0;

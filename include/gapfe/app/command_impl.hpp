@@ -223,10 +223,9 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
       std::vector<LevelRun> levels{{0, s.grid.node_count(), since(t0), result.quantities}};
       for (LevelRun& level : solve_finer(refine, std::move(*finer), plan, request.units, log))
         levels.push_back(std::move(level));
-      // A law with history (without gaps: the contact loop splits its own steps) has a load-step error too.
-      const std::vector<LevelRun> steps = plan.plastic && !plan.gaps
-                                              ? solve_finer_steps(d, s, plan, request.units, log)
-                                              : std::vector<LevelRun>{};
+      // A path-dependent model (plasticity, friction) has a load-step error too.
+      const std::vector<LevelRun> steps =
+          path_dependent(plan) ? solve_finer_steps(d, s, plan, request.units, log) : std::vector<LevelRun>{};
       report_error_bars(log, a.out, levels, steps);
     }
     list_files(a, plan, d, result, log);

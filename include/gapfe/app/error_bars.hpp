@@ -134,8 +134,14 @@ inline std::vector<LevelRun> solve_finer(const Refiner& refine, SceneModel first
   return runs;
 }
 
-/// The runs of the deck's own mesh with its load steps in 2 and 4 times the pieces (ModelOptions::
-/// load_pieces), for a law with history: its load-step error, as the mesh's. A run that fails is left out
+/// Whether a model's answer depends on its load path (a law with history, friction), so that its load steps
+/// have an error of their own; frictionless elastic contact ends where its loads end, however reached.
+inline bool path_dependent(const Plan& p) {
+  return p.plastic || p.key.friction != FrictionChoice::none;
+}
+
+/// The runs of the model's own mesh with its load steps in 2 and 4 times the pieces (ModelOptions::
+/// load_pieces), for a path-dependent model: its load-step error, as the mesh's. A run that fails is left out
 /// with a line in `log` (the load-step error then not measured).
 inline std::vector<LevelRun> solve_finer_steps(const ModelDescription& d, const Scene& s, const Plan& plan,
                                                PlotUnits units, std::ostream& log) {

@@ -72,9 +72,10 @@ struct ModelOptions {
   /// newton_iterations = the iterations before a step is cut in halves (default 30). NewtonOptions.
   double newton_tolerance = 1e-10;
   int newton_iterations   = 30;
-  /// load_pieces = N: a law with history takes each load step in N equal increments or more (default 1: a
-  /// step whole, cut only when Newton or the time control asks). `--estimate` runs a plastic deck with 2 and
-  /// 4 to measure the load-step error (docs/accuracy.md "Error bars").
+  /// load_pieces = N: a law with history, or contact, takes each load step in N equal increments or more
+  /// (default 1: a step whole, cut only when Newton, the time control or a contact status change asks).
+  /// `--estimate` runs a path-dependent model (plasticity, friction) with 2 and 4 to measure the load-step
+  /// error (docs/accuracy.md "Error bars").
   int load_pieces = 1;
   /// time_tolerance = the largest estimated local error of a rate-dependent law's time integration an
   /// increment may keep (DrysdaleZak::time_error: the stress its plastic-strain error stands for, relative

@@ -203,7 +203,8 @@ void run_scene_plastic(const ModelDescription& d, const Scene& s, OnIncrement&& 
 
 /// Run every load step of a deck with gap elements under contact policy P and friction model F (mu from
 /// the deck's `friction` option). The load factor t runs from 0 to the number of steps; within step k it
-/// moves the totals linearly from those of step k - 1 to those of step k.
+/// moves the totals linearly from those of step k - 1 to those of step k, in `load_pieces` equal advances
+/// (ModelOptions; each split further where the policy finds a status change).
 /// `on_increment(step, inc, const ContactStatic<M, P, F>&)` sees every accepted increment, inc = t
 /// (fractional where a step was split).
 template <class M, ContactPolicy P, FrictionModel F = NoFriction, class OnIncrement>
@@ -239,10 +240,11 @@ void run_scene_contact(const ModelDescription& d, const Scene& s, double penalty
   // it would be accepted (those accepted before stay: each met it), and the rest of the piece is repeated
   // in halves. A policy's one split (saac) and the extended model's stick/slip decision then happen per
   // piece.
-  double piece = 1;
+  const double largest = 1.0 / d.options.load_pieces;  // ModelOptions::load_pieces: at most this a piece
+  double piece         = largest;
   for (; step <= d.steps(); ++step) {
     for (double done = 0; done < 1 - 1e-12;) {
-      const double to = time_control ? std::min(1.0, done + piece) : 1.0;
+      const double to = std::min(1.0, done + (time_control ? piece : largest));
       piece_error     = 0;
       try {
         fe.advance(step - 1 + to, loads_at, report);
@@ -253,7 +255,7 @@ void run_scene_contact(const ModelDescription& d, const Scene& s, double penalty
         continue;
       }
       done = to;
-      if (piece_error < d.options.time_tolerance / 2) piece = std::min(1.0, 2 * piece);
+      if (piece_error < d.options.time_tolerance / 2) piece = std::min(largest, 2 * piece);
     }
   }
 }
