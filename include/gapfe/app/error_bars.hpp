@@ -134,10 +134,13 @@ inline std::vector<LevelRun> solve_finer(const Refiner& refine, SceneModel first
   return runs;
 }
 
-/// Whether a model's answer depends on its load path (a law with history, friction), so that its load steps
-/// have an error of their own; frictionless elastic contact ends where its loads end, however reached.
+/// Whether a model's answer depends on its load path, so that its load steps have an error of their own: a
+/// law with history, friction, and the seed's saac policy (it splits an increment once, at the first closure,
+/// and closes every other pair overlapping by the increment's end at its gap there). Frictionless contact
+/// under active-set or augmented-lagrangian ends where its loads end, however reached.
 inline bool path_dependent(const Plan& p) {
-  return p.plastic || p.key.friction != FrictionChoice::none;
+  return p.plastic || p.key.friction != FrictionChoice::none ||
+         (p.gaps && p.key.contact == ContactChoice::saac);
 }
 
 /// The runs of the model's own mesh with its load steps in 2 and 4 times the pieces (ModelOptions::

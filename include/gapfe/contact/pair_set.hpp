@@ -63,7 +63,8 @@ class GapPairSet {
   }
 
   /// Coulomb: the evaluation is a solve's first linearization (a prediction), and whether the accepted
-  /// state ends a whole step (a pair that slipped there is predicted to slip on).
+  /// state ends an advance, a whole step or a piece of one (a pair that slipped there is predicted to slip
+  /// on).
   void set_predicting(bool on) { predicting_ = on; }
   void set_slip_on(bool on) { slip_on_ = on; }
 

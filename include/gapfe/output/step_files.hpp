@@ -8,7 +8,7 @@
 //                  code != 0, or a face SAAC3X drives): the total ring reaction force, 0 in the free
 //                  components; R_t is a force along theta (its torque about the axis is R_t r)
 //  * result.pvd    one step_NNNN.vtu per completed step (step_NNNN_split_K.vtu at the points where a
-//                  contact policy split the step), for ParaView
+//                  contact policy, load_pieces or a cut split the step), for ParaView
 //  * deformed.svg  the last increment's deformed mesh (magnified), gap elements coloured open/closed
 //  * plot_FIELD.svg the last increment's field on the deformed mesh (output/field_plot.hpp;
 //  StepFiles::draw_fields)

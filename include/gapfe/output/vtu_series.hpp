@@ -1,6 +1,7 @@
 #pragma once
 // The VTU files of a run and their collection result.pvd, for ParaView: one step_NNNN.vtu per completed
-// step (step_NNNN_split_K.vtu at the points where a contact policy split it), result.pvd's timesteps t.
+// step (step_NNNN_split_K.vtu at the points where a contact policy, load_pieces or a cut split it),
+// result.pvd's timesteps t.
 #include <cstdio>
 #include <optional>
 #include <string>

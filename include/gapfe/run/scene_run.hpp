@@ -164,7 +164,7 @@ void run_scene_plastic(const ModelDescription& d, const Scene& s, OnIncrement&& 
     double done = 0;
     if (!time_control) size = largest;
     while (done < 1 - 1e-12) {
-      const double to = std::min(1.0, done + size), piece = to - done;
+      const double to = 1 - (done + size) < 1e-12 ? 1.0 : done + size, piece = to - done;  // as below
       set_loads(fe.problem(), interpolate(before, after, to), s);
       fe.context() = {(step - 1 + to) * d.step_time(), piece * d.step_time()};
       try {
@@ -244,8 +244,9 @@ void run_scene_contact(const ModelDescription& d, const Scene& s, double penalty
   double piece         = largest;
   for (; step <= d.steps(); ++step) {
     for (double done = 0; done < 1 - 1e-12;) {
-      const double to = std::min(1.0, done + (time_control ? piece : largest));
-      piece_error     = 0;
+      double to = std::min(1.0, done + (time_control ? piece : largest));
+      if (1 - to < 1e-12) to = 1.0;  // N pieces of 1/N add up to 1 - 1e-16: end the step on its load factor
+      piece_error = 0;
       try {
         fe.advance(step - 1 + to, loads_at, report);
       } catch (const TimeErrorExceeded&) {
