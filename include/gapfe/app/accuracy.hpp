@@ -223,22 +223,13 @@ inline AccuracyRun reach_accuracy(const Refiner& refine, const RunRequest& own,
           : bytes > 0          ? " (this machine's memory)"
                                : " (the memory available unknown)")
       << ", " << target.seconds << " s in all\n";
-  std::ostringstream quiet;  // the rungs' warnings: the last run's report gives them
   AccuracyRun out;
   const auto solve = [&](SceneModel& m, bool files, bool& cleared) {
-    const auto t = clock::now();
     const Plan p = finer_plan(m, own.plan);
     if (files) clear_folder(), cleared = true;
-    m.description.options.error_estimate = files && own.model.options.error_estimate;  // the VTU's field
-    const RunRequest r{m.description, m.scene,      p,         files ? own.dir : std::string(),
-                       quiet,  // its warnings: in the last run's report (report_run), once
-                       false,         own.pictures, own.units, nullptr,
-                       true,          true};
-    RunResult result = run(r);
-    LevelRun level{0, m.scene.grid.node_count(), std::chrono::duration<double>(clock::now() - t).count(),
-                   std::move(result.quantities)};
-    if (files) out.result = std::move(result);
-    return level;
+    // Its warnings are in the last run's report (report_run), once.
+    return run_level(m.description, m.scene, 0, p, own.units, files ? own.dir : std::string(), own.pictures,
+                     files ? &out.result : nullptr);
   };
   std::vector<LevelRun> mesh{{0, own.scene.grid.node_count(), own_seconds, std::move(quantities)}};
   log_rung(log, mesh, "mesh", true, std::nullopt);

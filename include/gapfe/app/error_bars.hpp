@@ -79,18 +79,32 @@ inline Plan finer_plan(const SceneModel& refined, const Plan& plan) {
   return p;
 }
 
+/// One run of the model (`d` on `s`, with `plan`'s choices) for the error bars, timed: into `dir` with its
+/// files, `pictures` and its error estimate as `d` asks (then its RunResult into `result` when given), or
+/// writing nothing and estimating nothing when `dir` is empty. Its warnings repeat the model's own run's and
+/// are not shown.
+inline LevelRun run_level(ModelDescription& d, const Scene& s, int level, const Plan& plan, PlotUnits units,
+                          const std::string& dir = "", const std::vector<std::string>& pictures = {},
+                          RunResult* result = nullptr) {
+  const auto start         = std::chrono::steady_clock::now();
+  const bool files         = !dir.empty();
+  d.options.error_estimate = files && d.options.error_estimate;
+  std::ostringstream quiet;
+  const RunRequest r{d, s, plan, dir, quiet, false, pictures, units, nullptr, files, true};
+  RunResult run_result = app::run(r);
+  LevelRun out{level, s.grid.node_count(),
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+               std::move(run_result.quantities)};
+  if (result) *result = std::move(run_result);
+  return out;
+}
+
 /// The run of one finer mesh (`refined`, level `level`) with `plan`'s choices, reported in `log`. The finer
 /// runs make no error estimate of their own (their centroid stresses are the same without it).
 inline LevelRun solve_level(SceneModel& refined, int level, const Plan& plan, PlotUnits units,
                             std::ostream& log) {
-  const auto start                           = std::chrono::steady_clock::now();
-  refined.description.options.error_estimate = false;
-  const Plan refined_plan                    = finer_plan(refined, plan);
-  std::ostringstream quiet;  // the finer runs' warnings repeat the deck's own run's
-  const RunRequest r{
-      refined.description, refined.scene, refined_plan, "", quiet, false, {}, units, nullptr, false, true};
-  LevelRun finer{level, refined.scene.grid.node_count(), 0, app::run(r).quantities};
-  finer.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const Plan refined_plan = finer_plan(refined, plan);
+  const LevelRun finer    = run_level(refined.description, refined.scene, level, refined_plan, units);
   log << "error bars: the mesh at 1/" << (1 << level) << " of the spacing ("
       << (refined.refined.empty() ? "refined" : refined.refined) << "), " << finer.nodes
       << " nodes, solved in " << finer.seconds << " s\n";
@@ -149,20 +163,16 @@ inline bool path_dependent(const Plan& p) {
 inline std::vector<LevelRun> solve_finer_steps(const ModelDescription& d, const Scene& s, const Plan& plan,
                                                PlotUnits units, std::ostream& log) {
   std::vector<LevelRun> runs;
-  std::ostringstream quiet;
   for (int level = 1; level <= 2; ++level) {
-    const auto start       = std::chrono::steady_clock::now();
     ModelDescription finer = d;
-    finer.options.load_pieces *= 1 << level, finer.options.error_estimate = false;
+    finer.options.load_pieces *= 1 << level;
     try {
-      const RunRequest r{finer, s, plan, "", quiet, false, {}, units, nullptr, false, true};
-      runs.push_back({level, s.grid.node_count(), 0, app::run(r).quantities});
+      runs.push_back(run_level(finer, s, level, plan, units));
     } catch (const std::runtime_error& e) {
       log << "error bars: the load steps in " << finer.options.load_pieces << " pieces not solved ("
           << e.what() << "); the load-step error not measured\n";
       return {};
     }
-    runs.back().seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     log << "error bars: the load steps in " << finer.options.load_pieces << " pieces, solved in "
         << runs.back().seconds << " s\n";
   }
