@@ -97,11 +97,17 @@ def complementary(d):
             2 * (1 + NU) * d[3] ** 2) / E
 
 
-def bore_work(out, height):
-    """The true relative error of a Lame run whose form is exact: sqrt((l(u) - l(u_h)) / l(u))."""
+def bore_work(out, height, quadratic=False):
+    """The true relative error of a Lame run whose form is exact: sqrt((l(u) - l(u_h)) / l(u)). Along the bore
+    u_h is linear between nodes, or (quadratic cells: corner, middle, corner) quadratic, where Simpson's rule
+    gives its work exactly."""
     bore = sorted((float(r["z"]), float(r["u_r"])) for r in last_rows(out / "nodes.csv")
                   if abs(float(r["r"]) - A) < 1e-9)
-    work_h = sum(0.5 * (u0 + u1) * (z1 - z0) for (z0, u0), (z1, u1) in zip(bore, bore[1:]))
+    if quadratic:
+        work_h = sum((z2 - z0) * (u0 + 4 * u1 + u2) / 6 for (z0, u0), (_, u1), (z2, u2) in
+                     zip(bore[0:-1:2], bore[1::2], bore[2::2]))
+    else:
+        work_h = sum(0.5 * (u0 + u1) * (z1 - z0) for (z0, u0), (z1, u1) in zip(bore, bore[1:]))
     work = lame_u(A) * height
     return math.sqrt((work - work_h) / work)
 
@@ -156,7 +162,7 @@ def cells_agree(out, log_estimate, name):
 
 
 def lame_decks():
-    for element in ("quad4", "quad4bbar", "legacy"):
+    for element in ("quad4", "quad4bbar", "legacy", "quad8"):
         runs = []
         for cells in (8, 16, 32):
             deck = work / f"lame_{element}_{cells}.deck"
@@ -177,15 +183,19 @@ def lame_decks():
 
 
 def lame_gmsh():
-    for kind, truth in (("quad", bore_work), ("tri", triangle_error)):
+    quadratic = lambda out, height: bore_work(out, height, quadratic=True)  # noqa: E731
+    for kind, truth, sizes, element in (("quad", bore_work, (20, 10, 5), "quad4"),
+                                        ("tri", triangle_error, (20, 10, 5), "quad4"),
+                                        ("quad8", quadratic, (25, 12.5, 6.25), "auto"),
+                                        ("tri6", quadratic, (25, 12.5, 6.25), "auto")):
         runs = []
-        for h in (20, 10, 5):
-            scene = work / f"lame_{kind}_h{h}.toml"
-            scene.write_text(f"""title = "Lame tube on Gmsh's {kind} mesh of size {h}"
+        for h in sizes:
+            scene = work / f"lame_{kind}_h{h:g}.toml"
+            scene.write_text(f"""title = "Lame tube on Gmsh's {kind} mesh of size {h:g}"
 [mesh]
-file = "{scenes / f'lame_{kind}_h{h}.msh'}"
+file = "{scenes / f'lame_{kind}_h{h:g}.msh'}"
 [options]
-element = "quad4"
+element = "{element}"
 [materials.steel]
 E = {E}
 nu = {NU}
@@ -198,7 +208,7 @@ pressure = {P}
 """)
             out, log = run(scene, scene.stem)
             estimate = logged_estimate(log, scene.stem)
-            runs.append((f"size {h}", estimate, truth(out, 50.0)))
+            runs.append((f"size {h:g}", estimate, truth(out, 50.0)))
         effectivities(f"Lame on Gmsh {kind}s", runs)
 
 

@@ -10,7 +10,8 @@ using test::rel;
 namespace {
 
 /// A 2x2 patch of distorted cells on [r0, r0 + 2] x [0, 2]; the interior corner is moved off the grid.
-/// Quad8 gets straight edges with mid-side nodes; Tri3 splits every quad along alternating diagonals.
+/// Quad8 gets straight edges with mid-side nodes, its last cell split into two 6-node triangles (its mesh's
+/// 3-corner cells); Tri3 and Tri6 split every quad along alternating diagonals.
 template <class Elem>
 Mesh<Elem::kNodes> patch(double r0) {
   Mesh<4> q;
@@ -25,19 +26,8 @@ Mesh<Elem::kNodes> patch(double r0) {
   q.cells = {{0, 1, 4, 3}, {1, 2, 5, 4}, {3, 4, 7, 6}, {4, 5, 8, 7}};
   if constexpr (Elem::kNodes == 4) {
     return q;
-  } else if constexpr (Elem::kNodes == 3) {
-    Mesh<3> t;
-    t.nodes = q.nodes;
-    for (std::size_t e = 0; e < q.cells.size(); ++e) {
-      const auto& c = q.cells[e];
-      if (e % 2 == 0)
-        t.cells.push_back({c[0], c[1], c[2]}), t.cells.push_back({c[0], c[2], c[3]});
-      else
-        t.cells.push_back({c[0], c[1], c[3]}), t.cells.push_back({c[1], c[2], c[3]});
-    }
-    return t;
   } else {
-    Mesh<8> m;
+    Mesh<Elem::kNodes> m;
     m.nodes = q.nodes;
     std::map<std::pair<int, int>, int> mid;
     auto midside = [&](int a, int b) {
@@ -46,9 +36,27 @@ Mesh<Elem::kNodes> patch(double r0) {
       m.nodes.push_back(0.5 * (q.nodes[a] + q.nodes[b]));
       return mid[key] = m.node_count() - 1;
     };
-    for (const auto& c : q.cells)
-      m.cells.push_back({c[0], c[1], c[2], c[3], midside(c[0], c[1]), midside(c[1], c[2]),
-                         midside(c[2], c[3]), midside(c[3], c[0])});
+    const auto triangle = [&](int a, int b, int c) -> std::array<int, Elem::kNodes == 3 ? 3 : 6> {
+      if constexpr (Elem::kNodes == 3)
+        return {a, b, c};
+      else
+        return {a, b, c, midside(a, b), midside(b, c), midside(c, a)};
+    };
+    for (std::size_t e = 0; e < q.cells.size(); ++e) {
+      const auto& c = q.cells[e];
+      if constexpr (Elem::kNodes == 8) {
+        if (e + 1 < q.cells.size())
+          m.cells.push_back({c[0], c[1], c[2], c[3], midside(c[0], c[1]), midside(c[1], c[2]),
+                             midside(c[2], c[3]), midside(c[3], c[0])});
+        else
+          m.triangles.push_back(triangle(c[0], c[1], c[2])),
+              m.triangles.push_back(triangle(c[0], c[2], c[3]));
+      } else if (e % 2 == 0) {
+        m.cells.push_back(triangle(c[0], c[1], c[2])), m.cells.push_back(triangle(c[0], c[2], c[3]));
+      } else {
+        m.cells.push_back(triangle(c[0], c[1], c[3])), m.cells.push_back(triangle(c[1], c[2], c[3]));
+      }
+    }
     return m;
   }
 }
@@ -104,7 +112,8 @@ void patch_test(double r0, bool all_nodes) {
 using AllVariants = std::tuple<Model<Axisym2, Quad4, Isotropic>, Model<Axisym3, Quad4, Isotropic>,
                                Model<Axisym2, LegacyQuad, Isotropic>, Model<Axisym3, LegacyQuad, Isotropic>,
                                Model<Axisym2, Quad8, Isotropic>, Model<Axisym3, Quad8, Isotropic>,
-                               Model<Axisym2, Tri3, Isotropic>, Model<Axisym3, Tri3, Isotropic>>;
+                               Model<Axisym2, Tri3, Isotropic>, Model<Axisym3, Tri3, Isotropic>,
+                               Model<Axisym2, Tri6, Isotropic>, Model<Axisym3, Tri6, Isotropic>>;
 
 TEST_CASE_TEMPLATE_DEFINE("[element] patch test, boundary prescribed, interior free", M, boundary_patch) {
   SUBCASE("off the axis") {

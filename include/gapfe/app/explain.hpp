@@ -15,6 +15,13 @@
 
 namespace gapfe::app {
 
+/// A scene's cells for the log: "40 quadrilaterals, 2 triangles", "8-node" and "6-node" when quadratic.
+inline std::string cells_text(const Scene& s) {
+  const bool q = s.is_quadratic();
+  return std::to_string(s.mesh.cells.size()) + (q ? " 8-node" : "") + " quadrilaterals, " +
+         std::to_string(s.mesh.triangles.size()) + (q ? " 6-node" : "") + " triangles";
+}
+
 /// The model read from a card deck: its title, format, mesh and cards.
 inline void describe_deck(std::ostream& out, const Deck& d, const Scene& s) {
   const char* format = d.options.format == DeckFormat::elastic ? "elastic (SAAS/SAGA, no yield cards)"
@@ -24,7 +31,7 @@ inline void describe_deck(std::ostream& out, const Deck& d, const Scene& s) {
       << "  format " << format << "; element " << name_of(d.options.element) << "; " << d.materials.size()
       << " material(s)\n"
       << "  mesh " << d.mesh.max_i << " x " << d.mesh.max_j << " index grid: " << s.grid.node_count()
-      << " nodes, " << s.mesh.cells.size() << " quadrilaterals, " << s.mesh.triangles.size() << " triangles\n"
+      << " nodes, " << cells_text(s) << "\n"
       << "  " << d.boundary.size() << " boundary condition card(s), " << d.blocks.size()
       << " material block(s), " << d.steps() << " load step(s)";
   if (d.has_temperature()) out << ", temperature field";
@@ -46,8 +53,7 @@ inline void describe_scene(std::ostream& out, const SceneModel& m) {
       << (m.mesh_file.empty() ? "of the I-J generator (" + std::to_string(s.grid.max_i) + " x " +
                                     std::to_string(s.grid.max_j) + ")"
                               : m.mesh_file)
-      << ": " << s.grid.node_count() << " nodes, " << s.mesh.cells.size() << " quadrilaterals, "
-      << s.mesh.triangles.size() << " triangles\n"
+      << ": " << s.grid.node_count() << " nodes, " << cells_text(s) << "\n"
       << "  " << s.conditions.size() << " node condition(s), " << edge_cards(&LoadBlock::pressure)
       << " pressure, " << edge_cards(&LoadBlock::shear) << " shear and "
       << edge_cards(&LoadBlock::transverse_shear) << " transverse shear edge(s), " << d.steps()

@@ -81,9 +81,9 @@ inline VariantChoice pick_variant(const ModelNeeds& needs, std::optional<Variant
 }
 
 /// The plan of a model: its variant (`forced` from --variant, or the smallest it needs), the element
-/// (auto: quad4bbar for plastic models, legacy otherwise), the law, the contact policy and friction model,
-/// the solver (auto: CHOLMOD when built, else Eigen). Checks only what the variant needs; check_plan the
-/// rest.
+/// (auto: quad8 for a scene of quadratic cells, quad4bbar for plastic models, legacy otherwise), the law, the
+/// contact policy and friction model, the solver (auto: CHOLMOD when built, else Eigen). Checks only what the
+/// variant needs; check_plan the rest.
 inline Plan make_plan(const ModelDescription& d, const Scene& s, std::optional<VariantChoice> forced = {}) {
   const ModelOptions& o = d.options;
   Plan p;
@@ -92,6 +92,7 @@ inline Plan make_plan(const ModelDescription& d, const Scene& s, std::optional<V
   p.rate            = p.plastic && d.rate_dependent();
   p.key.kinematics  = pick_variant(s.needs, forced, p.variant_reason);
   p.key.element     = o.element != ElementChoice::automatic ? o.element
+                      : s.is_quadratic()                    ? ElementChoice::quad8
                       : p.plastic                           ? ElementChoice::quad4bbar
                                                             : ElementChoice::legacy;
   p.key.law         = !p.plastic ? LawKind::elastic : p.rate ? LawKind::rate_dependent : LawKind::plastic;
@@ -129,6 +130,13 @@ inline void check_plan(const Plan& p, const ModelDescription& d, const Scene& s)
   if (p.gaps != !s.needs.gaps.empty() || p.plastic != !s.needs.plasticity.empty())
     throw InputError(
         "the plan was made for another model (its gaps or plasticity differ): make_plan for this one");
+  if ((p.key.element == ElementChoice::quad8) != s.is_quadratic())
+    throw InputError(s.is_quadratic()
+                         ? "the scene has quadratic cells (middle nodes), which element = quad8 runs"
+                         : "element = quad8: the scene has no middle nodes; read the model with "
+                           "element = quad8 (input/scene_quadratic.hpp)");
+  if (p.key.element == ElementChoice::quad8 && p.solver == SolverChoice::petsc)
+    throw InputError("element = quad8 runs on one process: not with solver = petsc");
   const std::string friction(name_of(p.key.friction));
   if (p.key.friction != FrictionChoice::none && !p.gaps)
     throw InputError("friction = " + detail::number_text(o.friction) + ", slip = " + friction +
@@ -138,6 +146,7 @@ inline void check_plan(const Plan& p, const ModelDescription& d, const Scene& s)
   combination.history   = p.plastic;
   combination.iterates  = p.key.integration == PlasticityChoice::return_mapping;
   combination.condensed = p.key.element == ElementChoice::legacy;
+  combination.quadratic = p.key.element == ElementChoice::quad8;
   combination.contact   = p.key.contact;
   combination.friction  = p.key.friction;
   if (const std::string_view why = unsupported(combination); !why.empty())

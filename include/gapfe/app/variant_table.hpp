@@ -45,7 +45,7 @@ struct Variant {};
 template <class... T>
 struct Axis {};
 using Kinematics = Axis<Axisym2, Axisym3>;
-using Elements   = Axis<LegacyQuad, Quad4, Quad4BBar>;
+using Elements   = Axis<LegacyQuad, Quad4, Quad4BBar, Quad8>;
 using Laws =
     Axis<Orthotropic, Hill<Tangent>, Hill<ReturnMapping>, DrysdaleZak<Tangent>, DrysdaleZak<ReturnMapping>>;
 using Policies  = Axis<NoContact, Saac, ActiveSet, AugmentedLagrangian>;
@@ -100,6 +100,8 @@ constexpr ElementChoice element_choice() {
     return ElementChoice::quad4;
   else if constexpr (std::is_same_v<Elem, Quad4BBar>)
     return ElementChoice::quad4bbar;
+  else if constexpr (std::is_same_v<Elem, Quad8>)
+    return ElementChoice::quad8;
   else
     static_assert(kNoWord<Elem>, "element_choice: an element on the Elements axis without an ElementChoice");
 }

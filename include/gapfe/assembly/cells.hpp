@@ -1,6 +1,6 @@
 #pragma once
 // The cell loop every pass over a mesh shares (assembly, checks, recovery): a mesh holds cells of the
-// model's element and, along boundary diagonals, 3-corner cells of its Degenerate companion (Tri3);
+// model's element and, along boundary diagonals, 3-corner cells of its Degenerate companion (Tri3, Tri6);
 // for_each_cell visits both groups with the element type as a tag, so one generic lambda serves both.
 // Also the per-cell data the passes read: corner coordinates, mean temperature, the material resolved
 // for the cell (cached: consecutive cells usually share material, frame and temperature).
@@ -14,7 +14,7 @@
 
 namespace gapfe {
 
-/// Whether element type Elem has a 3-corner companion (Quad8 has none: its meshes hold no triangles).
+/// Whether element type Elem has a 3-corner companion (Tri3 beside 4-corner cells, Tri6 beside Quad8).
 template <class Elem>
 inline constexpr bool kHasTriangles = !std::is_void_v<typename Elem::Degenerate>;
 

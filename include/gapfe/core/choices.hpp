@@ -14,8 +14,9 @@ namespace gapfe {
 /// The compiled variant's kinematics: SAAS (u_r, u_z) or SAGA (u_r, u_z, u_theta). The seed's code names,
 /// mirrored on purpose (BRL-CR-670 section 2.1).
 enum class VariantChoice { saas, saga };
-/// element = auto | legacy (the seed's four-CST quad) | quad4 | quad4bbar.
-enum class ElementChoice { automatic, legacy, quad4, quad4bbar };
+/// element = auto | legacy (the seed's four-CST quad) | quad4 | quad4bbar | quad8 (8-node quadrilaterals,
+/// 6-node triangles).
+enum class ElementChoice { automatic, legacy, quad4, quad4bbar, quad8 };
 /// solver = auto (the fastest built) | eigen | cholmod | petsc.
 enum class SolverChoice { automatic, eigen, cholmod, petsc };
 /// contact = saac | active-set | augmented-lagrangian | none (contact/policies.hpp).
@@ -40,7 +41,7 @@ struct ChoiceWords<VariantChoice> {
 };
 template <>
 struct ChoiceWords<ElementChoice> {
-  static constexpr std::array<std::string_view, 4> kWords{"auto", "legacy", "quad4", "quad4bbar"};
+  static constexpr std::array<std::string_view, 5> kWords{"auto", "legacy", "quad4", "quad4bbar", "quad8"};
 };
 template <>
 struct ChoiceWords<SolverChoice> {

@@ -13,7 +13,9 @@
 //   * Coulomb friction under saac: saac freezes the gap at closure, so the normal force the cone needs
 //     never converges;
 //   * Coulomb friction with the seed's one-solve plasticity (tangent): slip converges in the Newton
-//     iterations of the plastic driver, which that scheme does not make.
+//     iterations of the plastic driver, which that scheme does not make;
+//   * contact on quadratic cells (Quad8, Tri6): gap pairs join two nodes, and a quadratic side's consistent
+//     forces (1/6, 2/3, 1/6 of a uniform pressure) do not make node-to-node contact a fair pressure.
 #include <string_view>
 
 #include "gapfe/core/choices.hpp"
@@ -25,6 +27,7 @@ struct Combination {
   bool history   = false;  ///< the law has history (plasticity, rate-dependent or not)
   bool iterates  = false;  ///< its scheme iterates to equilibrium (return-mapping), not the seed's one solve
   bool condensed = false;  ///< the element condenses interior nodes (the legacy quad's centre)
+  bool quadratic = false;  ///< the element's sides are quadratic (Quad8, Tri6: 3 nodes a side)
   ContactChoice contact   = ContactChoice::none;
   FrictionChoice friction = FrictionChoice::none;
 };
@@ -47,6 +50,9 @@ constexpr std::string_view unsupported(const Combination& c) {
   if (c.friction == FrictionChoice::coulomb && c.history && !c.iterates)
     return "Coulomb friction with plasticity needs plasticity = return-mapping: slip and plastic flow "
            "converge together in its Newton iterations, and tangent solves once per increment";
+  if (c.quadratic && c.contact != ContactChoice::none)
+    return "contact on quadratic cells (element = quad8): gap pairs join two nodes, which a quadratic "
+           "side's middle node does not fit; use a 4-corner element (quad4bbar, quad4 or legacy)";
   return {};
 }
 
@@ -65,6 +71,7 @@ constexpr Combination combination_of() {
   c.history = !Law::kLinear;
   if constexpr (!Law::kLinear) c.iterates = Law::kIterate;
   c.condensed = condensed<Elem>();
+  c.quadratic = Elem::kEdgeNodes == 3;
   // A policy or model of one's own, under a name the deck options do not have, counts as an exact policy
   // (one that contacts: Policy::kContact) and as Coulomb-like friction (a friction model: kFriction).
   const auto contact  = choice_named<ContactChoice>(Policy::kName);

@@ -8,6 +8,7 @@
 //   1 -- 5 -- 2
 #include "gapfe/element/isoparametric.hpp"
 #include "gapfe/element/quadrature.hpp"
+#include "gapfe/element/tri6.hpp"
 
 namespace gapfe {
 
@@ -21,7 +22,7 @@ struct Quad8 : Isoparametric<Quad8, 8, 9> {
   static constexpr std::array<std::array<double, 2>, 8> kNodesRef{
       {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}, {0, -1}, {1, 0}, {0, 1}, {-1, 0}}};
   static constexpr auto kRule = gauss::square<3>();
-  using Degenerate            = void;  // no 6-node triangle yet: 3-corner cells are rejected
+  using Degenerate            = Tri6;  // what a 3-corner cell of a Quad8 mesh becomes
 
   static Vec<8> N(double xi, double eta) {
     Vec<8> n;

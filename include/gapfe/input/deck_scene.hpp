@@ -15,6 +15,7 @@
 #include "gapfe/contact/gap_pairs.hpp"
 #include "gapfe/input/deck.hpp"
 #include "gapfe/input/scene.hpp"
+#include "gapfe/input/scene_quadratic.hpp"
 #include "gapfe/mesh/ij_generator.hpp"
 
 namespace gapfe {
@@ -153,6 +154,7 @@ inline Scene build_scene(const Deck& d, IJGrid grid) {
   }
 
   detail::finish_scene(d, s);
+  quadratic_cells(d, s);
   return s;
 }
 

@@ -12,9 +12,10 @@
 //   $Elements       4.1: blocks per entity with their type; 2.2: one line per element, its first tag the
 //                   physical group. Any other section is skipped.
 // Element types kept: 2-node and 3-node lines (Gmsh types 1, 8), 3-node and 6-node triangles (2, 9), 4-node
-// and 8-node quadrangles (3, 16); points (15) are skipped; any other type (a volume element, the 9-node
-// quadrangle) is an error naming its type and line. Node orderings are Gmsh's, which are gapfe's too
-// (corners counterclockwise, then the mid-sides 0-1, 1-2, ...: element/quad8.hpp).
+// and 8-node quadrangles (3, 16); a 9-node quadrangle (10, Gmsh's order 2 by default) is kept as an 8-node
+// one, its centre node dropped (gapfe's Quad8 is the serendipity cell); points (15) are skipped; any other
+// type (a volume element, a cubic cell) is an error naming its type and line. Node orderings are Gmsh's,
+// which are gapfe's too (corners counterclockwise, then the mid-sides 0-1, 1-2, ...: element/quad8.hpp).
 //
 // Physical groups: an element may belong to several (a surface in "steel" and in "all"). MSH 4.1 gives the
 // groups of each entity; MSH 2.2 writes the element once per group it is in, and those copies (the same
@@ -51,7 +52,7 @@ namespace gapfe {
 /// A 2-D cell or a 1-D edge of a Gmsh mesh: its nodes as indices into GmshMesh::nodes (Gmsh's order),
 /// its physical groups and its Gmsh element type.
 struct GmshElement {
-  int type       = 0;          ///< Gmsh element type: 1, 8 (lines), 2, 9 (triangles), 3, 16 (quadrangles)
+  int type = 0;  ///< Gmsh element type: 1, 8 (lines), 2, 9 (triangles), 3, 16 (quadrangles; 10 read as 16)
   int node_count = 0;          ///< 2, 3, 6, 4 or 8
   std::array<int, 8> nodes{};  ///< 0-based node indices, counterclockwise for cells
   std::vector<int> physical;   ///< the physical group tags it belongs to (none: empty)
@@ -242,7 +243,8 @@ class GmshReading {
     const int type = in_.count("an element type", 1, 1000);
     if (detail::gmsh_node_count(type) < 0)
       in_.fail("element type " + std::to_string(type) +
-               ": gapfe reads lines (1, 8), triangles (2, 9) and quadrangles (3, 16) of a meridian section");
+               ": gapfe reads lines (1, 8), triangles (2, 9) and quadrangles (3, 16, 10) of a meridian "
+               "section");
     return type;
   }
 
@@ -250,7 +252,7 @@ class GmshReading {
     if (!has_nodes_) in_.fail("$Elements before $Nodes");
     if (has_elements_) in_.fail("a second $Elements section");
     has_elements_ = true;
-    std::vector<long> tags(8);
+    std::vector<long> tags(9);
     if (m_.version == 4.1) {
       const int blocks = in_.count("the number of element blocks", 0, 100'000'000);
       in_.count("the number of elements", 0, 1'000'000'000);
@@ -300,6 +302,7 @@ class GmshReading {
   // Gmsh writes $Nodes first, and so the reader requires it.
   void add_element(int type, const std::vector<int>& physical, long entity, const std::vector<long>& tags,
                    int line) {
+    if (type == 10) type = 16;  // a 9-node quadrangle as the 8-node one on its first 8 nodes
     const int count = detail::gmsh_node_count(type);
     if (count == 0) return;  // a point
     const std::string where = "line " + std::to_string(line) + " ($Elements): ";

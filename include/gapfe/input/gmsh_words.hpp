@@ -28,13 +28,15 @@ inline int gmsh_node_count(int type) {
       return 4;  // 4-node quadrangle
     case 16:
       return 8;  // 8-node quadrangle
+    case 10:
+      return 9;  // 9-node quadrangle: read, its centre then dropped (GmshReader::add_element)
     case 15:
       return 0;  // point: skipped
     default:
       return -1;
   }
 }
-/// The corners of a Gmsh cell type: 3 for triangles (2, 9), else 4 (quadrangles 3, 16).
+/// The corners of a Gmsh cell type: 3 for triangles (2, 9), else 4 (quadrangles 3, 16, 10).
 inline int gmsh_corners(int type) {
   return type == 2 || type == 9 ? 3 : 4;
 }

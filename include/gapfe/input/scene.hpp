@@ -7,6 +7,7 @@
 // each step.
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -72,6 +73,15 @@ struct Scene {
 
   /// Element number (0-based, grid numbering) of a mesh cell or triangle.
   std::vector<int> element_of_cell, element_of_triangle;
+
+  /// Quadratic cells (element = quad8; input/scene_quadratic.hpp): `mesh` and `grid` then hold a middle
+  /// node on every side after the corner nodes (GridCell::mid), and this the same cells with them (8-node
+  /// quadrilaterals, 6-node triangles) for the run; empty otherwise.
+  Mesh<8> quadratic;
+  /// Where an order-2 mesh file puts the middle node of a side (its two corners, the lesser first); empty
+  /// for an order-1 mesh, whose middle nodes go half-way along each side.
+  std::map<std::array<int, 2>, Vec2> given_mid_sides;
+  bool is_quadratic() const { return !quadratic.cells.empty() || !quadratic.triangles.empty(); }
 };
 
 /// A model as read: the description a card deck or a scene file becomes, and its scene (for a deck,

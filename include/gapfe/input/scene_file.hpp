@@ -101,6 +101,7 @@ class SceneBuilder {
     temperature();
     contact();
     finish_scene(model_.description, model_.scene);
+    quadratic_cells(model_.description, model_.scene);
     model_.refined = mesh_->refined();
     return std::move(model_);
   }
@@ -386,10 +387,8 @@ inline SceneModel read_scene_file(const std::string& path,
                                   const std::vector<std::pair<std::string, std::string>>& overrides = {},
                                   int refine                                                        = 0) {
   const std::filesystem::path base = std::filesystem::path(path).parent_path();
-  SceneModel m                     = read_scene(
-                          read_input(path, "scene file"),
-                          [&](const std::string& name) { return read_input((base / name).string(), "mesh"); }, overrides, {},
-                          refine);
+  const auto mesh = [&](const std::string& name) { return read_input((base / name).string(), "mesh"); };
+  SceneModel m    = read_scene(read_input(path, "scene file"), mesh, overrides, {}, refine);
   if (!m.mesh_file.empty()) m.mesh_file = (base / m.mesh_file).string();
   return m;
 }

@@ -21,6 +21,7 @@
 #include "gapfe/input/gmsh_refine.hpp"
 #include "gapfe/input/model_description.hpp"
 #include "gapfe/input/scene.hpp"
+#include "gapfe/input/scene_quadratic.hpp"
 #include "gapfe/input/scene_table.hpp"
 #include "gapfe/mesh/ij_grid.hpp"
 
@@ -94,7 +95,12 @@ class GmshSceneMesh final : public SceneMesh {
       : file_(file) {
     std::size_t coarse = 0;
     try {
-      gmsh_ = read_gmsh(text);
+      gmsh_                                       = read_gmsh(text);
+      const std::vector<std::array<int, 3>> sides = take_mid_sides(gmsh_);
+      if (!sides.empty() && refine.times > 0)
+        throw InputError(
+            "the mesh is of order 2, and --estimate splits order-1 meshes (a split would lose its curved "
+            "sides); give its order-1 mesh with element = quad8");
       if (refine.times > 0) {
         std::vector<std::string> faces;
         for (const auto& pair : refine.faces) faces.insert(faces.end(), pair.begin(), pair.end());
@@ -105,6 +111,10 @@ class GmshSceneMesh final : public SceneMesh {
                    "; " + std::to_string(split.arc_points) + " new points put on circular arcs";
       }
       fe_ = gmsh_fe_mesh<4>(gmsh_);
+      for (const auto& [a, b, middle] : sides)  // an order-2 mesh: the quadratic cells' middle nodes
+        if (const int m = fe_.node[static_cast<std::size_t>(a)], n = fe_.node[static_cast<std::size_t>(b)];
+            m >= 0 && n >= 0)
+          s.given_mid_sides[{std::min(m, n), std::max(m, n)}] = gmsh_.nodes[static_cast<std::size_t>(middle)];
     } catch (const InputError& e) {
       throw InputError(file_ + ": " + e.what());
     }

@@ -59,6 +59,9 @@ struct GridCell {
   int corners = 4;            ///< 4: quadrilateral; 3: triangle
   std::array<int, 4> node{};  ///< node numbers, counterclockwise; node[3] unused for triangles
   int group_index = 0;        ///< index into Mesh::cells (quad) or Mesh::triangles (triangle)
+  /// The middle node of side k (corner k to k + 1) when the model runs quadratic cells
+  /// (input/scene_quadratic.hpp); -1 otherwise.
+  std::array<int, 4> mid{-1, -1, -1, -1};
 };
 
 struct IJGrid {

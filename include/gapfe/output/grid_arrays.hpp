@@ -10,9 +10,19 @@
 
 namespace gapfe::detail {
 
+/// The grid's cells as VTU cells: corners, then the middle nodes of quadratic cells (VTK's quadratic
+/// triangle and quadrilateral take them in GridCell::mid's order).
 inline VtuCells grid_cells(const IJGrid& g) {
   VtuCells cells;
-  for (const auto& c : g.cells) cells.add(c.node.data(), c.corners);
+  for (const auto& c : g.cells) {
+    if (c.mid[0] < 0) {
+      cells.add(c.node.data(), c.corners);
+      continue;
+    }
+    std::array<int, 8> nodes{};
+    for (int k = 0; k < c.corners; ++k) nodes[k] = c.node[k], nodes[c.corners + k] = c.mid[k];
+    cells.add(nodes.data(), 2 * c.corners);
+  }
   return cells;
 }
 

@@ -22,14 +22,14 @@
 
 namespace gapfe {
 
-/// Cells as VTK wants them: VTK types 5 (triangle), 9 (quad), 23 (quad8).
+/// Cells as VTK wants them: VTK types 5 (triangle), 9 (quad), 22 (quadratic triangle), 23 (quad8).
 struct VtuCells {
   std::vector<int> connectivity, offsets;
   std::vector<std::uint8_t> types;
   void add(const int* nodes, int count) {
     connectivity.insert(connectivity.end(), nodes, nodes + count);
     offsets.push_back(static_cast<int>(connectivity.size()));
-    types.push_back(count == 3 ? 5 : count == 4 ? 9 : 23);
+    types.push_back(count == 3 ? 5 : count == 4 ? 9 : count == 6 ? 22 : 23);
   }
   std::size_t size() const { return types.size(); }
 };

@@ -2,15 +2,16 @@
 // The energy-norm error of a solution, estimated cell by cell by stress recovery (Zienkiewicz and Zhu's
 // estimator with their superconvergent patch recovery; docs/accuracy.md):
 //   1. at every node, for each material around it, a polynomial in (r, z) of the cells' order (a plane; a
-//      quadratic for Quad8) is fitted by least squares to the stresses at the stiffness points of the cells
-//      of that material around the node (its patch, post/patch_recovery.hpp); its value at the node is the
-//      recovered stress sigma* there. A patch too small for it falls back to a plane, then to the mean.
+//      quadratic for Quad8 and Tri6) is fitted by least squares to the stresses at the stiffness points of
+//      the cells of that material around the node (its patch, post/patch_recovery.hpp); its value at the node
+//      is the recovered stress sigma* there. A patch too small for it falls back to a plane, then to the
+//      mean.
 //   2. In each cell sigma* is interpolated from its nodes, and the error is
 //        eta_e^2 = integral over the cell of (sigma* - sigma_h)^T C^-1 (sigma* - sigma_h) dV,
 //      with C the law's elastic stiffness and sigma_h the stresses kept at the stiffness points, exactly: on
 //      quad4 sigma_h is bilinear through its 2 x 2 points' values (at those points alone it is at its most
 //      accurate, and the error would read as nothing there), on a constant-strain triangle it is constant;
-//      Quad8's biquadratic through its 3 x 3 points is integrated on 4 x 4.
+//      Quad8's biquadratic through its 3 x 3 points is integrated on 4 x 4, Tri6's on its own 6 points.
 // The relative error is eta / sqrt(|u_h|^2 + eta^2), |u_h|^2 the integral of sigma_h^T C^-1 sigma_h dV.
 // Each material is recovered on its own: its stresses jump across a bond to another material.
 #include <algorithm>
@@ -131,6 +132,23 @@ std::array<double, 2> quadratic_cell_energies(const Mat<8, 2>& x, const std::arr
   return out;
 }
 
+/// eta_e^2 and |u_h|_e^2 of a 6-node triangle on its own stiffness points: sigma* through the nodes (its
+/// shape functions) against sigma_h where it was computed. The degree-4 rule integrates the quadratic sigma*
+/// against the linear part of sigma_h exactly but for the weight r; the estimate needs no more.
+template <class E, int S>
+std::array<double, 2> triangle_cell_energies(const Mat<6, 2>& x, const std::array<Vec<S>, 6>& node,
+                                             const Vec<S>* at, const Mat<S, S>& compliance) {
+  std::array<double, 2> out{0, 0};
+  double det = 0;
+  for (int q = 0; q < E::kStiffnessPoints; ++q) {
+    const auto g = E::stiffness_point(x, q, det);
+    Vec<S> diff  = -at[q];
+    for (int c = 0; c < 6; ++c) diff += g.N(c) * node[c];
+    out[0] += g.weight * diff.dot(compliance * diff), out[1] += g.weight * at[q].dot(compliance * at[q]);
+  }
+  return out;
+}
+
 /// The constant-strain triangles of a cell, as shape-node indices: the legacy quadrilateral's four, a
 /// triangle itself. Stiffness point q is triangle q's centroid.
 template <class E>
@@ -176,7 +194,7 @@ ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const V
   using Kin          = typename M::Kinematics;
   using Elem         = typename M::Element;
   constexpr int S    = Kin::kStrain;
-  constexpr int P    = Elem::kEdgeNodes == 3 ? 6 : 3;  // quadratic cells (Quad8): quadratic patches
+  constexpr int P    = Elem::kEdgeNodes == 3 ? 6 : 3;  // quadratic cells (Quad8, Tri6): quadratic patches
   const auto& mesh   = p.mesh;
   const auto skipped = [&](const CellTag& tag) {
     return std::find(skip.begin(), skip.end(), tag.material) != skip.end();
@@ -205,8 +223,8 @@ ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const V
                                                           const CellTag& tag) {
     static_assert(
         requires { E::kCorners; } || requires { E::kTri; } || requires { E::kTriangles; } ||
-            (E::kEdgeNodes == 3 && E::kStiffnessPoints == 9),
-        "cells the recovery knows: Quad4, its B-bar form, the legacy quad, Tri3 (planes), Quad8 "
+            (E::kEdgeNodes == 3 && (E::kStiffnessPoints == 9 || E::kNodes == 6)),
+        "cells the recovery knows: Quad4, its B-bar form, the legacy quad, Tri3 (planes), Quad8 and Tri6 "
         "(quadratics)");
     const bool skip_cell = skipped(tag);
     if (skip_cell && !centroids) return;
@@ -267,7 +285,10 @@ ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const V
       corner[c] = recovered[slots(cell[c], tag.material)], centre += corner[c] / E::kNodes;
     for (int c = E::kNodes; c < E::kShapeNodes; ++c) corner[c] = centre;  // a condensed centre: the mean
     double error = 0, energy = 0;
-    if constexpr (E::kEdgeNodes == 3) {
+    if constexpr (E::kEdgeNodes == 3 && E::kNodes == 6) {
+      const auto both = detail::triangle_cell_energies<E, S>(x, corner, at, compliance);
+      error += both[0], energy += both[1];
+    } else if constexpr (E::kEdgeNodes == 3) {
       const auto both = detail::quadratic_cell_energies<E, S>(x, corner, at, compliance);
       error += both[0], energy += both[1];
     } else if constexpr (requires { E::kCorners; }) {

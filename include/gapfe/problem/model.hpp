@@ -6,6 +6,7 @@
 #include "gapfe/element/quad4.hpp"
 #include "gapfe/element/quad8.hpp"
 #include "gapfe/element/tri3.hpp"
+#include "gapfe/element/tri6.hpp"
 #include "gapfe/kinematics/axisym2.hpp"
 #include "gapfe/kinematics/axisym3.hpp"
 #include "gapfe/material/elastic.hpp"

@@ -96,18 +96,31 @@ Law deck_law(const Orthotropic& elastic, const std::optional<YieldCard>& card,
 template <class M>
 Problem<M> scene_problem(const ModelDescription& d, const Scene& s, int step,
                          const ScenePart* part = nullptr) {
-  static_assert(M::Element::kNodes == 4, "I-J decks make 4-corner cells (LegacyQuad or Quad4)");
+  static_assert(M::Element::kNodes == 4 || M::Element::kNodes == 8,
+                "scenes make 4-corner cells (LegacyQuad, Quad4) or quadratic ones (Quad8)");
   Problem<M> p;
-  p.mesh = s.mesh;
+  if constexpr (M::Element::kNodes == 8) {
+    if (!s.is_quadratic())
+      throw InputError("an 8-node element on a scene without middle nodes: read it with element = quad8");
+    p.mesh = s.quadratic;
+  } else {
+    if (s.is_quadratic())
+      throw InputError("a 4-corner element on a scene of quadratic cells: run it with element = quad8");
+    p.mesh = s.mesh;
+  }
   for (std::size_t k = 0; k < s.materials.size(); ++k)
     p.materials.push_back(deck_law<typename M::Material>(s.materials[k], d.materials[k].yield, d.rate));
   set_step_loads(p, d, s, step);
   p.temperature           = s.temperature;
   p.reference_temperature = s.reference_temperature;
   if (!part) return p;
-  Connectivity<2> links;
-  for (const GapPair& g : s.gaps.pairs) links.push_back({g.node_a, g.node_b});
-  return problem_part(p, part->mesh, part->subdomain, links);
+  if constexpr (M::Element::kNodes == 8) {
+    throw InputError("element = quad8 runs on one process: not partitioned");
+  } else {
+    Connectivity<2> links;
+    for (const GapPair& g : s.gaps.pairs) links.push_back({g.node_a, g.node_b});
+    return problem_part(p, part->mesh, part->subdomain, links);
+  }
 }
 
 /// Run every load step; `on_step(step, inc, const LinearStatic<M>&)` sees each solved step (inc = the

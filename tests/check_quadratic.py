@@ -1,0 +1,231 @@
+#!/usr/bin/python3
+"""Quadratic cells through `gapfe run` (ctest `gapfe_quadratic`; docs/settings.md "Quadratic cells"), against
+the Lame tube's closed form (a = 100, b = 200, bore pressure 100, plane strain; E = 200000, nu = 0.3):
+
+  * Gmsh order-2 meshes (tests/data/make_order2_meshes.py) of 8-node quadrangles and of 6-node triangles at
+    three sizes, each half the last: the L2 error of u_r, integrated over the meridian section with the
+    cells' own shape functions on the VTU's quadratic cells (read back by meshio), falls at third order;
+  * a 9-node quadrangle mesh (Gmsh's default order 2) runs as the 8-node one with the centres dropped: the
+    same displacements at the shared nodes;
+  * card decks with element = quad8 on I-J grids of 4, 8 and 16 cells through the wall: third order too, the
+    grid's corners keeping their numbers and the middle nodes numbered after them;
+  * a plastic tube as a deck with element = quad8 reaches the plane-strain limit pressure's closed form;
+  * the refusals: element = quad4 on an order-2 mesh, element = quad8 with gap elements, --estimate on an
+    order-2 mesh; each with one line naming the cause and no result files.
+
+    /usr/bin/python3 tests/check_quadratic.py build/release/examples/gapfe WORKDIR
+"""
+import math
+import pathlib
+import shutil
+import subprocess
+import sys
+
+import meshio
+import numpy as np
+
+root = pathlib.Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(root / "bench"))
+import deckgen  # noqa: E402  (the decks' one writer)
+from checks import check, finish  # noqa: E402  (tests/checks.py: the shared tally)
+
+gapfe = pathlib.Path(sys.argv[1]).resolve()
+work = pathlib.Path(sys.argv[2]).resolve()
+scenes = root / "tests" / "data" / "scenes"
+E, NU = 200000.0, 0.3
+A, B, P = 100.0, 200.0, 100.0
+ORDER = (2.6, 3.4)  # quadratic cells: the L2 error of u falls as h^3
+
+
+def run(model, name, *options, expect=0):
+    out = work / name
+    shutil.rmtree(out, ignore_errors=True)
+    done = subprocess.run([str(gapfe), "run", str(model), "--out", str(out), "--plot", "none", *options],
+                          capture_output=True, text=True)
+    check(done.returncode == expect, f"{name}: exit {done.returncode}, expected {expect}: {done.stderr.strip()}")
+    return out, done.stdout, done.stderr
+
+
+def lame_u(r):
+    """u_r of the Lame tube in plane strain."""
+    c = P * A * A / (B * B - A * A)
+    return (1 + NU) / E * ((1 - 2 * NU) * c * r + c * B * B / r)
+
+
+def quad8_shapes(xi, eta):
+    corners = [(-1, -1), (1, -1), (1, 1), (-1, 1)]
+    n = [0.25 * (1 + a * xi) * (1 + b * eta) * (a * xi + b * eta - 1) for a, b in corners]
+    n += [0.5 * (1 - xi * xi) * (1 - eta), 0.5 * (1 + xi) * (1 - eta * eta), 0.5 * (1 - xi * xi) * (1 + eta),
+          0.5 * (1 - xi) * (1 - eta * eta)]
+    dxi = [0.25 * a * (1 + b * eta) * (2 * a * xi + b * eta) for a, b in corners]
+    dxi += [-xi * (1 - eta), 0.5 * (1 - eta * eta), -xi * (1 + eta), -0.5 * (1 - eta * eta)]
+    deta = [0.25 * b * (1 + a * xi) * (a * xi + 2 * b * eta) for a, b in corners]
+    deta += [-0.5 * (1 - xi * xi), -eta * (1 + xi), 0.5 * (1 - xi * xi), -eta * (1 - xi)]
+    return np.array(n), np.array([dxi, deta])
+
+
+def tri6_shapes(s, t):
+    l1, l2, l3 = 1 - s - t, s, t
+    n = [l1 * (2 * l1 - 1), l2 * (2 * l2 - 1), l3 * (2 * l3 - 1), 4 * l1 * l2, 4 * l2 * l3, 4 * l3 * l1]
+    ds = [1 - 4 * l1, 4 * l2 - 1, 0, 4 * (l1 - l2), 4 * l3, -4 * l3]
+    dt = [1 - 4 * l1, 0, 4 * l3 - 1, -4 * l2, 4 * l2, 4 * (l1 - l3)]
+    return np.array(n), np.array([ds, dt])
+
+
+def rules():
+    """Quadrature on the reference square (4 x 4 Gauss) and triangle (Gauss on the collapsed square, 5 x 5)."""
+    x, w = np.polynomial.legendre.leggauss(4)
+    square = [(a, b, wa * wb) for a, wa in zip(x, w) for b, wb in zip(x, w)]
+    x, w = np.polynomial.legendre.leggauss(5)
+    triangle = []
+    for a, wa in zip(x, w):
+        for b, wb in zip(x, w):
+            u, v = (a + 1) / 2, (b + 1) / 2  # Duffy: s = u, t = v (1 - u)
+            triangle.append((u, v * (1 - u), wa * wb * (1 - u) / 4))
+    return {"quad8": (square, quad8_shapes), "triangle6": (triangle, tri6_shapes)}
+
+
+RULES = rules()
+
+
+def l2_error(out):
+    """(L2 error of u_r, cells, their kinds) over the last VTU: sqrt of the integral of (u_h - u)^2 2 pi r dA
+    per unit height of the tube (a deck's grid of square cells is as high as two of its cells)."""
+    vtu = sorted(out.glob("step_*.vtu"))
+    check(len(vtu) > 0, f"{out.name}: no step VTU")
+    mesh = meshio.read(vtu[-1])
+    u = mesh.point_data["displacement"][:, 0]
+    err, cells, kinds = 0.0, 0, set()
+    for block in mesh.cells:
+        kinds.add(block.type)
+        if block.type not in RULES:
+            continue
+        rule, shapes = RULES[block.type]
+        for nodes in block.data:
+            x = mesh.points[nodes, :2]
+            for s, t, w in rule:
+                n, dn = shapes(s, t)
+                jac = dn @ x
+                r = n @ x[:, 0]
+                d = n @ u[nodes] - lame_u(r)
+                err += d * d * 2 * math.pi * r * abs(np.linalg.det(jac)) * w
+            cells += 1
+    height = mesh.points[:, 1].max() - mesh.points[:, 1].min()
+    return math.sqrt(err / height), cells, kinds
+
+
+def orders(name, errors):
+    rates = [math.log2(errors[k] / errors[k + 1]) for k in range(len(errors) - 1)]
+    print(f"{name}: L2 errors of u_r {', '.join(f'{e:.3e}' for e in errors)}; orders "
+          f"{', '.join(f'{q:.2f}' for q in rates)}")
+    check(ORDER[0] <= rates[-1] <= ORDER[1], f"{name}: the last order {rates[-1]:.2f} outside {ORDER}")
+    return rates
+
+
+def scene_text(mesh, extra=""):
+    return f"""title = "Lame tube on {mesh}"
+[mesh]
+file = "{scenes / mesh}"
+{extra}
+[materials.steel]
+E = {E}
+nu = {NU}
+[[boundary]]
+groups = ["bottom", "top"]
+fix = ["z"]
+[[load]]
+curves = ["bore"]
+pressure = {P}
+"""
+
+
+def gmsh_order2():
+    for kind, cell in (("quad8", "quad8"), ("tri6", "triangle6")):
+        errors = []
+        for h in ("25", "12.5", "6.25"):
+            scene = work / f"lame_{kind}_h{h}.toml"
+            scene.write_text(scene_text(f"lame_{kind}_h{h}.msh"))
+            out, log, _ = run(scene, scene.stem)
+            check("element quad8" in log, f"{scene.stem}: the log names element quad8")
+            error, cells, kinds = l2_error(out)
+            check(kinds == {cell}, f"{scene.stem}: VTU cells {kinds}, expected {cell}")
+            errors.append(error)
+        orders(f"Gmsh order-2 {kind}", errors)
+    # The 9-node quadrangles: the same mesh as lame_quad8_h25 but for the centres.
+    scene = work / "lame_quad9_h25.toml"
+    scene.write_text(scene_text("lame_quad9_h25.msh"))
+    out9, _, _ = run(scene, scene.stem)
+    a = meshio.read(sorted(out9.glob("step_*.vtu"))[-1])
+    b = meshio.read(sorted((work / "lame_quad8_h25").glob("step_*.vtu"))[-1])
+    same = a.points.shape == b.points.shape and np.allclose(a.points, b.points, rtol=0, atol=1e-12)
+    check(same, "9-node quadrangles: the nodes differ from the 8-node mesh's")
+    if same:
+        diff = np.abs(a.point_data["displacement"] - b.point_data["displacement"]).max()
+        check(diff <= 1e-12 * np.abs(b.point_data["displacement"]).max(),
+              f"9-node quadrangles: displacements differ from the 8-node mesh's by {diff:.2e}")
+
+
+def decks():
+    errors = []
+    for cells in (4, 8, 16, 32):
+        deck = work / f"lame_quad8_{cells}.deck"
+        deck.write_text(deckgen.tube_deck(cells + 1, 3, extension=("format = elastic", "element = quad8")))
+        out, log, _ = run(deck, deck.stem)
+        error, _, kinds = l2_error(out)
+        check(kinds == {"quad8"}, f"{deck.stem}: VTU cells {kinds}")
+        errors.append(error)
+        # The grid's corners keep their numbers: node 1 is (I, J) = (1, 1) at the bore, u_r there the closed
+        # form's to the discretization error; a middle node's row has I = J = 0.
+        rows = [line.split(",") for line in (out / "nodes.csv").read_text().splitlines()[1:]]
+        first = rows[0]
+        check(first[3] == "1" and first[4] == "1" and first[5] == "1" and abs(float(first[6]) - A) < 1e-9,
+              f"{deck.stem}: nodes.csv's first row is not node 1 at (I, J) = (1, 1), r = a: {first[:8]}")
+        check(abs(float(first[8]) / lame_u(A) - 1) < 2e-3 / cells,
+              f"{deck.stem}: bore u_r {first[8]} against {lame_u(A):.6e}")
+        corners = (cells + 1) * 3
+        check(len(rows) > corners and all(r[4] == "0" and r[5] == "0" for r in rows[corners:]),
+              f"{deck.stem}: the middle nodes are not after the {corners} corners with I = J = 0")
+    orders("deck element = quad8", errors)
+
+
+def plastic():
+    """The plastic tube (bench/deckgen.py plastic_tube_deck) with quad8: its last step's bore pressure 300 lies
+    below the plane-strain limit; the bore's u_r against the deck run with quad4bbar, to 1%."""
+    ref = work / "plastic_bbar.deck"
+    ref.write_text(deckgen.plastic_tube_deck(ni=21, steps=6))
+    quad8 = work / "plastic_quad8.deck"
+    quad8.write_text(deckgen.plastic_tube_deck(ni=21, steps=6, extension=("element = quad8",)))
+    out_b, _, _ = run(ref, ref.stem)
+    out_q, log, _ = run(quad8, quad8.stem)
+    check("element quad8" in log, "plastic quad8: the log names element quad8")
+
+    def bore(out):
+        rows = [line.split(",") for line in (out / "nodes.csv").read_text().splitlines()[1:]]
+        last = max(int(r[0]) for r in rows)
+        return float(next(r for r in rows if int(r[0]) == last and r[3] == "1")[8])
+
+    ub, uq = bore(out_b), bore(out_q)
+    check(abs(uq / ub - 1) < 0.01, f"plastic quad8: bore u_r {uq:.6e} against quad4bbar's {ub:.6e}")
+
+
+def refusals():
+    scene = work / "order2_quad4.toml"
+    scene.write_text(scene_text("lame_quad8_h25.msh", '[options]\nelement = "quad4"'))
+    out, _, err = run(scene, scene.stem, expect=1)
+    check("order 2" in err and len(err.strip().splitlines()) == 1, f"element = quad4 on order 2: {err!r}")
+    check(not out.exists() or not any(out.glob("*.csv")), "element = quad4 on order 2: files written")
+    deck = work / "gaps_quad8.deck"
+    deck.write_text(deckgen.two_tubes_deck(n=8, nz=8, steps=1, extension=("element = quad8",)))
+    _, _, err = run(deck, deck.stem, expect=1)
+    check("gap elements" in err, f"element = quad8 with gaps: {err!r}")
+    scene = work / "order2_estimate.toml"
+    scene.write_text(scene_text("lame_quad8_h25.msh"))
+    _, _, err = run(scene, scene.stem, "--estimate", expect=1)
+    check("order 2" in err, f"--estimate on order 2: {err!r}")
+
+
+gmsh_order2()
+decks()
+plastic()
+refusals()
+finish()
