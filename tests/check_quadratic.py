@@ -2,7 +2,7 @@
 """Quadratic cells through `gapfe run` (ctest `gapfe_quadratic`; docs/settings.md "Quadratic cells"), against
 the Lame tube's closed form (a = 100, b = 200, bore pressure 100, plane strain; E = 200000, nu = 0.3):
 
-  * Gmsh order-2 meshes (tests/data/make_order2_meshes.py) of 8-node quadrangles and of 6-node triangles at
+  * Gmsh order-2 meshes (tests/data/make_estimate_meshes.py) of 8-node quadrangles and of 6-node triangles at
     three sizes, each half the last: the L2 error of u_r, integrated over the meridian section with the
     cells' own shape functions on the VTU's quadratic cells (read back by meshio), falls at third order;
   * a 9-node quadrangle mesh (Gmsh's default order 2) runs as the 8-node one with the centres dropped: the
@@ -170,7 +170,7 @@ def gmsh_order2():
 
 def sphere():
     """The thick sphere 100 <= R <= 200 under bore pressure on Gmsh's order-2 meshes of size 25
-    (tests/data/make_order2_meshes.py): the middle nodes on the bore lie on its circle, as the file puts them,
+    (tests/data/make_sphere.py): the middle nodes on the bore lie on its circle, as the file puts them,
     and u_R at every node is within 0.5% of the closed form P a^3 / (E (b^3 - a^3)) ((1 - 2 nu) R +
     (1 + nu) b^3 / (2 R^2)) (0.18% on the quadrangles, 0.31% on the triangles), 5 times closer than Quad4 on
     the order-1 mesh of the same size (tests/data/make_sphere.py: 4.1%, and 8.8% on its constant-strain
