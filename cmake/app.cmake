@@ -3,7 +3,7 @@
 # (app/variant_table.hpp), its rows instantiated explicitly, each once, in GAPFE_APP_SHARDS generated
 # translation units that build in parallel, and the command's definitions (app/command_impl.hpp).
 #
-# GAPFE_VARIANTS=all: every combination the library runs (160 rows; what the tests run). defaults: the rows
+# GAPFE_VARIANTS=all: every combination the library runs (170 rows; what the tests run). defaults: the rows
 # the default options reach (24: every deck of the seed's codes, SAAS to SAAC3X, and the seed's slip models;
 # the README's first command); a run whose options go past them (another element, contact policy or
 # integration) is refused before it starts, with this setting named (app/variant_table.hpp, check_compiled).

@@ -79,17 +79,64 @@ TEST_CASE(
     return middle.at({std::min(a, b), std::max(a, b)});
   };
   using Conditions = std::vector<std::tuple<int, int, std::array<double, 3>>>;
-  // Along J = 1: bc1's u_z at both ends; the side ending at (9, 1) has bc3 at that end only, so no u_r.
+  // Along J = 1: bc1's u_z at both ends. At (9, 1) bc3, the later card, sets every component (a deck card
+  // does): u_r = 0.001 and u_z free, so the side ending there is free in z and, held in r at one end only,
+  // free in r.
   CHECK(conditions_of(s, at(1, 1, 2, 1)) == Conditions{{0, 2, {0, 0, 0}}});
-  CHECK(conditions_of(s, at(8, 1, 9, 1)) == Conditions{{0, 2, {0, 0, 0}}});
-  // Along I = 9: bc3's u_r = 0.001 at both ends; the lower side's end (9, 1) is bc1's too, the other not.
+  CHECK(conditions_of(s, at(7, 1, 8, 1)) == Conditions{{0, 2, {0, 0, 0}}});
+  CHECK(conditions_of(s, at(8, 1, 9, 1)).empty());
+  CHECK(conditions_of(s, at(9, 3, 8, 3)).empty());
+  // Along I = 9: bc3's u_r = 0.001 at both ends.
   CHECK(conditions_of(s, at(9, 1, 9, 2)) == Conditions{{2, 1, {0.001, 0, 0}}});
   CHECK(conditions_of(s, at(9, 2, 9, 3)) == Conditions{{2, 1, {0.001, 0, 0}}});
-  CHECK(conditions_of(s, at(9, 3, 8, 3)) == Conditions{{1, 2, {0, 0, 0}}});
   // Inside and along the bore: none.
   CHECK(conditions_of(s, at(1, 1, 1, 2)).empty());
   CHECK(conditions_of(s, at(4, 2, 5, 2)).empty());
   CHECK(conditions_of(s, at(4, 1, 4, 2)).empty());
+}
+
+TEST_CASE("[quadratic] a side held node by node, one card a node, is held along its length") {
+  // bc1 of the thick tube (u_z = 0 on J = 1) as nine cards, one per grid point.
+  std::string text      = tube_with_outer_card();
+  const std::string row = "    1    9    1    1         2       0.0       0.0       0.0\n";
+  std::string cards;
+  for (int i = 1; i <= 9; ++i)
+    cards += "    " + std::to_string(i) + "    " + std::to_string(i) +
+             "    1    1         2       0.0       0.0       0.0\n";
+  text.replace(text.find(row), row.size(), cards);
+  text.replace(text.find("    9    3    4    3    1"), 25, "    9    3    4   11    1");
+  const Scene s = build_scene(read_deck(text, {{"element", "quad8"}}));
+  REQUIRE(s.is_quadratic());
+  for (int i = 1; i < 8; ++i) {  // the side (i, 1)-(i + 1, 1): the later card is point i + 1's, number i
+    const int a = s.grid.node(i, 1), b = s.grid.node(i + 1, 1);
+    int middle = -1;
+    for (const auto& c : s.quadratic.cells)
+      for (int k = 0; k < 4; ++k)
+        if (std::minmax(c[k], c[(k + 1) % 4]) == std::minmax(a, b)) middle = c[4 + k];
+    REQUIRE(middle >= 0);
+    using Conditions = std::vector<std::tuple<int, int, std::array<double, 3>>>;
+    CHECK(conditions_of(s, middle) == Conditions{{i, 2, {0, 0, 0}}});
+  }
+}
+
+TEST_CASE("[quadratic] clockwise order-2 cells are turned with their middle nodes") {
+  // A 6-node triangle and an 8-node quadrangle, both clockwise, in MSH 2.2.
+  const GmshMesh g = read_gmsh(
+      "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n14\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0.5 0 0\n5 0.5 0.5 0\n"
+      "6 0 0.5 0\n7 2 0 0\n8 2 1 0\n9 3 1 0\n10 3 0 0\n11 2 0.5 0\n12 2.5 1 0\n13 3 0.5 0\n14 2.5 0 0\n"
+      "$EndNodes\n$Elements\n2\n1 9 2 1 1 1 3 2 6 5 4\n2 16 2 1 1 7 8 9 10 11 12 13 14\n$EndElements\n");
+  REQUIRE(g.cells.size() == 2);
+  CHECK(g.flipped == 2);
+  for (const GmshElement& c : g.cells) {
+    const int corners = c.type == 9 ? 3 : 4;
+    double area       = 0;
+    for (int k = 0; k < corners; ++k) {
+      const Vec2 &p = g.nodes[c.nodes[k]], &q = g.nodes[c.nodes[(k + 1) % corners]];
+      area += p(0) * q(1) - q(0) * p(1);
+      CHECK((g.nodes[c.nodes[corners + k]] - 0.5 * (p + q)).norm() < 1e-15);
+    }
+    CHECK(area > 0);
+  }
 }
 
 TEST_CASE(

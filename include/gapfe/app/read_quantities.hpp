@@ -22,7 +22,8 @@ struct ReadQuantity {
   Vec2 at      = Vec2::Zero();  ///< where, for a largest value (r, z) [length]
   bool located = false;         ///< whether `at` means something
   /// The order of convergence in h of its error, assumed when only two meshes are solved: reactions and
-  /// displacements as the energy (2), a stress at a point one less (1).
+  /// displacements as the energy on linear cells (2), as the displacements in L2 on quadratic ones (3, below
+  /// the energy's 4: the bar errs large), a centroid's stress (1: half a cell from where it peaks).
   double order = 2;
   /// What round-off in it is relative to: a sum's terms' sizes (a card whose reactions cancel, gap pairs'
   /// forces); 0: the value itself.
@@ -34,16 +35,18 @@ struct ReadQuantity {
 inline std::vector<ReadQuantity> read_quantities(const Scene& scene, const Solution& solution,
                                                  const std::vector<PointValues>& centroids) {
   std::vector<ReadQuantity> out;
+  const double order = scene.is_quadratic() ? 3 : 2;
   static constexpr std::array<const char*, 3> kDirection{"R_r", "R_z", "R_t"};
   for (const CardNodes& card : card_nodes(scene))  // each card's total reaction along what it holds
     for (int d = 0; d < 3; ++d)
       if ((card.code >> d) & 1) {
         double size        = 0;
         const double total = card_reaction(solution, card, d, &size);
-        out.push_back({"reaction " + card.name + " " + kDirection[d], total, Vec2::Zero(), false, 2, size});
+        out.push_back(
+            {"reaction " + card.name + " " + kDirection[d], total, Vec2::Zero(), false, order, size});
       }
 
-  ReadQuantity u{"largest |u|", 0, Vec2::Zero(), true, 2};
+  ReadQuantity u{"largest |u|", 0, Vec2::Zero(), true, order};
   for (Eigen::Index n = 0; n < solution.displacement.rows(); ++n)
     if (const double size = solution.displacement.row(n).norm(); size > u.value)
       u.value = size, u.at = scene.mesh.nodes[static_cast<std::size_t>(n)];

@@ -7,19 +7,24 @@
 // (Scene::given_mid_sides: a curved side of an order-2 mesh).
 //
 // What the scene says on corners, the middle nodes get:
-//   * a condition's prescribed components, where both ends of the side have a condition of the same card
-//     or [[boundary]] prescribing them: the mean of the two ends' values (the side's linear interpolation,
-//     what 4-corner cells saw), with that card's amplitude, reported with that card's reactions. A side
-//     held by two cards at its two ends only (the cards meet at a corner) gets neither. Forces stay on the
-//     nodes they name: a nodal force is a ring load there, not a load spread along a side;
+//   * each component that the conditions in force at both ends of the side prescribe (the last card or
+//     [[boundary]] setting it there: NodalCondition::sets): the mean of the two ends' values (the side's
+//     linear interpolation, what 4-corner cells saw), with the later of the two conditions' card (its
+//     reactions) and amplitude; a side held node by node, one card a node, is held along its length too.
+//     A component a later card frees at one end (a force, or another card's free component) is free in the
+//     middle. Forces stay on the nodes they name: a nodal force is a ring load there, not a load spread
+//     along a side;
 //   * the temperature: the field's points evaluated at the node, or the mean of the side's ends;
 //   * SAAC3X's faces: a side with both ends on a face has its middle on it.
 // Edge loads name their side by its corners, as before. Gap elements and contact are refused: a gap pair
 // joins two nodes, which a quadratic side's middle node does not fit (core/combinations.hpp).
+#include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "gapfe/core/error.hpp"
@@ -29,25 +34,38 @@ namespace gapfe {
 
 namespace detail {
 
-/// The conditions the middle node `mid` of side (a, b) gets (see above): per card that has a condition on
-/// both ends prescribing a common component, one condition, appended to `out` with its card and amplitude.
-/// `by_node[n]`: the indices into s.conditions of node n's conditions, in order.
-inline void side_conditions(const Scene& s, const std::vector<std::vector<int>>& by_node, int a, int b,
-                            int mid, std::vector<std::array<int, 3>>& out,
-                            std::vector<NodalCondition>& made) {
-  const auto card = [&](int k) { return s.condition_card.empty() ? 0 : s.condition_card[k]; };
-  for (const int ka : by_node[static_cast<std::size_t>(a)])
-    for (const int kb : by_node[static_cast<std::size_t>(b)]) {
-      if (card(ka) != card(kb)) continue;
-      const NodalCondition &ca = s.conditions[ka], &cb = s.conditions[kb];
-      const int code = ca.code & cb.code & ca.sets & cb.sets;
-      if (code == 0) continue;
-      NodalCondition c{mid, code, {}, code};
-      for (int comp = 0; comp < 3; ++comp)
-        if (c.prescribed(comp)) c.value[comp] = 0.5 * (ca.value[comp] + cb.value[comp]);
-      out.push_back({card(ka), ka, static_cast<int>(made.size())});
-      made.push_back(c);
-    }
+/// Per corner node and component, the condition in force there (the last that sets it, NodalCondition::sets):
+/// its index into Scene::conditions, or -1 where none does.
+inline std::vector<std::array<int, 3>> conditions_in_force(const Scene& s, int corners) {
+  std::vector<std::array<int, 3>> in_force(static_cast<std::size_t>(corners), {-1, -1, -1});
+  for (std::size_t k = 0; k < s.conditions.size(); ++k) {
+    const NodalCondition& c = s.conditions[k];
+    for (int comp = 0; comp < 3; ++comp)
+      if ((c.sets >> comp) & 1) in_force[static_cast<std::size_t>(c.node)][comp] = static_cast<int>(k);
+  }
+  return in_force;
+}
+
+/// The middle node `mid` of side (a, b) gets component k where the conditions in force at both ends prescribe
+/// it: the mean of their values, with the later condition's card and amplitude (the same condition's, for a
+/// side inside one card's nodes). One condition per card, appended to `made` with the corner condition whose
+/// card and amplitude it takes.
+inline void side_conditions(const Scene& s, const std::vector<std::array<int, 3>>& in_force, int a, int b,
+                            int mid, std::vector<std::pair<NodalCondition, int>>& made) {
+  const std::size_t first = made.size();
+  for (int comp = 0; comp < 3; ++comp) {
+    const int ka = in_force[static_cast<std::size_t>(a)][comp],
+              kb = in_force[static_cast<std::size_t>(b)][comp];
+    if (ka < 0 || kb < 0 || !s.conditions[ka].prescribed(comp) || !s.conditions[kb].prescribed(comp))
+      continue;
+    const int from    = std::max(ka, kb);
+    const auto card   = [&](int k) { return s.condition_card.empty() ? 0 : s.condition_card[k]; };
+    const double mean = 0.5 * (s.conditions[ka].value[comp] + s.conditions[kb].value[comp]);
+    auto it           = made.begin() + static_cast<std::ptrdiff_t>(first);
+    while (it != made.end() && card(it->second) != card(from)) ++it;
+    if (it == made.end()) it = made.insert(it, {NodalCondition{mid, 0, {}, 0}, from});
+    it->first.code |= 1 << comp, it->first.sets |= 1 << comp, it->first.value[comp] = mean;
+  }
 }
 
 }  // namespace detail
@@ -58,9 +76,12 @@ inline void side_conditions(const Scene& s, const std::vector<std::vector<int>>&
 inline void make_quadratic(const ModelDescription& d, Scene& s) {
   if (!s.needs.gaps.empty())
     throw InputError(
-        "element = quad8: the model has gap elements (" + s.needs.gaps.front() +
-        "), and contact runs on 4-corner cells (element = quad4bbar, quad4 or legacy): a gap pair "
-        "joins two nodes, which a quadratic side's middle node does not fit");
+        std::string(s.given_mid_sides.empty() ? "element = quad8"
+                                              : "the mesh is of order 2 (its cells have middle nodes), which "
+                                                "runs as element = quad8 (mesh with Mesh.ElementOrder = 1)") +
+        ": the model has gap elements (" + s.needs.gaps.front() +
+        "), and contact runs on 4-corner cells (element = quad4bbar, quad4 or legacy): a gap pair joins two "
+        "nodes, which a quadratic side's middle node does not fit");
   const int corners = s.mesh.node_count();
   std::unordered_map<std::uint64_t, int> middle_of;  // side (lesser corner, greater) -> its middle node
   std::vector<std::array<int, 3>> sides;             // (a, b, middle)
@@ -74,7 +95,7 @@ inline void make_quadratic(const ModelDescription& d, Scene& s) {
         given != s.given_mid_sides.end() ? given->second : 0.5 * (s.mesh.nodes[a] + s.mesh.nodes[b]);
     const int n = s.mesh.node_count();
     s.mesh.nodes.push_back(at), s.grid.nodes.push_back(at);
-    s.grid.node_ij.push_back({0, 0}), s.grid.placed.push_back(1);
+    s.grid.node_ij.push_back({0, 0}), s.grid.placed.push_back(0);  // no card placed it
     middle_of.emplace(key, n), sides.push_back({a, b, n});
     return n;
   };
@@ -94,19 +115,14 @@ inline void make_quadratic(const ModelDescription& d, Scene& s) {
   q.nodes = s.mesh.nodes;
   s.given_mid_sides.clear();
 
-  // Conditions: per card, in the cards' order after every corner's, so a later card wins at a middle node
-  // as it does at a corner (NodalCondition::sets).
-  std::vector<std::vector<int>> by_node(static_cast<std::size_t>(corners));
-  for (std::size_t k = 0; k < s.conditions.size(); ++k)
-    by_node[static_cast<std::size_t>(s.conditions[k].node)].push_back(static_cast<int>(k));
-  std::vector<std::array<int, 3>> order;  // (card, the corner condition it copies, index into made)
-  std::vector<NodalCondition> made;
-  for (const auto& [a, b, m] : sides) detail::side_conditions(s, by_node, a, b, m, order, made);
-  std::stable_sort(order.begin(), order.end(), [](const auto& x, const auto& y) { return x[0] < y[0]; });
+  // Conditions: after every corner's; a middle node's never overlap (one per component at most).
+  const std::vector<std::array<int, 3>> in_force = detail::conditions_in_force(s, corners);
+  std::vector<std::pair<NodalCondition, int>> made;  // (condition, the corner condition whose card it takes)
+  for (const auto& [a, b, m] : sides) detail::side_conditions(s, in_force, a, b, m, made);
   const bool cards = !s.condition_card.empty(), amplitudes = !s.condition_amplitude.empty();
-  for (const auto& [card, from, k] : order) {
-    s.conditions.push_back(made[static_cast<std::size_t>(k)]);
-    if (cards) s.condition_card.push_back(card);
+  for (const auto& [c, from] : made) {
+    s.conditions.push_back(c);
+    if (cards) s.condition_card.push_back(s.condition_card[static_cast<std::size_t>(from)]);
     if (amplitudes) s.condition_amplitude.push_back(s.condition_amplitude[static_cast<std::size_t>(from)]);
   }
 

@@ -218,7 +218,9 @@ inline std::string field_svg(const VtuData& d, const PlotField& f, const std::st
                             detail::label_number(factor) + "; grey: undeformed)",
                         detail::SvgCanvas::Margins{90, 200, 40, 70}, 320);
   // ---- the undeformed boundary, thin and grey: cell sides that belong to one cell only
-  const auto corners_of = [](const std::vector<int>& cell) { return cell.size() == 8 ? 4 : cell.size(); };
+  const auto corners_of = [](const std::vector<int>& cell) {  // quadratic cells: corners first
+    return cell.size() == 8 ? 4 : cell.size() == 6 ? 3 : cell.size();
+  };
   {
     const auto sides = detail::outline_sides(d.cells.size(),
                                              [&](std::size_t e, auto&& side) {

@@ -155,7 +155,7 @@ void write_vtu(const std::string& path, const Mesh<NodesPerCell>& m, const Solut
                const std::vector<PointValues>& centroids) {
   VtuCells cells;
   for (const auto& c : m.cells) cells.add(c.data(), static_cast<int>(c.size()));
-  for (const auto& c : m.triangles) cells.add(c.data(), 3);
+  for (const auto& c : m.triangles) cells.add(c.data(), static_cast<int>(c.size()));
   std::vector<VtuField> point{{"displacement", 3, {}}, {"reaction", 3, {}}};
   for (int n = 0; n < m.node_count(); ++n)
     for (int c = 0; c < 3; ++c)

@@ -242,10 +242,10 @@ ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const V
     const Vec2 origin = x.row(0).transpose();
     // Linear cells: the cell's sums about its first corner, moved to each corner's patch.
     detail::PatchSums<S, P> own;
-    const double side =
-        std::min((x.row(1) - x.row(0)).norm(), (x.row(std::min(E::kNodes, 4) - 1) - x.row(0)).norm());
-    noise = std::max(noise, lp.stiffness.diagonal().maxCoeff() *
-                                (largest_u / side + lp.thermal_strain.cwiseAbs().maxCoeff()));
+    const double side = std::min((x.row(E::kEdges.front().back()) - x.row(0)).norm(),
+                                 (x.row(E::kEdges.back().front()) - x.row(0)).norm());
+    noise             = std::max(noise, lp.stiffness.diagonal().maxCoeff() *
+                                            (largest_u / side + lp.thermal_strain.cwiseAbs().maxCoeff()));
     for (int q = 0; q < E::kStiffnessPoints; ++q) {
       const PointValues& v = points.value[q];
       const auto slot      = first + static_cast<std::size_t>(q);
