@@ -9,7 +9,7 @@ the Lame tube's closed form (a = 100, b = 200, bore pressure 100, plane strain; 
     same displacements at the shared nodes;
   * the thick sphere on order-2 meshes, whose middle nodes on the bore lie on its circle: u_R against its
     closed form at every node, 5 times closer than Quad4 on the order-1 mesh of the same size;
-  * card decks with element = quad8 on I-J grids of 4, 8 and 16 cells through the wall: third order too, the
+  * card decks with element = quad8 on I-J grids of 4, 8, 16 and 32 cells through the wall: third order too, the
     grid's corners keeping their numbers and the middle nodes numbered after them;
   * a plastic tube as a deck with element = quad8 (pressure 300, below the limit 320) agrees with quad4bbar's
     bore u_r to 1%;

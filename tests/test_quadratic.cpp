@@ -3,6 +3,7 @@
 // forms: tests/check_quadratic.py.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -27,7 +28,7 @@ const std::filesystem::path kSource = GAPFE_SOURCE_DIR;
 
 /// examples/decks/thick_tube.deck (9 x 3 grid, 100 <= r <= 200, 0 <= z <= 10; bc1 holds u_z on J = 1, bc2 on
 /// J = 3) with a third card: u_r = 0.001 on the column I = 9, which meets bc1 at the corner (9, 1).
-std::string tube_with_outer_card() {
+std::string tube_with_outer_card(int code = 1) {
   std::string text   = read_input((kSource / "examples/decks/thick_tube.deck").string(), "deck");
   const auto replace = [&](const std::string& from, const std::string& to) {
     const auto at = text.find(from);
@@ -37,7 +38,8 @@ std::string tube_with_outer_card() {
   replace("    9    3    4    2    1", "    9    3    4    3    1");
   replace("    1    9    3    3         2       0.0       0.0       0.0\n",
           "    1    9    3    3         2       0.0       0.0       0.0\n"
-          "    9    9    1    3         1     0.001       0.0       0.0\n");
+          "    9    9    1    3         " +
+              std::to_string(code) + "     0.001       0.0       0.0\n");
   return text;
 }
 
@@ -89,6 +91,11 @@ TEST_CASE(
   // Along I = 9: bc3's u_r = 0.001 at both ends.
   CHECK(conditions_of(s, at(9, 1, 9, 2)) == Conditions{{2, 1, {0.001, 0, 0}}});
   CHECK(conditions_of(s, at(9, 2, 9, 3)) == Conditions{{2, 1, {0.001, 0, 0}}});
+  // bc3 holding z as well (code 3): the side (8, 1)-(9, 1) is held in z, its reaction bc1's, whose nodes both
+  // ends are (bc3 overrides bc1 only at the corner).
+  const Scene held = build_scene(read_deck(tube_with_outer_card(3), {{"element", "quad8"}}));
+  CHECK(conditions_of(held, middle.at({held.grid.node(8, 1), held.grid.node(9, 1)})) ==
+        Conditions{{0, 2, {0, 0, 0}}});
   // Inside and along the bore: none.
   CHECK(conditions_of(s, at(1, 1, 1, 2)).empty());
   CHECK(conditions_of(s, at(4, 2, 5, 2)).empty());
@@ -118,6 +125,51 @@ TEST_CASE("[quadratic] a side held node by node, one card a node, is held along 
     CHECK(conditions_of(s, middle) == Conditions{{i, 2, {0, 0, 0}}});
   }
 }
+
+#ifdef GAPFE_HAS_SCENE
+TEST_CASE("[quadratic] a side between two load histories: the moving end's, and refused when both move") {
+  // lame_quad8_h25.msh (order 2): "top" (z = 50) moved along z under a history, "outer" (r = 200) held in z
+  // by a later table without one, so at their corner (200, 50) "outer" is in force.
+  const auto mesh = [](const std::string& name) {
+    return read_input((kSource / "tests/data/scenes" / name).string(), "mesh");
+  };
+  const auto scene = [](const std::string& outer) {
+    return "title = \"histories\"\n[mesh]\nfile = \"lame_quad8_h25.msh\"\n[steps]\ncount = 2\n"
+           "[materials.steel]\nE = 200000.0\nnu = 0.3\n[[boundary]]\ngroups = \"bottom\"\nfix = [\"z\"]\n"
+           "[[boundary]]\ngroups = \"top\"\ndisplacement = {z = 0.1}\namplitude = [[1, 0.25], [2, 1.0]]\n"
+           "[[boundary]]\ngroups = \"outer\"\n" +
+           outer;
+  };
+  const SceneModel m = read_scene(scene("fix = [\"z\"]\n"), mesh);
+  const Scene& s     = m.scene;
+  REQUIRE(s.is_quadratic());
+  // The middle node of the top's last side: z = 50, the greatest r below 200.
+  int middle = -1;
+  for (int n = s.quadratic.node_count() - 1; n >= 0; --n)
+    if (std::abs(s.mesh.nodes[n](1) - 50) < 1e-9 && s.mesh.nodes[n](0) < 200 - 1e-9 &&
+        (middle < 0 || s.mesh.nodes[n](0) > s.mesh.nodes[middle](0)))
+      middle = n;
+  bool is_middle = false;  // a cell's middle node, not a corner
+  for (const auto& c : s.quadratic.cells)
+    for (int k = 4; k < 8; ++k) is_middle = is_middle || c[k] == middle;
+  REQUIRE(is_middle);
+  int found = 0, top_history = -1;
+  for (std::size_t k = 0; k < s.conditions.size(); ++k)
+    if (s.conditions[k].node != middle && s.condition_amplitude[k] >= 0)
+      top_history = s.condition_amplitude[k];
+  for (std::size_t k = 0; k < s.conditions.size(); ++k)
+    if (s.conditions[k].node == middle) {
+      ++found;
+      CHECK(s.conditions[k].code == 2);
+      CHECK(s.conditions[k].value[1] == doctest::Approx(0.05));  // (0.1 + 0) / 2, under the top's history
+      CHECK(s.condition_amplitude[k] == top_history);
+    }
+  CHECK(found == 1);
+  CHECK(top_history >= 0);
+  CHECK_THROWS_WITH_AS(read_scene(scene("displacement = {z = 0.2}\n"), mesh),
+                       doctest::Contains("two different load histories"), InputError);
+}
+#endif
 
 TEST_CASE("[quadratic] clockwise order-2 cells are turned with their middle nodes") {
   // A 6-node triangle and an 8-node quadrangle, both clockwise, in MSH 2.2.

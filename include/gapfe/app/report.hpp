@@ -54,7 +54,7 @@ inline void warn_locking(const Plan& p, const ModelDescription& d, std::ostream&
         << " (material " << material << "): "
         << (quad4 ? "the bilinear quad locks near incompressibility and its displacements come out too small"
                   : "the quadratic cells' stresses are poor near incompressibility")
-        << "; use element = quad4bbar or legacy\n";
+        << "; use element = quad4bbar or legacy" << (quad8 ? " (on an order-1 mesh)" : "") << "\n";
 }
 
 /// Up to this many load steps the log lists a per-step figure (the relative residual, the friction cone)

@@ -51,11 +51,12 @@ using Laws =
 using Policies  = Axis<NoContact, Saac, ActiveSet, AugmentedLagrangian>;
 using Frictions = Axis<NoFriction, Proportional, Extended, Coulomb>;
 
-/// The rows the default options reach: the element `auto` picks (the legacy quad for elastic models,
-/// quad4bbar for plastic ones), plasticity = return-mapping, and contact = saac with the seed's slip models
-/// or none; so every deck of the seed's codes (SAAS to SAAC3X) runs. A build with GAPFE_VARIANTS=defaults
-/// (GAPFE_APP_ALL_VARIANTS 0) compiles only these, 24 rows of the 170, for a first build in a fraction of the
-/// time; options past them are refused before the run, naming the cmake setting that compiles them.
+/// The rows the default options reach: the element `auto` picks on decks and order-1 meshes (the legacy quad
+/// for elastic models, quad4bbar for plastic ones; an order-2 mesh's quad8 is not among them), plasticity =
+/// return-mapping, and contact = saac with the seed's slip models or none; so every deck of the seed's codes
+/// (SAAS to SAAC3X) runs. A build with GAPFE_VARIANTS=defaults (GAPFE_APP_ALL_VARIANTS 0) compiles only
+/// these, 24 rows of the 170, for a first build in a fraction of the time; options past them are refused
+/// before the run, naming the cmake setting that compiles them.
 template <class Elem, class Law, class Policy, class Friction>
 constexpr bool default_options_row() {
   const Combination c = combination_of<Law, Elem, Policy, Friction>();

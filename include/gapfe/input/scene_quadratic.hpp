@@ -9,11 +9,11 @@
 // What the scene says on corners, the middle nodes get:
 //   * each component that the conditions in force at both ends of the side prescribe (the last card or
 //     [[boundary]] setting it there: NodalCondition::sets): the mean of the two ends' values (the side's
-//     linear interpolation, what 4-corner cells saw), with the later of the two conditions' card (its
-//     reactions) and amplitude; a side held node by node, one card a node, is held along its length too.
-//     A component a later card frees at one end (a force, or another card's free component) is free in the
-//     middle. Forces stay on the nodes they name: a nodal force is a ring load there, not a load spread
-//     along a side;
+//     linear interpolation, what 4-corner cells saw), under their load history (detail::middle_value for
+//     two), its reaction counted for the card that holds both ends (else the later one); a side held node
+//     by node, one card a node, is held along its length too. A component a later card frees at one end
+//     (a force, or another card's free component) is free in the middle. Forces stay on the nodes they name:
+//     a nodal force is a ring load there, not a load spread along a side;
 //   * the temperature: the field's points evaluated at the node, or the mean of the side's ends;
 //   * SAAC3X's faces: a side with both ends on a face has its middle on it.
 // Edge loads name their side by its corners, as before. Gap elements and contact are refused: a gap pair
@@ -22,6 +22,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -46,25 +47,59 @@ inline std::vector<std::array<int, 3>> conditions_in_force(const Scene& s, int c
   return in_force;
 }
 
-/// The middle node `mid` of side (a, b) gets component k where the conditions in force at both ends prescribe
-/// it: the mean of their values, with the later condition's card and amplitude (the same condition's, for a
-/// side inside one card's nodes). One condition per card, appended to `made` with the corner condition whose
-/// card and amplitude it takes.
-inline void side_conditions(const Scene& s, const std::vector<std::array<int, 3>>& in_force, int a, int b,
-                            int mid, std::vector<std::pair<NodalCondition, int>>& made) {
+/// What a middle node takes from a side's ends for one component: its value, the load history it follows
+/// (an index into LoadProgram::amplitudes, -1: the step count) and the card its reaction counts for.
+struct MiddleValue {
+  double value  = 0;
+  int amplitude = -1, card = 0;
+};
+
+/// Component `comp` of the middle node of side (a, b), when the conditions in force at both ends prescribe it
+/// (`in_force`, conditions_in_force): the mean of their values. Its load history is theirs; where they
+/// differ, the one of the end whose value is not zero (a side from a held point to a moved one), and
+/// InputError when both are (a mean of two histories is neither). Its reactions count for a card with a
+/// condition prescribing it at both ends (the one that holds the side, when a later card overrides it at a
+/// corner), else the later condition's card. `by_node[n]`: node n's conditions, in order.
+inline std::optional<MiddleValue> middle_value(const Scene& s,
+                                               const std::vector<std::array<int, 3>>& in_force,
+                                               const std::vector<std::vector<int>>& by_node, int a, int b,
+                                               int comp) {
+  const int ka = in_force[static_cast<std::size_t>(a)][comp],
+            kb = in_force[static_cast<std::size_t>(b)][comp];
+  if (ka < 0 || kb < 0 || !s.conditions[ka].prescribed(comp) || !s.conditions[kb].prescribed(comp)) return {};
+  const auto card      = [&](int k) { return s.condition_card.empty() ? 0 : s.condition_card[k]; };
+  const auto amplitude = [&](int k) { return s.condition_amplitude.empty() ? -1 : s.condition_amplitude[k]; };
+  const double va = s.conditions[ka].value[comp], vb = s.conditions[kb].value[comp];
+  MiddleValue m{0.5 * (va + vb), amplitude(std::max(ka, kb)), card(std::max(ka, kb))};
+  if (amplitude(ka) != amplitude(kb)) {
+    if (va != 0 && vb != 0)
+      throw InputError("element = quad8: the side from (r, z) = (" + number_text(s.mesh.nodes[a](0)) + ", " +
+                       number_text(s.mesh.nodes[a](1)) + ") to (" + number_text(s.mesh.nodes[b](0)) + ", " +
+                       number_text(s.mesh.nodes[b](1)) +
+                       ") has a displacement prescribed at both ends under two different load histories, "
+                       "which its middle node cannot follow; give both ends one history");
+    m.amplitude = amplitude(va != 0 ? ka : kb);
+  }
+  for (const int k : by_node[static_cast<std::size_t>(a)])  // the latest card holding both ends
+    if (s.conditions[k].prescribed(comp))
+      for (const int l : by_node[static_cast<std::size_t>(b)])
+        if (card(l) == card(k) && s.conditions[l].prescribed(comp)) m.card = card(k);
+  return m;
+}
+
+/// The conditions the middle node `mid` of side (a, b) gets, one per (card, load history), appended to `made`
+/// with their card and load history.
+inline void side_conditions(const Scene& s, const std::vector<std::array<int, 3>>& in_force,
+                            const std::vector<std::vector<int>>& by_node, int a, int b, int mid,
+                            std::vector<std::pair<NodalCondition, MiddleValue>>& made) {
   const std::size_t first = made.size();
   for (int comp = 0; comp < 3; ++comp) {
-    const int ka = in_force[static_cast<std::size_t>(a)][comp],
-              kb = in_force[static_cast<std::size_t>(b)][comp];
-    if (ka < 0 || kb < 0 || !s.conditions[ka].prescribed(comp) || !s.conditions[kb].prescribed(comp))
-      continue;
-    const int from    = std::max(ka, kb);
-    const auto card   = [&](int k) { return s.condition_card.empty() ? 0 : s.condition_card[k]; };
-    const double mean = 0.5 * (s.conditions[ka].value[comp] + s.conditions[kb].value[comp]);
-    auto it           = made.begin() + static_cast<std::ptrdiff_t>(first);
-    while (it != made.end() && card(it->second) != card(from)) ++it;
-    if (it == made.end()) it = made.insert(it, {NodalCondition{mid, 0, {}, 0}, from});
-    it->first.code |= 1 << comp, it->first.sets |= 1 << comp, it->first.value[comp] = mean;
+    const std::optional<MiddleValue> m = middle_value(s, in_force, by_node, a, b, comp);
+    if (!m) continue;
+    auto it = made.begin() + static_cast<std::ptrdiff_t>(first);
+    while (it != made.end() && (it->second.card != m->card || it->second.amplitude != m->amplitude)) ++it;
+    if (it == made.end()) it = made.insert(it, {NodalCondition{mid, 0, {}, 0}, *m});
+    it->first.code |= 1 << comp, it->first.sets |= 1 << comp, it->first.value[comp] = m->value;
   }
 }
 
@@ -117,13 +152,16 @@ inline void make_quadratic(const ModelDescription& d, Scene& s) {
 
   // Conditions: after every corner's; a middle node's never overlap (one per component at most).
   const std::vector<std::array<int, 3>> in_force = detail::conditions_in_force(s, corners);
-  std::vector<std::pair<NodalCondition, int>> made;  // (condition, the corner condition whose card it takes)
-  for (const auto& [a, b, m] : sides) detail::side_conditions(s, in_force, a, b, m, made);
+  std::vector<std::vector<int>> by_node(static_cast<std::size_t>(corners));
+  for (std::size_t k = 0; k < s.conditions.size(); ++k)
+    by_node[static_cast<std::size_t>(s.conditions[k].node)].push_back(static_cast<int>(k));
+  std::vector<std::pair<NodalCondition, detail::MiddleValue>> made;
+  for (const auto& [a, b, m] : sides) detail::side_conditions(s, in_force, by_node, a, b, m, made);
   const bool cards = !s.condition_card.empty(), amplitudes = !s.condition_amplitude.empty();
-  for (const auto& [c, from] : made) {
+  for (const auto& [c, m] : made) {
     s.conditions.push_back(c);
-    if (cards) s.condition_card.push_back(s.condition_card[static_cast<std::size_t>(from)]);
-    if (amplitudes) s.condition_amplitude.push_back(s.condition_amplitude[static_cast<std::size_t>(from)]);
+    if (cards) s.condition_card.push_back(m.card);
+    if (amplitudes) s.condition_amplitude.push_back(m.amplitude);
   }
 
   // Temperatures: the field at the node, or the side's mean.

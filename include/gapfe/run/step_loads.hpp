@@ -134,7 +134,7 @@ class StepLoads {
     const auto drive = [&](int n, int code, double u_z) {
       const auto it    = last.find(n);
       NodalCondition c = it != last.end() ? it->second : NodalCondition{n, 0, {}};
-      c.code |= code;
+      c.code |= code, c.sets |= code;  // a middle node's condition sets only what it holds
       c.value[dof::z] = u_z;
       if (code & 4) c.value[dof::theta] = 0;
       t.conditions.push_back(c);
