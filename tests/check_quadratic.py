@@ -11,6 +11,7 @@ the Lame tube's closed form (a = 100, b = 200, bore pressure 100, plane strain; 
     closed form at every node, 5 times closer than Quad4 on the order-1 mesh of the same size;
   * card decks with element = quad8 on I-J grids of 4, 8, 16 and 32 cells through the wall: third order too, the
     grid's corners keeping their numbers and the middle nodes numbered after them;
+  * SAAC3X's driven faces with a BC card on one: every node of both faces driven, the middle nodes too;
   * a plastic tube as a deck with element = quad8 (pressure 300, below the limit 320) agrees with quad4bbar's
     bore u_r to 1%;
   * the refusals: element = quad4 on an order-2 mesh, element = quad8 with gap elements, --estimate on an
@@ -193,6 +194,28 @@ def plastic():
     check(abs(uq / ub - 1) < 0.01, f"plastic quad8: bore u_r {uq:.6e} against quad4bbar's {ub:.6e}")
 
 
+def saac3x_faces():
+    """SAAC3X's faces (docs/decks.md "SAAC3X") with a BC card on the bottom face (u_r = 0) and element = quad8:
+    the command drives every node of both faces, the faces' middle nodes too (their conditions from the card
+    hold u_r only, and the drive adds u_z and, at the bottom, u_theta), so at the end every top node has the
+    top's u_z and every bottom node u_z = u_theta = u_r = 0."""
+    text = deckgen.saac3x_deck(steps=10)
+    text = text.replace(deckgen.mesh_control(2, 2, 4, 0, 1), deckgen.mesh_control(2, 2, 4, 1, 1))
+    text = text.replace(deckgen.block(1, 1, 2, 1, 2), deckgen.bc(1, 2, 1, 1, 1) + "\n" + deckgen.block(1, 1, 2, 1, 2))
+    deck = work / "saac3x_quad8.deck"
+    deck.write_text(text.replace("$ format = saac3", "$ format = saac3\n$ element = quad8"))
+    out, log, _ = run(deck, deck.stem)
+    check("element quad8" in log, "saac3x quad8: the log names element quad8")
+    rows = [line.split(",") for line in (out / "nodes.csv").read_text().splitlines()[1:]]
+    last = max(int(r[0]) for r in rows)
+    rows = [r for r in rows if int(r[0]) == last]
+    top = [float(r[9]) for r in rows if abs(float(r[7]) - 1.0) < 1e-12]
+    bottom = [(float(r[8]), float(r[9]), float(r[10])) for r in rows if abs(float(r[7])) < 1e-12]
+    check(len(top) == 3 and len(bottom) == 3, f"saac3x quad8: {len(top)} top and {len(bottom)} bottom nodes, not 3")
+    check(top[0] > 0 and max(top) - min(top) <= 1e-12 * top[0], f"saac3x quad8: the top's u_z differ: {top}")
+    check(all(abs(v) <= 1e-15 for node in bottom for v in node), f"saac3x quad8: the bottom moves: {bottom}")
+
+
 def refusals():
     scene = work / "order2_quad4.toml"
     scene.write_text(scene_text("lame_quad8_h25.msh", '[options]\nelement = "quad4"'))
@@ -212,6 +235,7 @@ def refusals():
 gmsh_order2()
 sphere()
 decks()
+saac3x_faces()
 plastic()
 refusals()
 finish()
