@@ -37,6 +37,8 @@ import shutil
 import subprocess
 import sys
 
+import meshio
+
 root = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(root / "bench"))
 import deckgen  # noqa: E402  (the decks' one writer)
@@ -240,7 +242,9 @@ def reentrant_corner():
     check(mises.get("status") == "not_converging" and mises.get("error") == "",
           f"stepped bar: the corner's stress reported as not converging: {mises}")
     where = (float(mises.get("r", "nan")), float(mises.get("z", "nan")))
-    check(math.hypot(where[0] - 100.0, where[1] - 50.0) < 25.0, f"stepped bar: the largest stress at {where}, "
+    # The recovered peak sits two cells up the re-entrant face at every spacing (z = 50 + 2h for h = 12.5,
+    # 6.25, 3.125, 1.5625), closing on the corner as h does; a node's planes near a singular point are poor.
+    check(math.hypot(where[0] - 100.0, where[1] - 50.0) <= 25.0 + 1e-9, f"stepped bar: the largest stress at {where}, "
                                                                  "not within two cells of the corner (100, 50)")
     check(any("largest von Mises" in line and "not converging" in line for line in log.splitlines()),
           "stepped bar: the log's line for the stress")
@@ -327,15 +331,20 @@ def accuracy():
     mises = math.sqrt(0.5 * sum((sigma[k] - sigma[(k + 1) % 3]) ** 2 for k in range(3)))
     axial = 2 * math.pi * NU * P * A * A
     cube = B ** 3 - A ** 3
-    cases = [(work / "lame_quad4.deck", 1e-3,
-              {"reaction bc1 R_z": axial, "reaction bc2 R_z": axial, "largest von Mises": mises,
-               "largest |u|": (1 + NU) / E * s * ((1 - 2 * NU) * A + B * B / A)}),
+    lame_truth = {"reaction bc1 R_z": axial, "reaction bc2 R_z": axial, "largest von Mises": mises,
+                  "largest |u|": (1 + NU) / E * s * ((1 - 2 * NU) * A + B * B / A)}
+    # The Lame deck with the element left to gapfe (the legacy cell): the ladder may raise the order.
+    auto = work / "lame_auto.deck"
+    auto.write_text(deckgen.tube_deck(9, 3, extension=("format = elastic",)))
+    cases = [(work / "lame_quad4.deck", 1e-3, lame_truth), (auto, 1e-3, lame_truth),
              (work / "sphere_quad.toml", 1e-2,
               {"reaction bottom R_z": P * math.pi * A * A, "largest von Mises": 3 * P * B ** 3 / (2 * cube),
                "largest |u|": P * A / (E * cube) * ((1 - 2 * NU) * A ** 3 + (1 + NU) * B ** 3 / 2)})]
+    runs = {}
     for model, tolerance, truth in cases:
         name = f"accuracy_{model.stem}"
         out, log, _ = run(model, name, "--accuracy", str(tolerance))
+        runs[name] = out, log
         check("accuracy: reached on the mesh at" in log, f"{name}: reached: {log[-400:]}")
         rows = estimates(out)
         for quantity, exact in truth.items():
@@ -344,8 +353,34 @@ def accuracy():
             print(f"{name}: {quantity} = {value:.8g}, true relative error {error:.3g} (target {tolerance:g})")
             check(error <= tolerance, f"{name}: {quantity}: true error {error:.3g} above {tolerance:g}")
         nodes = sum(1 for _ in open(out / "nodes.csv")) - 1
-        sizes = [int(line.split()[3]) for line in log.splitlines() if line.startswith("accuracy: mesh ")]
+        sizes = [int(line.split(": ")[2].split()[0]) for line in log.splitlines()
+                 if line.startswith("accuracy: mesh ")]
         check(nodes == sizes[-1], f"{name}: the files are the last mesh's ({nodes} nodes, path {sizes})")
+    # The order choice: a deck that names its element keeps it; the one that leaves it to gapfe is probed in
+    # quad8 after two meshes and, to 1e-3, goes on in quad8 (fewer meshes: its peak stress 7 times closer),
+    # its files quad8's; to 1e-2 the legacy ladder ends on its third mesh, so nothing is probed.
+    _, log = runs["accuracy_lame_quad4"]
+    check("the cells' order stays: the model chooses its element" in log and "quad8 on meshes" not in log,
+          f"an element the deck names is kept: {log[-500:]}")
+    # Which ladder is cheaper here is close (the probe's lines: quad8 1 more mesh against legacy's 2, both
+    # about 0.013 s), so the test holds the choice to its own foreseen times, and the rungs to what came.
+    out, log = runs["accuracy_lame_auto"]
+    probe = re.search(r"quad8 on meshes 0 and 1: .*foreseen to the target: (\d+) more meshe?s? \(([\d.e+-]+) s\) "
+                      r"against (\d+) \(([\d.e+-]+) s\) in legacy; (raising|keeping) the order", log)
+    if check(probe is not None, f"the legacy deck to 1e-3: quad8 probed: {log[-900:]}"):
+        raised = probe.group(5) == "raising"
+        check(raised == (float(probe.group(2)) < float(probe.group(4))), f"the cheaper foreseen: {probe.group(0)}")
+        check((probe.group(1), probe.group(3)) == ("1", "2"), f"the meshes still needed: {probe.group(0)}")
+        reached = "1/4 of the spacing, quadratic cells (quad8)" if raised else "1/8 of the spacing;"
+        check(f"accuracy: reached on the mesh at {reached}" in log, f"reached as foreseen: {log[-600:]}")
+        cells = {block.type for block in meshio.read(out / "step_0001.vtu").cells}
+        check(cells == ({"quad8"} if raised else {"quad"}), f"the last run's files are its cells': {cells}")
+    _, log, _ = run(auto, "accuracy_loose", "--accuracy", "1e-2")
+    check("quad8 on meshes" not in log and "reached on the mesh at 1/4 of the spacing;" in log,
+          f"the legacy deck to 1e-2: no probe: {log[-600:]}")
+    _, log, _ = run(work / "two_tubes.deck", "accuracy_gaps", "--accuracy", "1e-1")
+    check("the cells' order stays: gap elements do not fit quadratic sides" in log,
+          f"gap elements keep the order: {log[-600:]}")
     out, log, _ = run(work / "plastic_steps.deck", "accuracy_plastic", "--accuracy", "1e-2")
     check("accuracy: load-step split 2" in log and "with every load step in" in log,
           f"plastic tube: the load steps split after the mesh: {log[-600:]}")

@@ -28,6 +28,7 @@
 #include "gapfe/output/step_files.hpp"
 #include "gapfe/output/vtu_writer.hpp"
 #include "gapfe/post/gather.hpp"
+#include "gapfe/post/peak_stress.hpp"
 #include "gapfe/problem/model.hpp"
 #include "gapfe/run/scene_run.hpp"
 #include "gapfe/run/step_loads.hpp"

@@ -19,8 +19,10 @@
 #include <ostream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "gapfe/app/accuracy_order.hpp"
 #include "gapfe/app/error_bars.hpp"
 #include "gapfe/app/run.hpp"
 
@@ -103,6 +105,25 @@ inline RungVerdict judge(const std::vector<LevelRun>& rungs, double target, doub
   return v;
 }
 
+/// What the rest of a mesh ladder (`rungs`, two or more, each twice as fine as the one before) is foreseen
+/// to take to reach `tolerance` on three rungs or more: its worst quantity's error shrinking by 2^p a rung (p
+/// the smallest order among those above the target, as judge gives them), each rung's time the last's times
+/// the last two's ratio (at least 4, the nodes' growth). Infinite when a quantity does not converge.
+struct Foreseen {
+  int rungs      = 0;
+  double seconds = 0;
+};
+inline Foreseen foresee(const std::vector<LevelRun>& rungs, double tolerance) {
+  const RungVerdict v = judge(rungs, tolerance, 0.0);
+  if (!v.failed.empty()) return {0, HUGE_VAL};
+  const double halvings =
+      v.worst > tolerance ? std::ceil(std::log2(v.worst / tolerance) / std::max(v.rate, 0.5)) : 0;
+  Foreseen f{static_cast<int>(std::max(halvings, 3.0 - static_cast<double>(rungs.size()))), 0};
+  const double ratio = std::max(4.0, rungs.back().seconds / std::max(rungs[rungs.size() - 2].seconds, 1e-9));
+  for (double next = rungs.back().seconds, k = 0; k < f.rungs; ++k) next *= ratio, f.seconds += next;
+  return f;
+}
+
 /// The line of the path for the last of `rungs`, and its verdict (none for the first).
 inline void log_rung(std::ostream& log, const std::vector<LevelRun>& rungs, const char* what, bool files,
                      const std::optional<RungVerdict>& v) {
@@ -119,13 +140,13 @@ inline void log_rung(std::ostream& log, const std::vector<LevelRun>& rungs, cons
 /// after `rungs` (the first: a run whose files are written, `written` naming it), each run through
 /// `solve(model, files)`; `growth` the factor its nodes grow by a rung (4 for the mesh, 1 for the steps),
 /// `assumed` the order with two rungs (0: each quantity's own). Returns the rung the target was reached on,
-/// the last, whose files are written; throws SolveError naming why it cannot be: the next rung past
-/// `max_nodes` or the time left, a quantity that does not converge on two rungs in a row, or a run that
-/// fails.
+/// the last, whose files are written, or `last_rung` when it gets there first; throws SolveError naming why
+/// it cannot be: the next rung past `max_nodes` or the time left, a quantity that does not converge on two
+/// rungs in a row, or a run that fails.
 template <class Make, class Solve>
 int climb(std::vector<LevelRun>& rungs, Make&& make, Solve&& solve, const AccuracyTarget& target,
           long max_nodes, double growth, double assumed, const char* what, double start_seconds,
-          std::string& written, std::ostream& log) {
+          std::string& written, std::ostream& log, int last_rung = std::numeric_limits<int>::max()) {
   const auto now = [] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
   };
@@ -186,11 +207,58 @@ int climb(std::vector<LevelRun>& rungs, Make&& make, Solve&& solve, const Accura
                          " is refined (a singular point, such as a re-entrant corner or a point load?); the "
                          "files are those of " +
                          written);
+      if (k >= last_rung) return k;
       continue;
     }
     diverging = 0;
-    if (rungs.size() >= 3 && v->worst <= target.tolerance) return k;
+    if ((rungs.size() >= 3 && v->worst <= target.tolerance) || k >= last_rung) return k;
   }
+}
+
+/// The probe of the order choice (app/accuracy_order.hpp), after the mesh's first two rungs, `mesh`:
+/// `order`'s quadratic model on the same two meshes, then both ladders' rest foreseen (foresee), in `log`.
+/// Returns the quadratic rungs and their plan when they are foreseen to reach `tolerance` sooner; nothing
+/// when not, when the linear ladder needs no fourth rung (the probe would cost as much as its third), when
+/// the probe would pass `max_nodes` or `seconds_left` (its meshes about 3 times the linear ones' nodes, its
+/// time about 5 times the second linear run's), or when a quadratic run fails or is refused (said in `log`).
+inline std::optional<std::pair<std::vector<LevelRun>, Plan>> probe_quadratic(
+    const OrderChoice& order, const std::vector<LevelRun>& mesh, const RunRequest& own, double tolerance,
+    long max_nodes, double seconds_left, std::ostream& log) {
+  const Foreseen linear = foresee(mesh, tolerance);
+  if (!order.refine || mesh.size() != 2 || linear.rungs <= 1) return std::nullopt;
+  if (3.0 * static_cast<double>(mesh[1].nodes) > static_cast<double>(max_nodes) ||
+      5 * mesh[1].seconds > seconds_left) {
+    log << "accuracy: quadratic cells not tried (the probe would pass the memory or the time left)\n";
+    return std::nullopt;
+  }
+  std::vector<LevelRun> quadratic;
+  Plan plan;
+  try {
+    for (int k = 0; k < 2; ++k) {
+      SceneModel m = order.refine(k);
+      if (k == 0) {
+        plan = make_plan(m.description, m.scene, own.plan.key.kinematics);
+        check_plan(plan, m.description, m.scene);
+        check_compiled(plan);
+      }
+      quadratic.push_back(run_level(m.description, m.scene, k, finer_plan(m, plan), own.units));
+    }
+  } catch (const std::exception& e) {
+    log << "accuracy: quadratic cells not tried (" << e.what() << ")\n";
+    return std::nullopt;
+  }
+  const Foreseen raised = foresee(quadratic, tolerance);
+  log << "accuracy: quad8 on meshes 0 and 1: " << quadratic[0].nodes << " and " << quadratic[1].nodes
+      << " nodes, " << quadratic[0].seconds + quadratic[1].seconds
+      << " s; foreseen to the target: " << raised.rungs
+      << (raised.rungs == 1 ? " more mesh (" : " more meshes (") << raised.seconds << " s) against "
+      << linear.rungs << " (" << linear.seconds << " s) in " << name_of(own.plan.key.element) << "; "
+      << (raised.seconds < linear.seconds
+              ? "raising the order: the next meshes and the files have 8-node cells"
+              : "keeping the order")
+      << "\n";
+  if (!(raised.seconds < linear.seconds)) return std::nullopt;
+  return std::pair{std::move(quadratic), plan};
 }
 
 /// What `gapfe run --accuracy` leaves: the last run's result (its files in the run's folder), and the error
@@ -209,7 +277,7 @@ struct AccuracyRun {
 inline AccuracyRun reach_accuracy(const Refiner& refine, const RunRequest& own,
                                   std::vector<ReadQuantity> quantities, double own_seconds,
                                   const AccuracyTarget& target, const std::function<void()>& clear_folder,
-                                  std::ostream& log) {
+                                  std::ostream& log, const OrderChoice& order = {}) {
   using clock          = std::chrono::steady_clock;
   const double start   = std::chrono::duration<double>(clock::now().time_since_epoch()).count() - own_seconds;
   const int dofs       = own.plan.key.kinematics == VariantChoice::saga ? 3 : 2;
@@ -224,21 +292,34 @@ inline AccuracyRun reach_accuracy(const Refiner& refine, const RunRequest& own,
                                : " (the memory available unknown)")
       << ", " << target.seconds << " s in all\n";
   AccuracyRun out;
+  Plan plan        = own.plan;  // the ladder's: the model's, or quad8's once the order is raised
+  Refiner ladder   = refine;
   const auto solve = [&](SceneModel& m, bool files, bool& cleared) {
-    const Plan p = finer_plan(m, own.plan);
+    const Plan p = finer_plan(m, plan);
     if (files) clear_folder(), cleared = true;
     // Its warnings are in the last run's report (report_run), once.
     return run_level(m.description, m.scene, 0, p, own.units, files ? own.dir : std::string(), own.pictures,
                      files ? &out.result : nullptr);
   };
-  std::vector<LevelRun> mesh{{0, own.scene.grid.node_count(), own_seconds, std::move(quantities)}};
+  std::vector<LevelRun> mesh{{0, own.scene.mesh.node_count(), own_seconds, std::move(quantities)}};
   log_rung(log, mesh, "mesh", true, std::nullopt);
+  if (!order.kept.empty()) log << "accuracy: the cells' order stays: " << order.kept << "\n";
   std::string written = "mesh 0 (the model's own run)";
-  const int level     = climb(mesh, refine, solve, target, max_nodes, 4.0, 0.0, "mesh", start, written, log);
-  out.reached         = "the mesh at 1/" + std::to_string(1 << level) + " of the spacing";
+  if (order.refine) {  // two rungs, then the order choice
+    climb(mesh, ladder, solve, target, max_nodes, 4.0, 0.0, "mesh", start, written, log, 1);
+    const double left =
+        target.seconds - (std::chrono::duration<double>(clock::now().time_since_epoch()).count() - start);
+    if (auto raised = probe_quadratic(order, mesh, own, target.tolerance, max_nodes, left, log))
+      mesh = std::move(raised->first), plan = raised->second, ladder = order.refine;
+  }
+  const int level =
+      climb(mesh, ladder, solve, target, max_nodes, 4.0, 0.0,
+            plan.key.element == own.plan.key.element ? "mesh" : "mesh (quad8)", start, written, log);
+  out.reached = "the mesh at 1/" + std::to_string(1 << level) + " of the spacing" +
+                (plan.key.element == own.plan.key.element ? "" : ", quadratic cells (quad8)");
   std::vector<LevelRun> steps;
   if (path_dependent(own.plan)) {  // plasticity or friction: the load steps' error on that mesh
-    const SceneModel finest = refine(level);
+    const SceneModel finest = ladder(level);
     steps.push_back(mesh.back());
     steps.back().level = 0;
     const auto split   = [&](int k) {

@@ -210,17 +210,25 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
     report_run(log, err, plan, d, result);
     if (a.accuracy > 0) {
       finer.reset();  // the ladder makes its own
+      // The order choice: the model on quadratic cells, a deck's from its cards, a scene file's read so.
+      OrderChoice order{{}, order_kept(plan, d, s)};
+      if (order.kept.empty()) {
+        Args quadratic = a;
+        quadratic.options.emplace_back("element", "quad8");
+        order.refine = cards ? deck_quadratic_refiner(*cards)
+                             : Refiner([quadratic](int times) { return read_scene_model(quadratic, times); });
+      }
       const AccuracyRun last = reach_accuracy(
           refine, request, result.quantities, since(t0),
           {a.accuracy, 0, a.time_limit > 0 ? a.time_limit : AccuracyTarget{}.seconds},
-          [&] { RunFolder::prepare(a.out, true, run_what); }, log);
+          [&] { RunFolder::prepare(a.out, true, run_what); }, log, order);
       log << "the last run (" << last.reached << "), whose files these are:\n";
       report_run(log, err, plan, d, last.result);
       list_files(a, plan, d, last.result, log);
       if (writes) RunFolder::record(a.out, run_what, "complete");
       return ok;
     } else if (a.estimate) {
-      std::vector<LevelRun> levels{{0, s.grid.node_count(), since(t0), result.quantities}};
+      std::vector<LevelRun> levels{{0, s.mesh.node_count(), since(t0), result.quantities}};
       for (LevelRun& level : solve_finer(refine, std::move(*finer), plan, request.units, log))
         levels.push_back(std::move(level));
       // A path-dependent model (plasticity, friction) has a load-step error too.

@@ -81,26 +81,25 @@ inline Plan finer_plan(const SceneModel& refined, const Plan& plan) {
 
 /// One run of the model (`d` on `s`, with `plan`'s choices) for the error bars, timed: into `dir` with its
 /// files, `pictures` and its error estimate as `d` asks (then its RunResult into `result` when given), or
-/// writing nothing and estimating nothing when `dir` is empty. Its warnings repeat the model's own run's and
-/// are not shown.
+/// writing nothing when `dir` is empty, and then estimating only on quadratic cells (whose largest von Mises
+/// is the estimate's: app/read_quantities.hpp). Its warnings repeat the model's own run's and are not shown.
 inline LevelRun run_level(ModelDescription& d, const Scene& s, int level, const Plan& plan, PlotUnits units,
                           const std::string& dir = "", const std::vector<std::string>& pictures = {},
                           RunResult* result = nullptr) {
   const auto start         = std::chrono::steady_clock::now();
   const bool files         = !dir.empty();
-  d.options.error_estimate = files && d.options.error_estimate;
+  d.options.error_estimate = (files || s.is_quadratic()) && d.options.error_estimate;
   std::ostringstream quiet;
   const RunRequest r{d, s, plan, dir, quiet, false, pictures, units, nullptr, files, true};
   RunResult run_result = app::run(r);
-  LevelRun out{level, s.grid.node_count(),
+  LevelRun out{level, s.mesh.node_count(),
                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
                std::move(run_result.quantities)};
   if (result) *result = std::move(run_result);
   return out;
 }
 
-/// The run of one finer mesh (`refined`, level `level`) with `plan`'s choices, reported in `log`. The finer
-/// runs make no error estimate of their own (their centroid stresses are the same without it).
+/// The run of one finer mesh (`refined`, level `level`) with `plan`'s choices, reported in `log`.
 inline LevelRun solve_level(SceneModel& refined, int level, const Plan& plan, PlotUnits units,
                             std::ostream& log) {
   const Plan refined_plan = finer_plan(refined, plan);

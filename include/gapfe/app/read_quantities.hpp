@@ -11,6 +11,7 @@
 #include "gapfe/contact/pair_state.hpp"
 #include "gapfe/input/scene.hpp"
 #include "gapfe/output/card_reactions.hpp"
+#include "gapfe/post/peak_stress.hpp"
 #include "gapfe/problem/results.hpp"
 
 namespace gapfe::app {
@@ -23,17 +24,53 @@ struct ReadQuantity {
   bool located = false;         ///< whether `at` means something
   /// The order of convergence in h of its error, assumed when only two meshes are solved: reactions and
   /// displacements as the energy on linear cells (2), as the displacements in L2 on quadratic ones (3, below
-  /// the energy's 4: the bar errs large), a centroid's stress (1: half a cell from where it peaks).
+  /// the energy's 4: the bar errs large); the recovered peak stress 2 on either (post/peak_stress.hpp).
   double order = 2;
   /// What round-off in it is relative to: a sum's terms' sizes (a card whose reactions cancel, gap pairs'
   /// forces); 0: the value itself.
   double scale = 0;
 };
 
+/// The error estimate's largest recovered von Mises (ErrorEstimate::peak_mises) and its node; -1: the run
+/// did not estimate.
+struct NodalPeak {
+  double mises = 0;  ///< [stress]
+  int node     = -1;
+};
+
+/// The largest von Mises stress, a nodal recovered one: on quadratic cells the error estimate's (`peak`: its
+/// quadratic patches through the 3 x 3 points are second order at a boundary too, 7 times closer on the Lame
+/// tube than the centroids'), else recovered from the cells' centroid stresses (post/peak_stress.hpp). A law
+/// with history (`plastic`) keeps its stresses on its yield surface, which a recovered field would cross
+/// (by 1% on the plastic tube): its largest is the centroids', first order (half a cell from a boundary's
+/// peak). A gap element's stress is a device's: left out.
+inline ReadQuantity largest_mises(const Scene& scene, const std::vector<PointValues>& centroids,
+                                  const NodalPeak& peak, bool plastic) {
+  ReadQuantity mises{"largest von Mises", 0, Vec2::Zero(), true, plastic ? 1.0 : 2.0};
+  if (plastic) {
+    const std::size_t quads = scene.mesh.cells.size();
+    for (std::size_t e = 0; e < centroids.size(); ++e) {
+      const CellTag tag = e < quads ? scene.mesh.cell_tag(e) : scene.mesh.triangle_tag(e - quads);
+      if (tag.material == scene.gap_material) continue;
+      if (const double s = voigt::von_mises(centroids[e].stress); s > mises.value)
+        mises.value = s, mises.at = Vec2(centroids[e].r, centroids[e].z);
+    }
+    return mises;
+  }
+  const PeakStress nodal = scene.is_quadratic() && peak.node >= 0
+                               ? PeakStress{peak.mises, peak.node}
+                               : recovered_peak(scene.mesh, centroids, scene.gap_material);
+  mises.value = nodal.mises, mises.located = nodal.node >= 0;
+  if (mises.located) mises.at = scene.mesh.nodes[static_cast<std::size_t>(nodal.node)];
+  return mises;
+}
+
 /// The quantities of a solution on `scene` (whole, not a part's), with the cells' centroid stresses
-/// (cells, then triangles, as a driver's centroid_values gives them).
+/// (cells, then triangles, as a driver's centroid_values gives them), the error estimate's nodal peak and
+/// whether the law has history (largest_mises).
 inline std::vector<ReadQuantity> read_quantities(const Scene& scene, const Solution& solution,
-                                                 const std::vector<PointValues>& centroids) {
+                                                 const std::vector<PointValues>& centroids,
+                                                 const NodalPeak& peak = {}, bool plastic = false) {
   std::vector<ReadQuantity> out;
   const double order = scene.is_quadratic() ? 3 : 2;
   static constexpr std::array<const char*, 3> kDirection{"R_r", "R_z", "R_t"};
@@ -51,16 +88,7 @@ inline std::vector<ReadQuantity> read_quantities(const Scene& scene, const Solut
     if (const double size = solution.displacement.row(n).norm(); size > u.value)
       u.value = size, u.at = scene.mesh.nodes[static_cast<std::size_t>(n)];
   out.push_back(u);
-
-  ReadQuantity mises{"largest von Mises", 0, Vec2::Zero(), true, 1};
-  const std::size_t quads = scene.mesh.cells.size();
-  for (std::size_t e = 0; e < centroids.size(); ++e) {
-    const CellTag tag = e < quads ? scene.mesh.cell_tag(e) : scene.mesh.triangle_tag(e - quads);
-    if (tag.material == scene.gap_material) continue;  // a gap element's stress is a device's
-    if (const double s = voigt::von_mises(centroids[e].stress); s > mises.value)
-      mises.value = s, mises.at = Vec2(centroids[e].r, centroids[e].z);
-  }
-  out.push_back(mises);
+  out.push_back(largest_mises(scene, centroids, peak, plastic));
   return out;
 }
 

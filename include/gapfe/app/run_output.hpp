@@ -79,16 +79,17 @@ inline void keep_largest(std::vector<double>& per_step, int step, double value) 
 /// recorded in `times` (per load step and the last) and returned as the VTU cell array `error_estimate`, one
 /// value per deck element (gap elements 0), on the process that writes; empty elsewhere. The same pass gives
 /// the output's centroid stresses (`centroids`: the driver's centroid_values(Recovered::stress)), so the
-/// estimate phase's time holds theirs.
+/// estimate phase's time holds theirs, and `peak` the recovered field's largest von Mises.
 template <class Fe>
 VtuField estimate_increment(const RunRequest& r, RunResult& times, int step, const Fe& fe,
-                            std::vector<PointValues>& centroids) {
+                            std::vector<PointValues>& centroids, NodalPeak& peak) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<int> gap_materials;
   if (r.scene.gap_material >= 0) gap_materials.push_back(r.scene.gap_material);
   ErrorEstimate estimate = fe.error_estimate(gap_materials, &centroids);
   keep_largest(times.step_error, step, estimate.relative());
   times.error = estimate.relative(), times.error_stress_free = estimate.stress_free;
+  peak                  = {estimate.peak_mises, estimate.peak_node};
   const Subdomain* part = fe.problem().subdomain.get();
   const std::vector<double> cells =
       part ? gather_cell_values(*part, estimate.cell) : std::move(estimate.cell);
@@ -135,8 +136,9 @@ void write_increment(const RunRequest& r, RunResult& times, RunFiles& files, int
   if (balance.relative() > times.balance) times.balance = balance.relative(), times.balance_step = step;
   times.last_balance = balance;
   std::vector<PointValues> centroids;
+  NodalPeak peak;
   if (r.model.options.error_estimate)
-    extra_cells.push_back(estimate_increment(r, times, step, fe, centroids));
+    extra_cells.push_back(estimate_increment(r, times, step, fe, centroids, peak));
   const auto start = std::chrono::steady_clock::now();
   if (!r.model.options.error_estimate) centroids = fe.centroid_values(Recovered::stress);
   if (const Subdomain* part = fe.problem().subdomain.get()) {
@@ -144,7 +146,8 @@ void write_increment(const RunRequest& r, RunResult& times, RunFiles& files, int
     auto values          = gather_cells(*part, centroids, Recovered::stress);
     if (files) files.write(step, inc, whole, values, std::move(extra_cells), summary);
   } else {
-    if (r.read_quantities) times.quantities = read_quantities(r.scene, fe.solution(), centroids);
+    if (r.read_quantities)
+      times.quantities = read_quantities(r.scene, fe.solution(), centroids, peak, r.plan.plastic);
     if (files) files.write(step, inc, fe.solution(), centroids, std::move(extra_cells), summary);
   }
   times.write += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -29,6 +29,10 @@ class RecoverySlots {
     more_.erase(std::unique(more_.begin(), more_.end()), more_.end());
   }
   std::size_t size() const { return first_.size() + more_.size(); }
+  /// The node of slot `k`; -1: a node no recovered cell touches.
+  int node(std::size_t k) const {
+    return k < first_.size() ? (first_[k] >= 0 ? static_cast<int>(k) : -1) : more_[k - first_.size()][0];
+  }
   std::size_t operator()(int node, int material) const {
     if (first_[static_cast<std::size_t>(node)] == material) return static_cast<std::size_t>(node);
     const auto it = std::lower_bound(more_.begin(), more_.end(), std::array<int, 2>{node, material});
@@ -98,6 +102,21 @@ struct PatchSums {
         return d(0) * (scaled.inverse().row(0) * (d.asDiagonal() * right.template topRows<3>())).transpose();
     }
     return right.row(0).transpose() / count;
+  }
+  /// The fitted plane's value at `offset` from the node, when its points span a plane (a neighbour's patch
+  /// read at a boundary node: post/peak_stress.hpp); false otherwise. `leverage`, when given, receives the
+  /// variance factor of the value at the node itself, (S^-1)_00 of the scaled sums: 1 at the centre of
+  /// symmetric points, 1 plus the node's squared Mahalanobis distance from their mean in general: it
+  /// grows as the node lies outside them (the plane extrapolated).
+  bool plane_at(const Vec2& offset, Vec<S>& value, double* leverage = nullptr) const requires(P == 3) {
+    if (normal(0, 0) < 3) return false;
+    const auto [d, scaled] = scaled_normal<3>();
+    if (!(scaled.determinant() > 1e-6)) return false;
+    const Mat<3, 3> inverse = scaled.inverse();
+    const Mat<3, S> c       = d.asDiagonal() * (inverse * (d.asDiagonal() * right));
+    value                   = (terms(offset).transpose() * c).transpose();
+    if (leverage) *leverage = inverse(0, 0);
+    return true;
   }
 
  private:
