@@ -387,7 +387,7 @@ TEST_CASE_TEMPLATE("[estimate] the recovered peak stress on the Lame tube: at th
     const double order = std::log2(recovered[k - 1] / recovered[k]);
     MESSAGE("recovered peak error " << recovered[k] << " (order " << order << "), centroid's "
                                     << centroid[k]);
-    CHECK(order > (k == 1 ? 1.5 : 1.75));  // towards 2 as the mesh is refined
+    CHECK(order > (k == 1 ? 1.5 : 1.75));                   // towards 2 as the mesh is refined
     CHECK(std::log2(centroid[k - 1] / centroid[k]) < 1.3);  // the centroid's: first order
   }
   CHECK(recovered.back() < 2e-3);
