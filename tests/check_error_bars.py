@@ -336,13 +336,13 @@ def accuracy():
     # The Lame deck with the element left to gapfe (the legacy cell): the ladder may raise the order.
     auto = work / "lame_auto.deck"
     auto.write_text(deckgen.tube_deck(9, 3, extension=("format = elastic",)))
-    cases = [(work / "lame_quad4.deck", 1e-3, lame_truth), (auto, 1e-3, lame_truth),
+    cases = [(work / "lame_quad4.deck", 1e-3, lame_truth), (auto, 1e-3, lame_truth), (auto, 1e-4, lame_truth),
              (work / "sphere_quad.toml", 1e-2,
               {"reaction bottom R_z": P * math.pi * A * A, "largest von Mises": 3 * P * B ** 3 / (2 * cube),
                "largest |u|": P * A / (E * cube) * ((1 - 2 * NU) * A ** 3 + (1 + NU) * B ** 3 / 2)})]
     runs = {}
     for model, tolerance, truth in cases:
-        name = f"accuracy_{model.stem}"
+        name = f"accuracy_{model.stem}_{tolerance:g}"
         out, log, _ = run(model, name, "--accuracy", str(tolerance))
         runs[name] = out, log
         check("accuracy: reached on the mesh at" in log, f"{name}: reached: {log[-400:]}")
@@ -357,21 +357,23 @@ def accuracy():
                  if line.startswith("accuracy: mesh ")]
         check(nodes == sizes[-1], f"{name}: the files are the last mesh's ({nodes} nodes, path {sizes})")
     # The order choice: a deck that names its element keeps it; the one that leaves it to gapfe is probed in
-    # quad8 after two meshes and, to 1e-3, goes on in quad8 (fewer meshes: its peak stress 7 times closer),
-    # its files quad8's; to 1e-2 the legacy ladder ends on its third mesh, so nothing is probed.
-    _, log = runs["accuracy_lame_quad4"]
+    # quad8 after three meshes when the legacy ladder foresees two or more to come (to 1e-4: three), not when
+    # one will do (to 1e-3). The probe's line gives both forecasts; the choice follows the cheaper (here
+    # quad8's 0.05 s against legacy's 4 s), the rungs and the files what it chose.
+    _, log = runs["accuracy_lame_quad4_0.001"]
     check("the cells' order stays: the model chooses its element" in log and "quad8 on meshes" not in log,
           f"an element the deck names is kept: {log[-500:]}")
-    # Which ladder is cheaper here is close (the probe's lines: quad8 1 more mesh against legacy's 2, both
-    # about 0.013 s), so the test holds the choice to its own foreseen times, and the rungs to what came.
-    out, log = runs["accuracy_lame_auto"]
+    _, log = runs["accuracy_lame_auto_0.001"]
+    check("quad8 on meshes" not in log and "reached on the mesh at 1/8 of the spacing;" in log,
+          f"the legacy deck to 1e-3: one more mesh after the third, no probe: {log[-600:]}")
+    out, log = runs["accuracy_lame_auto_0.0001"]
     probe = re.search(r"quad8 on meshes 0 and 1: .*foreseen to the target: (\d+) more meshe?s? \(([\d.e+-]+) s\) "
                       r"against (\d+) \(([\d.e+-]+) s\) in legacy; (raising|keeping) the order", log)
-    if check(probe is not None, f"the legacy deck to 1e-3: quad8 probed: {log[-900:]}"):
+    if check(probe is not None, f"the legacy deck to 1e-4: quad8 probed: {log[-900:]}"):
         raised = probe.group(5) == "raising"
         check(raised == (float(probe.group(2)) < float(probe.group(4))), f"the cheaper foreseen: {probe.group(0)}")
-        check((probe.group(1), probe.group(3)) == ("1", "2"), f"the meshes still needed: {probe.group(0)}")
-        reached = "1/4 of the spacing, quadratic cells (quad8)" if raised else "1/8 of the spacing;"
+        check((probe.group(1), probe.group(3)) == ("2", "3"), f"the meshes still needed: {probe.group(0)}")
+        reached = "1/8 of the spacing, quadratic cells (quad8)" if raised else "1/32 of the spacing;"
         check(f"accuracy: reached on the mesh at {reached}" in log, f"reached as foreseen: {log[-600:]}")
         cells = {block.type for block in meshio.read(out / "step_0001.vtu").cells}
         check(cells == ({"quad8"} if raised else {"quad"}), f"the last run's files are its cells': {cells}")

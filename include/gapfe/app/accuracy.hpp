@@ -215,19 +215,20 @@ int climb(std::vector<LevelRun>& rungs, Make&& make, Solve&& solve, const Accura
   }
 }
 
-/// The probe of the order choice (app/accuracy_order.hpp), after the mesh's first two rungs, `mesh`:
-/// `order`'s quadratic model on the same two meshes, then both ladders' rest foreseen (foresee), in `log`.
-/// Returns the quadratic rungs and their plan when they are foreseen to reach `tolerance` sooner; nothing
-/// when not, when the linear ladder needs no fourth rung (the probe would cost as much as its third), when
-/// the probe would pass `max_nodes` or `seconds_left` (its meshes about 3 times the linear ones' nodes, its
-/// time about 5 times the second linear run's), or when a quadratic run fails or is refused (said in `log`).
+/// The probe of the order choice (app/accuracy_order.hpp), after the mesh's first three rungs, `mesh`:
+/// `order`'s quadratic model on the first two meshes, then both ladders' rest foreseen (foresee: the linear
+/// one at its observed orders, the quadratic one at its assumed ones), in `log`. Returns the quadratic rungs
+/// and their plan when they are foreseen to reach `tolerance` sooner; nothing when not, when the linear
+/// ladder needs only a fourth rung (the probe and quad8's third mesh would cost more), when the probe would
+/// pass `max_nodes` or `seconds_left` (its meshes about 3 times the linear ones' nodes, its time about twice
+/// the third linear run's), or when a quadratic run fails or is refused (said in `log`).
 inline std::optional<std::pair<std::vector<LevelRun>, Plan>> probe_quadratic(
     const OrderChoice& order, const std::vector<LevelRun>& mesh, const RunRequest& own, double tolerance,
     long max_nodes, double seconds_left, std::ostream& log) {
   const Foreseen linear = foresee(mesh, tolerance);
-  if (!order.refine || mesh.size() != 2 || linear.rungs <= 1) return std::nullopt;
+  if (!order.refine || mesh.size() != 3 || linear.rungs <= 1) return std::nullopt;
   if (3.0 * static_cast<double>(mesh[1].nodes) > static_cast<double>(max_nodes) ||
-      5 * mesh[1].seconds > seconds_left) {
+      2 * mesh[2].seconds > seconds_left) {
     log << "accuracy: quadratic cells not tried (the probe would pass the memory or the time left)\n";
     return std::nullopt;
   }
@@ -305,16 +306,21 @@ inline AccuracyRun reach_accuracy(const Refiner& refine, const RunRequest& own,
   log_rung(log, mesh, "mesh", true, std::nullopt);
   if (!order.kept.empty()) log << "accuracy: the cells' order stays: " << order.kept << "\n";
   std::string written = "mesh 0 (the model's own run)";
-  if (order.refine) {  // two rungs, then the order choice
-    climb(mesh, ladder, solve, target, max_nodes, 4.0, 0.0, "mesh", start, written, log, 1);
-    const double left =
-        target.seconds - (std::chrono::duration<double>(clock::now().time_since_epoch()).count() - start);
-    if (auto raised = probe_quadratic(order, mesh, own, target.tolerance, max_nodes, left, log))
-      mesh = std::move(raised->first), plan = raised->second, ladder = order.refine;
+  int level           = -1;
+  if (order.refine) {  // three rungs, then the order choice, unless the third reached the target
+    const int k = climb(mesh, ladder, solve, target, max_nodes, 4.0, 0.0, "mesh", start, written, log, 2);
+    const RungVerdict v  = judge(mesh, target.tolerance, 0.0);
+    const double elapsed = std::chrono::duration<double>(clock::now().time_since_epoch()).count() - start;
+    if (v.failed.empty() && v.worst <= target.tolerance)
+      level = k;
+    else if (v.failed.empty())
+      if (auto raised =
+              probe_quadratic(order, mesh, own, target.tolerance, max_nodes, target.seconds - elapsed, log))
+        mesh = std::move(raised->first), plan = raised->second, ladder = order.refine;
   }
-  const int level =
-      climb(mesh, ladder, solve, target, max_nodes, 4.0, 0.0,
-            plan.key.element == own.plan.key.element ? "mesh" : "mesh (quad8)", start, written, log);
+  if (level < 0)
+    level = climb(mesh, ladder, solve, target, max_nodes, 4.0, 0.0,
+                  plan.key.element == own.plan.key.element ? "mesh" : "mesh (quad8)", start, written, log);
   out.reached = "the mesh at 1/" + std::to_string(1 << level) + " of the spacing" +
                 (plan.key.element == own.plan.key.element ? "" : ", quadratic cells (quad8)");
   std::vector<LevelRun> steps;

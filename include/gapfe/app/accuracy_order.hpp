@@ -3,10 +3,10 @@
 // size of linear cells cuts the error 4 times for 4 times the nodes, while 8-node cells cut the
 // displacements' 8 times and carry a peak stress 7 times closer on the same mesh, at 3 times the nodes. Which
 // reaches a tolerance first depends on the model and the tolerance, so the ladder measures it: after the
-// mesh's first two rungs in the model's element, the same two in quad8 (the probe), and each ladder's
-// remaining rungs foreseen from its two (every quantity's error shrinking by 2^p a rung at its assumed order
-// p, each rung's time growing as the last two's did); the cheaper goes on. The probe costs about what the
-// linear ladder's third rung does, so it runs only when the linear ladder needs a fourth.
+// mesh's first three rungs in the model's element (their observed orders), the first two in quad8 (the
+// probe, at assumed orders), and each ladder's remaining rungs foreseen (every quantity's error shrinking by
+// 2^p a rung, each rung's time growing as the last two's did); the cheaper goes on. The probe costs about one
+// and a half times the linear ladder's third rung, so it runs only when the linear ladder needs a fifth.
 #include <memory>
 #include <optional>
 #include <string>
