@@ -153,7 +153,8 @@ int climb(std::vector<LevelRun>& rungs, Make&& make, Solve&& solve, const Accura
   const std::string aim = "--accuracy " + detail::number_text(target.tolerance) + " not reached: ";
   std::optional<RungVerdict> v;
   if (rungs.size() >= 2) v = judge(rungs, target.tolerance, assumed);
-  int diverging = 0;  // rungs in a row on which a quantity did not converge
+  // Rungs in a row on which a quantity did not converge, the last rung's verdict counted (a ladder resumed).
+  int diverging = rungs.size() >= 3 && v && !v->failed.empty() ? 1 : 0;
   for (int k = static_cast<int>(rungs.size());; ++k) {
     // The next rung, foreseen: its nodes, and its time from the last two rungs' ratio (at least `growth`).
     const LevelRun& last = rungs.back();
@@ -220,15 +221,16 @@ int climb(std::vector<LevelRun>& rungs, Make&& make, Solve&& solve, const Accura
 /// one at its observed orders, the quadratic one at its assumed ones), in `log`. Returns the quadratic rungs
 /// and their plan when they are foreseen to reach `tolerance` sooner; nothing when not, when the linear
 /// ladder needs only a fourth rung (the probe and quad8's third mesh would cost more), when the probe would
-/// pass `max_nodes` or `seconds_left` (its meshes about 3 times the linear ones' nodes, its time about twice
-/// the third linear run's), or when a quadratic run fails or is refused (said in `log`).
+/// pass `max_nodes` or `seconds_left` (quad8's third mesh about 12 times the linear second's nodes; the
+/// probe's time about one and a half times the third linear run's at most), or when a quadratic run fails or
+/// is refused (said in `log`).
 inline std::optional<std::pair<std::vector<LevelRun>, Plan>> probe_quadratic(
     const OrderChoice& order, const std::vector<LevelRun>& mesh, const RunRequest& own, double tolerance,
     long max_nodes, double seconds_left, std::ostream& log) {
   const Foreseen linear = foresee(mesh, tolerance);
   if (!order.refine || mesh.size() != 3 || linear.rungs <= 1) return std::nullopt;
-  if (3.0 * static_cast<double>(mesh[1].nodes) > static_cast<double>(max_nodes) ||
-      2 * mesh[2].seconds > seconds_left) {
+  if (12.0 * static_cast<double>(mesh[1].nodes) > static_cast<double>(max_nodes) ||
+      1.5 * mesh[2].seconds > seconds_left) {
     log << "accuracy: quadratic cells not tried (the probe would pass the memory or the time left)\n";
     return std::nullopt;
   }
@@ -313,10 +315,11 @@ inline AccuracyRun reach_accuracy(const Refiner& refine, const RunRequest& own,
     const double elapsed = std::chrono::duration<double>(clock::now().time_since_epoch()).count() - start;
     if (v.failed.empty() && v.worst <= target.tolerance)
       level = k;
-    else if (v.failed.empty())
-      if (auto raised =
-              probe_quadratic(order, mesh, own, target.tolerance, max_nodes, target.seconds - elapsed, log))
-        mesh = std::move(raised->first), plan = raised->second, ladder = order.refine;
+    else if (!v.failed.empty())
+      log << "accuracy: quadratic cells not tried (" << v.failed << " does not converge yet)\n";
+    else if (auto raised = probe_quadratic(order, mesh, own, target.tolerance, max_nodes,
+                                           target.seconds - elapsed, log))
+      mesh = std::move(raised->first), plan = raised->second, ladder = order.refine;
   }
   if (level < 0)
     level = climb(mesh, ladder, solve, target, max_nodes, 4.0, 0.0,

@@ -3,12 +3,8 @@
 // side of the scene's cells, so that a deck's I-J grid, a grid scene or an order-1 Gmsh mesh runs as 8-node
 // quadrilaterals and 6-node triangles (Quad8, Tri6), and an order-2 Gmsh mesh runs on its own middle nodes.
 // The middle nodes are numbered after the corners, so every corner keeps its number, its I and J and its
-// conditions. A middle node is the mesh file's where it gives one (Scene::given_mid_sides: a curved side of
-// an order-2 mesh); on a boundary side whose run of boundary sides lies on a circle (a bore, a fillet, a
-// sphere's meridian: four points on it, as --estimate's split finds them, input/gmsh_refine.hpp
-// arc_middle), it is on that circle, so that the cells' geometry is as quadratic as their displacements;
-// anywhere else it is half-way along its side (its straight chord: an interface between materials, a curve
-// other than a circle).
+// conditions; each is half-way along its side (its straight chord) unless the mesh file gives it
+// (Scene::given_mid_sides: a curved side of an order-2 mesh).
 //
 // What the scene says on corners, the middle nodes get:
 //   * each component that the conditions in force at both ends of the side prescribe (the last card or
@@ -33,7 +29,6 @@
 #include <vector>
 
 #include "gapfe/core/error.hpp"
-#include "gapfe/input/gmsh_refine.hpp"
 #include "gapfe/input/scene.hpp"
 
 namespace gapfe {
@@ -123,32 +118,16 @@ inline void make_quadratic(const ModelDescription& d, Scene& s) {
         "), and contact runs on 4-corner cells (element = quad4bbar, quad4 or legacy): a gap pair joins two "
         "nodes, which a quadratic side's middle node does not fit");
   const int corners = s.mesh.node_count();
-  // The boundary's sides (one cell each) and each corner's neighbours along them, for arc_middle.
-  std::unordered_map<std::uint64_t, int> uses;
-  for (const GridCell& c : s.grid.cells)
-    for (int k = 0; k < c.corners; ++k) ++uses[detail::side_key(c.node[k], c.node[(k + 1) % c.corners])];
-  std::unordered_map<int, std::vector<int>> along;
-  for (const auto& [key, count] : uses)
-    if (count == 1) {
-      const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
-      along[a].push_back(b), along[b].push_back(a);
-    }
-  const auto next = [&](int from, int at) {  // the corner after `at` coming from `from`, -1 at a junction
-    const auto it = along.find(at);
-    if (it == along.end() || it->second.size() != 2) return -1;
-    return it->second[0] == from ? it->second[1] : it->second[0];
-  };
-  std::unordered_map<std::uint64_t, int> middle_of;  // side_key -> its middle node
+  std::unordered_map<std::uint64_t, int> middle_of;  // side (lesser corner, greater) -> its middle node
   std::vector<std::array<int, 3>> sides;             // (a, b, middle)
   const auto middle = [&](int a, int b) {
-    const std::uint64_t key = detail::side_key(a, b);
+    const std::array<int, 2> side{std::min(a, b), std::max(a, b)};
+    const std::uint64_t key =
+        (static_cast<std::uint64_t>(side[0]) << 32) | static_cast<std::uint32_t>(side[1]);
     if (const auto it = middle_of.find(key); it != middle_of.end()) return it->second;
-    Vec2 at = 0.5 * (s.mesh.nodes[a] + s.mesh.nodes[b]);
-    if (const auto given = s.given_mid_sides.find({std::min(a, b), std::max(a, b)});
-        given != s.given_mid_sides.end())
-      at = given->second;
-    else if (uses[key] == 1)
-      if (const auto arc = detail::arc_middle(s.mesh.nodes, a, b, next)) at = *arc;
+    const auto given = s.given_mid_sides.find(side);
+    const Vec2 at =
+        given != s.given_mid_sides.end() ? given->second : 0.5 * (s.mesh.nodes[a] + s.mesh.nodes[b]);
     const int n = s.mesh.node_count();
     s.mesh.nodes.push_back(at), s.grid.nodes.push_back(at);
     s.grid.node_ij.push_back({0, 0}), s.grid.placed.push_back(0);  // no card placed it
