@@ -1,5 +1,5 @@
-// Google Benchmark: element stiffness per variant, assembly into the fixed pattern, and a whole
-// linear solve (assembly + factorization + solve) of the thick tube, embedded and CHOLMOD solvers.
+// Google Benchmark: element stiffness per variant, assembly into the fixed pattern, the error estimate, and a
+// whole linear solve (assembly + factorization + solve) of the thick tube, embedded and CHOLMOD solvers.
 //   build/bench/bench_kernels --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
@@ -98,6 +98,21 @@ void BM_LinearSolve(benchmark::State& state) {
   state.counters["dofs"] = fe.dofs().free_count;
 }
 
+/// The recovery error estimate of a solved tube (post/error_estimate.hpp) with the centroid stresses from the
+/// same pass, as a run makes it per increment: Arg 0 fits the patches afresh each time (a run's first
+/// increment, a single solve), Arg 1 reuses the kept fit (post/recovery_weights.hpp; a run's later ones).
+template <class M>
+void BM_ErrorEstimate(benchmark::State& state) {
+  LinearStatic<M> fe(tube<M>(316, 158));
+  fe.solve();
+  RecoveryWeights kept;
+  RecoveryWeights* weights = state.range(0) ? &kept : nullptr;
+  if (weights) (void)fe.error_estimate({}, nullptr, weights), (void)fe.error_estimate({}, nullptr, weights);
+  std::vector<PointValues> centroids;
+  for (auto _ : state) benchmark::DoNotOptimize(fe.error_estimate({}, &centroids, weights).error_squared);
+  state.SetItemsProcessed(state.iterations() * 316 * 158);
+}
+
 using Q4x2    = Model<Axisym2, Quad4, Isotropic>;
 using Q4x3    = Model<Axisym3, Quad4, Isotropic>;
 using Legacy2 = Model<Axisym2, LegacyQuad, Isotropic>;
@@ -117,6 +132,8 @@ BENCHMARK(BM_ElementStiffnessBatch);
 BENCHMARK_TEMPLATE(BM_Assembly, Q4x2)->Arg(100)->Arg(316)->Unit(benchmark::kMillisecond);
 BENCHMARK_TEMPLATE(BM_Assembly, Q4x3)->Arg(316)->Unit(benchmark::kMillisecond);
 BENCHMARK_TEMPLATE(BM_Assembly, Legacy2)->Arg(316)->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(BM_ErrorEstimate, Q4x2)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(BM_ErrorEstimate, Legacy2)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK_TEMPLATE(BM_LinearSolve, Q4x2)->Arg(100)->Arg(316)->Unit(benchmark::kMillisecond);
 BENCHMARK_TEMPLATE(BM_LinearSolve, Q4x2)->Arg(1000)->Unit(benchmark::kMillisecond)->Iterations(1);
 #ifdef GAPFE_HAS_CHOLMOD

@@ -68,7 +68,7 @@ def run(cmd, log, times, env):
 
 def phases(text):
     m = re.search(r"time \[s\]: read (\S+), mesh (\S+), setup (\S+), assemble (\S+), factorize (\S+), "
-                  r"solve (\S+), (?:estimate \S+, )?write (\S+)", text)
+                  r"solve (\S+), (?:(?:estimate|recovery) \S+, )?write (\S+)", text)
     return dict(zip(["read", "mesh", "setup", "assemble", "factorize", "solve", "write"],
                     map(float, m.groups()))) if m else {}
 

@@ -182,6 +182,7 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
   const SolverThreads threads = set_solver_threads(a.threads);
   if (!threads.limited.empty()) err << "gapfe: warning: " << threads.limited << "\n";
   log << "threads: " << threads.threads << (a.threads == 1 ? " (--threads N for more)" : "") << "\n";
+  RecoveryWeights recovery;
   const RunRequest request{d,
                            s,
                            plan,
@@ -192,7 +193,8 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
                            plot_units(d.options.units),
                            part ? &*part : nullptr,
                            rank == 0,
-                           refines};
+                           refines,
+                           &recovery};
   // Rank 0 of a launch writes the files; a run's folder holds one run (run_folder.hpp). Made ready only
   // now, after every check of the request: a run refused before it starts leaves the last run's files.
   const std::string run_what = "gapfe run " + a.deck;
@@ -201,12 +203,13 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
   const auto t0 = Clock::now();
   try {
     const RunResult result = run(request);
-    // setup: the Problem, DOF map, sparsity pattern, symbolic analysis and stress recovery.
+    // setup: the Problem, DOF map, sparsity pattern and symbolic analysis; recovery: the centroid stresses
+    // and the error estimate (app/run_output.hpp).
     const double setup =
-        since(t0) - result.assemble - result.factorize - result.solve - result.estimate - result.write;
+        since(t0) - result.assemble - result.factorize - result.solve - result.recovery - result.write;
     log << "time [s]: read " << t_read << ", mesh " << t_mesh << ", setup " << setup << ", assemble "
         << result.assemble << ", factorize " << result.factorize << ", solve " << result.solve
-        << ", estimate " << result.estimate << ", write " << result.write << "\n";
+        << ", recovery " << result.recovery << ", write " << result.write << "\n";
     report_run(log, err, plan, d, result);
     if (a.accuracy > 0) {
       finer.reset();  // the ladder makes its own

@@ -90,7 +90,8 @@ inline LevelRun run_level(ModelDescription& d, const Scene& s, int level, const 
   const bool files         = !dir.empty();
   d.options.error_estimate = (files || s.is_quadratic()) && d.options.error_estimate;
   std::ostringstream quiet;
-  const RunRequest r{d, s, plan, dir, quiet, false, pictures, units, nullptr, files, true};
+  RecoveryWeights recovery;
+  const RunRequest r{d, s, plan, dir, quiet, false, pictures, units, nullptr, files, true, &recovery};
   RunResult run_result = app::run(r);
   LevelRun out{level, s.mesh.node_count(),
                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),

@@ -31,21 +31,15 @@ struct ReadQuantity {
   double scale = 0;
 };
 
-/// The error estimate's largest recovered von Mises (ErrorEstimate::peak_mises) and its node; -1: the run
-/// did not estimate.
-struct NodalPeak {
-  double mises = 0;  ///< [stress]
-  int node     = -1;
-};
-
-/// The largest von Mises stress, a nodal recovered one: on quadratic cells the error estimate's (`peak`: its
-/// quadratic patches through the 3 x 3 points are second order at a boundary too, 7 times closer on the Lame
-/// tube than the centroids'), else recovered from the cells' centroid stresses (post/peak_stress.hpp). A law
+/// The largest von Mises stress, a nodal recovered one: on quadratic cells the error estimate's `peak`
+/// (ErrorEstimate::peak_mises and its node, -1 when the run did not estimate; the estimate's quadratic
+/// patches through the 3 x 3 points are second order at a boundary too, 7 times closer on the Lame tube than
+/// the centroids'), else recovered from the cells' centroid stresses (post/peak_stress.hpp). A law
 /// with history (`plastic`) keeps its stresses on its yield surface, which a recovered field would cross
 /// (by 1% on the plastic tube): its largest is the centroids', first order (half a cell from a boundary's
 /// peak). A gap element's stress is a device's: left out.
 inline ReadQuantity largest_mises(const Scene& scene, const std::vector<PointValues>& centroids,
-                                  const NodalPeak& peak, bool plastic) {
+                                  const PeakStress& peak, bool plastic) {
   ReadQuantity mises{"largest von Mises", 0, Vec2::Zero(), true, plastic ? 1.0 : 2.0};
   if (plastic) {
     const std::size_t quads = scene.mesh.cells.size();
@@ -58,7 +52,7 @@ inline ReadQuantity largest_mises(const Scene& scene, const std::vector<PointVal
     return mises;
   }
   const PeakStress nodal = scene.is_quadratic() && peak.node >= 0
-                               ? PeakStress{peak.mises, peak.node}
+                               ? peak
                                : recovered_peak(scene.mesh, centroids, scene.gap_material);
   mises.value = nodal.mises, mises.located = nodal.node >= 0;
   if (mises.located) mises.at = scene.mesh.nodes[static_cast<std::size_t>(nodal.node)];
@@ -70,7 +64,7 @@ inline ReadQuantity largest_mises(const Scene& scene, const std::vector<PointVal
 /// whether the law has history (largest_mises).
 inline std::vector<ReadQuantity> read_quantities(const Scene& scene, const Solution& solution,
                                                  const std::vector<PointValues>& centroids,
-                                                 const NodalPeak& peak = {}, bool plastic = false) {
+                                                 const PeakStress& peak = {}, bool plastic = false) {
   std::vector<ReadQuantity> out;
   const double order = scene.is_quadratic() ? 3 : 2;
   static constexpr std::array<const char*, 3> kDirection{"R_r", "R_z", "R_t"};

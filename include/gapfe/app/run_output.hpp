@@ -15,6 +15,7 @@
 #include "gapfe/input/scene.hpp"
 #include "gapfe/output/step_files.hpp"
 #include "gapfe/post/gather.hpp"
+#include "gapfe/post/recovery_weights.hpp"
 #include "gapfe/run/scene_run.hpp"
 
 namespace gapfe::app {
@@ -35,6 +36,9 @@ struct RunRequest {
   bool writes = true;
   /// Whether the run records the quantities `--estimate` gives error bars (RunResult::quantities).
   bool read_quantities = false;
+  /// The error estimate's patch fit, kept across the run's increments (post/recovery_weights.hpp; the mesh
+  /// of a run stays as it is); nullptr: each increment's estimate fits its own.
+  RecoveryWeights* recovery = nullptr;
 };
 
 /// The result files of a run (output/step_files.hpp): on the process that writes them (every process of a
@@ -79,14 +83,14 @@ inline void keep_largest(std::vector<double>& per_step, int step, double value) 
 /// recorded in `times` (per load step and the last) and returned as the VTU cell array `error_estimate`, one
 /// value per deck element (gap elements 0), on the process that writes; empty elsewhere. The same pass gives
 /// the output's centroid stresses (`centroids`: the driver's centroid_values(Recovered::stress)), so the
-/// estimate phase's time holds theirs, and `peak` the recovered field's largest von Mises.
+/// phase's time (RunResult::recovery) holds theirs, and `peak` the recovered field's largest von Mises.
 template <class Fe>
 VtuField estimate_increment(const RunRequest& r, RunResult& times, int step, const Fe& fe,
-                            std::vector<PointValues>& centroids, NodalPeak& peak) {
+                            std::vector<PointValues>& centroids, PeakStress& peak) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<int> gap_materials;
   if (r.scene.gap_material >= 0) gap_materials.push_back(r.scene.gap_material);
-  ErrorEstimate estimate = fe.error_estimate(gap_materials, &centroids);
+  ErrorEstimate estimate = fe.error_estimate(gap_materials, &centroids, r.recovery);
   keep_largest(times.step_error, step, estimate.relative());
   times.error = estimate.relative(), times.error_stress_free = estimate.stress_free;
   peak                  = {estimate.peak_mises, estimate.peak_node};
@@ -111,7 +115,7 @@ VtuField estimate_increment(const RunRequest& r, RunResult& times, int step, con
       for (int k = 0; k < c.corners; ++k) times.error_element_at += g.nodes[c.node[k]] / c.corners;
     }
   }
-  times.estimate += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  times.recovery += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return field;
 }
 
@@ -136,11 +140,15 @@ void write_increment(const RunRequest& r, RunResult& times, RunFiles& files, int
   if (balance.relative() > times.balance) times.balance = balance.relative(), times.balance_step = step;
   times.last_balance = balance;
   std::vector<PointValues> centroids;
-  NodalPeak peak;
-  if (r.model.options.error_estimate)
+  PeakStress peak;
+  if (r.model.options.error_estimate) {
     extra_cells.push_back(estimate_increment(r, times, step, fe, centroids, peak));
+  } else {
+    const auto start = std::chrono::steady_clock::now();
+    centroids        = fe.centroid_values(Recovered::stress);
+    times.recovery += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
   const auto start = std::chrono::steady_clock::now();
-  if (!r.model.options.error_estimate) centroids = fe.centroid_values(Recovered::stress);
   if (const Subdomain* part = fe.problem().subdomain.get()) {
     const Solution whole = gather_solution(*part, fe.solution());
     auto values          = gather_cells(*part, centroids, Recovered::stress);

@@ -12,7 +12,9 @@ namespace gapfe::app {
 /// What a run did: wall-clock seconds of its phases after meshing, the work of contact and plasticity, and
 /// the figures the report checks (residuals, global balance, friction cone, time error).
 struct RunResult {
-  double assemble = 0, factorize = 0, solve = 0, write = 0, estimate = 0;
+  /// `recovery`: the centroid stresses the files and the checks read, and the error estimate from the same
+  /// pass when it runs (post/error_estimate.hpp).
+  double assemble = 0, factorize = 0, solve = 0, write = 0, recovery = 0;
   /// The recovery estimate of the discretization error (post/error_estimate.hpp): per load step (index
   /// step - 1) the largest relative energy-norm error of its accepted increments; the last increment's, with
   /// the deck element (0-based) that holds its largest share and that element's corners' mean (r, z).

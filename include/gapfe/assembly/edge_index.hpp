@@ -11,14 +11,9 @@
 #include "gapfe/assembly/cells.hpp"
 #include "gapfe/assembly/edge_loads.hpp"
 #include "gapfe/core/error.hpp"
+#include "gapfe/core/pair_key.hpp"
 
 namespace gapfe {
-
-/// The ordered edge start -> end as one key (the edge index's, and a partition's edge lookup).
-inline std::uint64_t edge_key(int start, int end) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(start)) << 32) |
-         static_cast<std::uint32_t>(end);
-}
 
 /// The error of edge load k (0-based) whose edge M -> N is no element's: `reversed` when N -> M is one.
 inline InputError edge_load_error(std::size_t k, const EdgeLoad& l, bool reversed) {
@@ -39,8 +34,8 @@ class EdgeIndex {
     if (edges_.empty()) build(m);
     for (std::size_t k = 0; k < loads.size(); ++k) {
       const EdgeLoad& l = loads[k];
-      const auto it     = edges_.find(edge_key(l.node_m, l.node_n));
-      if (it == edges_.end()) throw edge_load_error(k, l, edges_.count(edge_key(l.node_n, l.node_m)) > 0);
+      const auto it     = edges_.find(pair_key(l.node_m, l.node_n));
+      if (it == edges_.end()) throw edge_load_error(k, l, edges_.count(pair_key(l.node_n, l.node_m)) > 0);
       const auto [triangle, cell, edge] = it->second;
       if (!triangle) apply<Elem, DofsPerNode>(m.nodes, m.cells[cell], edge, l, out);
       if constexpr (kHasTriangles<Elem>)
@@ -59,7 +54,7 @@ class EdgeIndex {
     for_each_cell<Elem>(m, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
                                                          const std::array<int, NPC>& cell, const CellTag&) {
       for (int k = 0; k < static_cast<int>(E::kEdges.size()); ++k)
-        edges_[edge_key(cell[E::kEdges[k].front()], cell[E::kEdges[k].back()])] = {!std::is_same_v<E, Elem>,
+        edges_[pair_key(cell[E::kEdges[k].front()], cell[E::kEdges[k].back()])] = {!std::is_same_v<E, Elem>,
                                                                                    e, k};
     });
   }

@@ -24,6 +24,7 @@
 #include "gapfe/assembly/edge_index.hpp"
 #include "gapfe/assembly/problem_check.hpp"
 #include "gapfe/contact/gap_pairs.hpp"
+#include "gapfe/core/pair_key.hpp"
 #include "gapfe/mesh/cell_partition.hpp"
 #include "gapfe/problem/problem.hpp"
 
@@ -94,14 +95,14 @@ void set_part_loads(Problem<M>& part, const std::vector<Vec2>& whole_nodes,
                                                  const std::array<int, NPC>& cell, const CellTag&) {
           for (const auto& edge : E::kEdges)
             if (starts.count(cell[edge.front()]))
-              edges.insert(edge_key(cell[edge.front()], cell[edge.back()]));
+              edges.insert(pair_key(cell[edge.front()], cell[edge.back()]));
         });
   std::vector<double> found(2 * edge_loads.size(), 0.0);
   for (std::size_t k = 0; k < edge_loads.size(); ++k) {
     const int m = local_of(edge_loads[k].node_m), n = local_of(edge_loads[k].node_n);
     if (m < 0 || n < 0) continue;
-    found[2 * k]     = edges.count(edge_key(m, n)) ? 1.0 : 0.0;
-    found[2 * k + 1] = edges.count(edge_key(n, m)) ? 1.0 : 0.0;
+    found[2 * k]     = edges.count(pair_key(m, n)) ? 1.0 : 0.0;
+    found[2 * k + 1] = edges.count(pair_key(n, m)) ? 1.0 : 0.0;
   }
   std::vector<double> total = found;
   if (!total.empty()) domain.sum(total.data(), static_cast<int>(total.size()));

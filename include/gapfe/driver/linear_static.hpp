@@ -155,10 +155,12 @@ class LinearStatic {
   }
   /// The recovery estimate of the energy-norm error, per cell and whole, leaving out cells of the `skip`
   /// materials (post/error_estimate.hpp); and, into `centroids` when given,
-  /// centroid_values(Recovered::stress) from the same pass.
+  /// centroid_values(Recovered::stress) from the same pass; `weights`, when given, keeps the recovery's fit
+  /// for the next estimate on this mesh (post/recovery_weights.hpp: clear it after moving the nodes).
   ErrorEstimate error_estimate(const std::vector<int>& skip        = {},
-                               std::vector<PointValues>* centroids = nullptr) const {
-    return estimate_error(assembler_, p_, u_, ElasticStress<Law>{}, skip, centroids);
+                               std::vector<PointValues>* centroids = nullptr,
+                               RecoveryWeights* weights            = nullptr) const {
+    return estimate_error(assembler_, p_, u_, ElasticStress<Law>{}, skip, centroids, weights);
   }
 
  private:

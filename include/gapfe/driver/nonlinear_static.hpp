@@ -154,10 +154,11 @@ class NonlinearStatic {
     return recover(assembler_, p_, u_, stored(), true, what);
   }
   /// The recovery estimate of the energy-norm error (post/error_estimate.hpp), without `skip` materials;
-  /// `centroids` as LinearStatic's.
+  /// `centroids` and `weights` as LinearStatic's.
   ErrorEstimate error_estimate(const std::vector<int>& skip        = {},
-                               std::vector<PointValues>* centroids = nullptr) const {
-    return estimate_error(assembler_, p_, u_, stored(), skip, centroids);
+                               std::vector<PointValues>* centroids = nullptr,
+                               RecoveryWeights* weights            = nullptr) const {
+    return estimate_error(assembler_, p_, u_, stored(), skip, centroids, weights);
   }
 
  private:

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "gapfe/core/error.hpp"
+#include "gapfe/core/pair_key.hpp"
 #include "gapfe/input/gmsh_reader.hpp"
 
 namespace gapfe {
@@ -83,10 +84,6 @@ std::optional<Vec2> arc_middle(const std::vector<Vec2>& x, int p, int q, Next&& 
     return Vec2(centre + radius * chord.normalized());
   }
   return std::nullopt;
-}
-
-inline std::uint64_t side_key(int a, int b) {
-  return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | static_cast<std::uint32_t>(std::max(a, b));
 }
 
 /// One split of `g` (see the top); `soft`: physical surface tags of soft layers, `faces`: physical curve

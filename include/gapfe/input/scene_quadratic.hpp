@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "gapfe/core/error.hpp"
+#include "gapfe/core/pair_key.hpp"
 #include "gapfe/input/scene.hpp"
 
 namespace gapfe {
@@ -122,8 +123,7 @@ inline void make_quadratic(const ModelDescription& d, Scene& s) {
   std::vector<std::array<int, 3>> sides;             // (a, b, middle)
   const auto middle = [&](int a, int b) {
     const std::array<int, 2> side{std::min(a, b), std::max(a, b)};
-    const std::uint64_t key =
-        (static_cast<std::uint64_t>(side[0]) << 32) | static_cast<std::uint32_t>(side[1]);
+    const std::uint64_t key = side_key(a, b);
     if (const auto it = middle_of.find(key); it != middle_of.end()) return it->second;
     const auto given = s.given_mid_sides.find(side);
     const Vec2 at =

@@ -17,14 +17,18 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <stdexcept>
 #include <type_traits>
 #include <vector>
 
 #include <Eigen/LU>
 
+#include "gapfe/post/cell_energies.hpp"
 #include "gapfe/post/patch_recovery.hpp"
 #include "gapfe/post/recovery.hpp"
+#include "gapfe/post/recovery_weights.hpp"
 
 namespace gapfe {
 
@@ -59,170 +63,36 @@ struct ErrorEstimate {
 
 namespace detail {
 
-/// eta_e^2 and |u_h|_e^2 of a bilinear quadrilateral (Quad4 and its B-bar form) from sigma* at its corners
-/// and sigma_h at its 2 x 2 Gauss points, `at`. Both fields are bilinear in (xi, eta), c0 + c1 xi + c2 eta +
-/// c3 xi eta: sigma* through the corners, sigma_h through the Gauss points' values (what a law with history
-/// keeps; a linear law's own field but for the hoop strain's 1 / r). Their squares weighed by C^-1 and by
-/// 2 pi r det J are then sums of the coefficients' products c_k^T C^-1 c_l times the moments of
-/// (1, xi, eta, xi eta) under the weight, which 3 x 3 Gauss points integrate exactly (the weight is bilinear
-/// times linear). Returns {eta_e^2, |u_h|_e^2}.
-template <class E, int S>
-std::array<double, 2> bilinear_cell_energies(const Mat<4, 2>& x, const std::array<Vec<S>, 4>& corner,
-                                             const Vec<S>* at, const Mat<S, S>& compliance) {
-  struct Point {
-    Vec<4> N, monomial;
-    Mat<4, 2> dN;
-    double weight;
-  };
-  static const std::array<Point, 9> points = [] {  // the rule's shape values, the same for every cell
-    constexpr auto rule = gauss::square<3>();
-    std::array<Point, 9> t;
-    for (int q = 0; q < 9; ++q) {
-      const double xi = rule.point[q][0], eta = rule.point[q][1];
-      t[q] = {E::N(xi, eta), Vec<4>(1, xi, eta, xi * eta), E::dN(xi, eta), rule.weight[q]};
-    }
-    return t;
-  }();
-  Mat<4, 4> moments = Mat<4, 4>::Zero();  // of (1, xi, eta, xi eta) under 2 pi r det J
-  for (const Point& p : points) {
-    const Mat<2, 2> J = p.dN.transpose() * x;
-    const double w    = kTwoPi * p.N.dot(x.col(0)) * (J(0, 0) * J(1, 1) - J(0, 1) * J(1, 0)) * p.weight;
-    moments += w * p.monomial * p.monomial.transpose();
-  }
-  std::array<Vec<S>, 4> diff, held;  // the coefficients of sigma* - sigma_h and of sigma_h
-  for (int k = 0; k < 4; ++k) diff[k].setZero(), held[k].setZero();
-  for (int c = 0; c < 4; ++c) {  // N_c = (1 + xi_c xi)(1 + eta_c eta) / 4
-    const double a = E::kCorners[c][0], b = E::kCorners[c][1];
-    diff[0] += corner[c] / 4, diff[1] += a * corner[c] / 4, diff[2] += b * corner[c] / 4;
-    diff[3] += a * b * corner[c] / 4;
-  }
-  for (int q = 0; q < 4;
-       ++q) {  // Lagrange through (+-1/sqrt 3, +-1/sqrt 3): (1 + 3 xi_q xi)(1 + 3 eta_q eta) / 4
-    const double a = 3 * E::kRule.point[q][0], b = 3 * E::kRule.point[q][1];
-    held[0] += at[q] / 4, held[1] += a * at[q] / 4, held[2] += b * at[q] / 4, held[3] += a * b * at[q] / 4;
-  }
-  std::array<double, 2> out{0, 0};
-  for (int k = 0; k < 4; ++k) diff[k] -= held[k];
-  for (int k = 0; k < 4; ++k) {
-    const Vec<S> cd = compliance * diff[k], ch = compliance * held[k];
-    for (int l = 0; l < 4; ++l)
-      out[0] += moments(k, l) * diff[l].dot(cd), out[1] += moments(k, l) * held[l].dot(ch);
-  }
-  return out;
-}
-
-/// eta_e^2 and |u_h|_e^2 of an 8-node quadrilateral from sigma* at its nodes and sigma_h at its 3 x 3 Gauss
-/// points, `at`, on 4 x 4 Gauss points: sigma* through the nodes (its shape functions), sigma_h biquadratic
-/// through the 3 x 3 points' values (Lagrange through -a, 0, a, a = sqrt(3/5), in each direction).
-template <class E, int S>
-std::array<double, 2> quadratic_cell_energies(const Mat<8, 2>& x, const std::array<Vec<S>, 8>& node,
-                                              const Vec<S>* at, const Mat<S, S>& compliance) {
-  constexpr auto rule = gauss::square<4>();
-  constexpr double a  = gauss::Line<3>::a;
-  const auto lagrange = [&](double t) {
-    return Vec<3>(t * (t - a) / (2 * a * a), (a * a - t * t) / (a * a), t * (t + a) / (2 * a * a));
-  };
-  std::array<double, 2> out{0, 0};
-  double det = 0;
-  for (int q = 0; q < 16; ++q) {
-    const double xi = rule.point[q][0], eta = rule.point[q][1];
-    const auto g    = E::at(x, xi, eta, rule.weight[q], det);
-    const Vec<3> li = lagrange(xi), lj = lagrange(eta);
-    Vec<S> held = Vec<S>::Zero(), diff = Vec<S>::Zero();
-    for (int j = 0; j < 3; ++j)
-      for (int i = 0; i < 3; ++i) held += li(i) * lj(j) * at[3 * j + i];  // square<3>: xi fastest
-    for (int c = 0; c < 8; ++c) diff += g.N(c) * node[c];
-    diff -= held;
-    out[0] += g.weight * diff.dot(compliance * diff), out[1] += g.weight * held.dot(compliance * held);
-  }
-  return out;
-}
-
-/// eta_e^2 and |u_h|_e^2 of a 6-node triangle on its own stiffness points: sigma* through the nodes (its
-/// shape functions) against sigma_h where it was computed. The degree-4 rule integrates the quadratic sigma*
-/// against the linear part of sigma_h exactly but for the weight r; the estimate needs no more.
-template <class E, int S>
-std::array<double, 2> triangle_cell_energies(const Mat<6, 2>& x, const std::array<Vec<S>, 6>& node,
-                                             const Vec<S>* at, const Mat<S, S>& compliance) {
-  std::array<double, 2> out{0, 0};
-  double det = 0;
-  for (int q = 0; q < E::kStiffnessPoints; ++q) {
-    const auto g = E::stiffness_point(x, q, det);
-    Vec<S> diff  = -at[q];
-    for (int c = 0; c < 6; ++c) diff += g.N(c) * node[c];
-    out[0] += g.weight * diff.dot(compliance * diff), out[1] += g.weight * at[q].dot(compliance * at[q]);
-  }
-  return out;
-}
-
-/// The constant-strain triangles of a cell, as shape-node indices: the legacy quadrilateral's four, a
-/// triangle itself. Stiffness point q is triangle q's centroid.
-template <class E>
-constexpr auto cst_triangles() {
-  if constexpr (requires { E::kTriangles; })
-    return E::kTriangles;
-  else
-    return std::array<std::array<int, 3>, 1>{E::kTri};
-}
-
-/// integral over a straight triangle of d^T K d 2 pi r dA, d linear (d_a at its corners), exactly:
-/// sum over a, b, c of (d_a^T K d_b) r_c times the integral of L_a L_b L_c, which is A / 10, A / 30 or
-/// A / 60 as a, b, c are all equal, two equal or all different (the integral of L1^i L2^j L3^k is
-/// 2 A i! j! k! / (i + j + k + 2)!).
+/// What step 1 of estimate_error() leaves: the stresses at the stiffness points (restricted to the
+/// kinematics' components; the assembler's point slots), sigma* per recovery slot, and the largest stress
+/// with the round-off a stress of this model carries: about the unit round-off of the stiffness times the
+/// strains the displacements and temperatures could make (max |u| over a cell's side, and the thermal
+/// strain).
 template <int S>
-double linear_field_energy(const std::array<Vec<S>, 3>& d, const Mat<S, S>& compliance, const Vec<3>& r,
-                           double area) {
-  const double all = r.sum();
-  double sum       = 0;
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) {
-      const double gram = d[a].dot(compliance * d[b]);
-      sum += a == b ? gram * (r(a) / 10 + (all - r(a)) / 30)
-                    : gram * ((r(a) + r(b)) / 30 + (all - r(a) - r(b)) / 60);
-    }
-  return kTwoPi * area * sum;
-}
-
-}  // namespace detail
-
-/// The recovery estimate of the energy-norm error of displacements `u` (all DOFs) on a driver's assembler
-/// and problem, with stresses from `source` (post/recovery.hpp); cells of the `skip` materials (gap
-/// elements: their stiffness is a device, not a body's) have no estimate and count in no sum. A part of a
-/// partitioned problem recovers from its own cells only (a patch stops at the part's edge) and sums the
-/// norms over every part (collective). `centroids`, when given, receives what recover() gives for the
-/// cells' centroids with Recovered::stress (every cell's, the skipped ones' too), from the same pass: a run
-/// that writes them and estimates recovers each cell once (the legacy quad's condensed centre is the costly
-/// part).
-template <class M, class Source>
-ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const VecX& u, const Source& source,
-                             const std::vector<int>& skip        = {},
-                             std::vector<PointValues>* centroids = nullptr) {
-  using Kin          = typename M::Kinematics;
-  using Elem         = typename M::Element;
-  constexpr int S    = Kin::kStrain;
-  constexpr int P    = Elem::kEdgeNodes == 3 ? 6 : 3;  // quadratic cells (Quad8, Tri6): quadratic patches
-  const auto& mesh   = p.mesh;
-  const auto skipped = [&](const CellTag& tag) {
-    return std::find(skip.begin(), skip.end(), tag.material) != skip.end();
-  };
-  detail::RecoverySlots slots(mesh.node_count());
-  for_each_cell<Elem>(mesh,
-                      [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t,
-                                                    const std::array<int, NPC>& cell, const CellTag& tag) {
-                        if (!skipped(tag))
-                          for (int c = 0; c < E::kNodes; ++c) slots.add(cell[c], tag.material);
-                      });
-  slots.finish();
-
-  // 1. The stresses at the stiffness points, kept, and the patches' sums; then sigma* per slot.
-  std::vector<Vec<S>> stress(a.point_count());
-  std::vector<detail::PatchSums<S, P>> sums(slots.size());
-  // The largest stress, against the round-off a stress of this model carries: about the unit round-off of
-  // the stiffness times the strains the displacements and temperatures could make (max |u| over a cell's
-  // side, and the thermal strain).
+struct PointStresses {
+  std::vector<Vec<S>> stress, recovered;
   double peak = 0, noise = 0;
+};
+
+/// Step 1 of estimate_error(): every cell's stiffness-point stresses, and sigma* on `slots` either from
+/// `fit`'s weights (`Weighted`) or from this call's patch sums (`P` terms).
+template <int P, bool Weighted, class M, class Source>
+PointStresses<M::Kinematics::kStrain> point_stresses(const Assembler<M>& a, const Problem<M>& p,
+                                                     const VecX& u, const Source& source,
+                                                     const std::vector<int>& skip,
+                                                     std::vector<PointValues>* centroids,
+                                                     const RecoverySlots& slots, const RecoveryWeights* fit) {
+  using Kin        = typename M::Kinematics;
+  using Elem       = typename M::Element;
+  constexpr int S  = Kin::kStrain;
+  const auto& mesh = p.mesh;
+  PointStresses<S> out;
+  out.stress.resize(a.point_count());
+  out.recovered.assign(slots.size(), Vec<S>::Zero());
+  std::vector<PatchSums<S, P>> sums(Weighted ? 0 : slots.size());
   const double largest_u = u.size() > 0 ? u.cwiseAbs().maxCoeff() : 0.0;
   if (centroids) centroids->clear(), centroids->reserve(mesh.cells.size() + mesh.triangles.size());
+  const double* weight = Weighted ? fit->weight.data() : nullptr;
   a.reset_cache();
   for_each_cell<Elem>(mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
                                                           const std::array<int, NPC>& cell,
@@ -232,7 +102,7 @@ ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const V
             (E::kEdgeNodes == 3 && (E::kStiffnessPoints == 9 || E::kNodes == 6)),
         "cells the recovery knows: Quad4, its B-bar form, the legacy quad, Tri3 (planes), Quad8 and Tri6 "
         "(quadratics)");
-    const bool skip_cell = skipped(tag);
+    const bool skip_cell = left_out(skip, tag.material);
     if (skip_cell && !centroids) return;
     const auto x     = cell_coords<E>(mesh, cell);
     const auto& lp   = a.local(p, tag, cell);
@@ -245,32 +115,76 @@ ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const V
     }
     const auto points = values.points();
     if (centroids) centroids->push_back(values.centroid(points));
-    const Vec2 origin = x.row(0).transpose();
-    // Linear cells: the cell's sums about its first corner, moved to each corner's patch.
-    detail::PatchSums<S, P> own;
     const double side = std::min((x.row(E::kEdges.front().back()) - x.row(0)).norm(),
                                  (x.row(E::kEdges.back().front()) - x.row(0)).norm());
-    noise             = std::max(noise, lp.stiffness.diagonal().maxCoeff() *
-                                            (largest_u / side + lp.thermal_strain.cwiseAbs().maxCoeff()));
+    out.noise         = std::max(out.noise, lp.stiffness.diagonal().maxCoeff() *
+                                                (largest_u / side + lp.thermal_strain.cwiseAbs().maxCoeff()));
+    std::array<std::size_t, E::kNodes> slot;
+    for (int c = 0; c < E::kNodes; ++c) slot[c] = slots(cell[c], tag.material);
+    const Vec2 origin = x.row(0).transpose();
+    PatchSums<S, P>
+        own;  // linear cells: the cell's sums about its first corner, moved to each corner's patch
     for (int q = 0; q < E::kStiffnessPoints; ++q) {
-      const PointValues& v = points.value[q];
-      const auto slot      = first + static_cast<std::size_t>(q);
-      stress[slot]         = ElementKernel<Kin, E>::restrict(v.stress);
-      peak                 = std::max(peak, stress[slot].cwiseAbs().maxCoeff());
-      const Vec2 point(v.r, v.z);
-      if constexpr (P == 3)
-        own.add(point - origin, stress[slot]);
+      const PointValues& v                            = points.value[q];
+      const Vec<S> s                                  = ElementKernel<Kin, E>::restrict(v.stress);
+      out.stress[first + static_cast<std::size_t>(q)] = s;
+      out.peak                                        = std::max(out.peak, s.cwiseAbs().maxCoeff());
+      if constexpr (Weighted)
+        for (int c = 0; c < E::kNodes; ++c) out.recovered[slot[c]] += *weight++ * s;
+      else if constexpr (P == 3)
+        own.add(Vec2(v.r, v.z) - origin, s);
       else  // a quadratic's sums do not move by a cheap shift: each node's own
-        for (int c = 0; c < E::kNodes; ++c)
-          sums[slots(cell[c], tag.material)].add(point - mesh.nodes[cell[c]], stress[slot]);
+        for (int c = 0; c < E::kNodes; ++c) sums[slot[c]].add(Vec2(v.r, v.z) - mesh.nodes[cell[c]], s);
     }
-    if constexpr (P == 3)
-      for (int c = 0; c < E::kNodes; ++c)
-        sums[slots(cell[c], tag.material)].add_shifted(own, origin - mesh.nodes[cell[c]]);
+    if constexpr (P == 3 && !Weighted)
+      for (int c = 0; c < E::kNodes; ++c) sums[slot[c]].add_shifted(own, origin - mesh.nodes[cell[c]]);
   });
-  std::vector<Vec<S>> recovered(sums.size());
-  for (std::size_t k = 0; k < sums.size(); ++k) recovered[k] = sums[k].at_node();
-  sums = {};
+  for (std::size_t k = 0; k < sums.size(); ++k) out.recovered[k] = sums[k].at_node();
+  if (Weighted && weight != fit->weight.data() + fit->weight.size())  // RecoveryWeights::fits() guards this
+    throw std::logic_error("estimate_error: the kept recovery weights are another mesh's");
+  return out;
+}
+
+}  // namespace detail
+
+/// The recovery estimate of the energy-norm error of displacements `u` (all DOFs) on a driver's assembler
+/// and problem, with stresses from `source` (post/recovery.hpp); cells of the `skip` materials (gap
+/// elements: their stiffness is a device, not a body's) have no estimate and count in no sum. A part of a
+/// partitioned problem recovers from its own cells only (a patch stops at the part's edge) and sums the
+/// norms over every part (collective). `centroids`, when given, receives what recover() gives for the
+/// cells' centroids with Recovered::stress (every cell's, the skipped ones' too), from the same pass: a run
+/// that writes them and estimates recovers each cell once (the legacy quad's condensed centre is the costly
+/// part). `weights`, when given, keeps the patches' fit from the second call on one mesh on
+/// (post/recovery_weights.hpp): a single estimate fits the patches to its stresses directly, for less.
+template <class M, class Source>
+ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const VecX& u, const Source& source,
+                             const std::vector<int>& skip = {}, std::vector<PointValues>* centroids = nullptr,
+                             RecoveryWeights* weights = nullptr) {
+  using Kin        = typename M::Kinematics;
+  using Elem       = typename M::Element;
+  constexpr int S  = Kin::kStrain;
+  constexpr int P  = Elem::kEdgeNodes == 3 ? 6 : 3;  // quadratic cells (Quad8, Tri6): quadratic patches
+  const auto& mesh = p.mesh;
+  const RecoveryWeights* fit = nullptr;
+  if (weights) {
+    const void* element       = &detail::kElementTag<Elem>;
+    const std::uint64_t print = detail::mesh_fingerprint(mesh);
+    if (!weights->fits(element, print, skip))
+      weights->remember(element, print, skip);
+    else if (!weights->built)
+      *weights = recovery_weights<Elem, P>(mesh, skip);
+    if (weights->built) fit = weights;
+  }
+  const detail::RecoverySlots own_slots =
+      fit ? detail::RecoverySlots(0) : detail::recovery_slots<Elem>(mesh, skip);
+  const detail::RecoverySlots& slots = fit ? fit->slots : own_slots;
+
+  // 1. The stresses at the stiffness points, kept, and sigma* per slot.
+  detail::PointStresses<S> at_points =
+      fit ? detail::point_stresses<P, true>(a, p, u, source, skip, centroids, slots, fit)
+          : detail::point_stresses<P, false>(a, p, u, source, skip, centroids, slots, fit);
+  const std::vector<Vec<S>>&stress = at_points.stress, &recovered = at_points.recovered;
+  double peak = at_points.peak, noise = at_points.noise;
 
   // 2. The error per cell: sigma* from the cell's nodes against the kept sigma_h.
   ErrorEstimate out;
@@ -285,7 +199,7 @@ ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const V
   for_each_cell<Elem>(mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
                                                           const std::array<int, NPC>& cell,
                                                           const CellTag& tag) {
-    if (skipped(tag)) return;
+    if (detail::left_out(skip, tag.material)) return;
     const auto x       = cell_coords<E>(mesh, cell);
     const Mat<S, S> cs = ElementKernel<Kin, E>::restrict(a.local(p, tag, cell).stiffness);
     if (cs != stiffness) stiffness = cs, compliance = cs.inverse();  // neighbours mostly share a material

@@ -79,9 +79,14 @@ struct PatchSums {
   }
   /// The fitted value at the node, c0: of the full polynomial, else of the plane (the leading 3 x 3 block
   /// holds the plane's sums), else the points' mean.
-  Vec<S> at_node() const {
+  Vec<S> at_node() const { return (node_row().transpose() * right).transpose(); }
+  /// The row `a` with at_node() = (a^T right)^T, from the normal sums alone. The fit is linear in the
+  /// stresses: a point's share in the value at the node is a^T terms(offset), which depends on where the
+  /// points lie only (post/recovery_weights.hpp keeps them for a mesh).
+  Vec<P> node_row() const {
+    Vec<P> row         = Vec<P>::Zero();
     const double count = normal(0, 0);
-    if (count <= 0) return Vec<S>::Zero();
+    if (count <= 0) return row;
     if constexpr (P == 6) {
       if (count >= 6) {
         // The quadratic's monomials make the scaled matrix's determinant fall with a cell's skew (5e-11 at
@@ -92,16 +97,19 @@ struct PatchSums {
         lu.setThreshold(1e-12);
         if (lu.rank() == 6) {
           const Mat<6, 6> inverse = lu.inverse();
-          if (inverse(0, 0) < 1e4) return d(0) * (inverse.row(0) * (d.asDiagonal() * right)).transpose();
+          if (inverse(0, 0) < 1e4) return d(0) * (inverse.row(0) * d.asDiagonal()).transpose();
         }
       }
     }
     if (count >= 3) {  // a well-spread plane's scaled determinant is of order 1
       const auto [d, scaled] = scaled_normal<3>();
-      if (scaled.determinant() > 1e-6)
-        return d(0) * (scaled.inverse().row(0) * (d.asDiagonal() * right.template topRows<3>())).transpose();
+      if (scaled.determinant() > 1e-6) {
+        row.template head<3>() = d(0) * (scaled.inverse().row(0) * d.asDiagonal()).transpose();
+        return row;
+      }
     }
-    return right.row(0).transpose() / count;
+    row(0) = 1 / count;
+    return row;
   }
   /// The fitted plane's value at `offset` from the node, when its points span a plane (a neighbour's patch
   /// read at a boundary node: post/peak_stress.hpp); false otherwise. `leverage`, when given, receives the

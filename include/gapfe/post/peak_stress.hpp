@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "gapfe/core/pair_key.hpp"
 #include "gapfe/mesh/mesh.hpp"
 #include "gapfe/post/patch_recovery.hpp"
 #include "gapfe/problem/results.hpp"
@@ -59,9 +60,6 @@ PeakStress recovered_peak(const Mesh<N>& mesh, const std::vector<PointValues>& c
   // The patches' planes through the centroids, and the sides (pairs of slots) with how many cells hold them.
   std::vector<detail::PatchSums<6, 3>> sums(slots.size());
   std::vector<std::uint64_t> sides;
-  const auto key = [](std::size_t a, std::size_t b) {
-    return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
-  };
   for (std::size_t e = 0; e < cells.size(); ++e) {
     const auto& c = cells[e];
     if (c[4] == skip) continue;
@@ -70,7 +68,7 @@ PeakStress recovered_peak(const Mesh<N>& mesh, const std::vector<PointValues>& c
     for (int k = 0; k < corners; ++k) {
       const std::size_t a = slots(c[k], c[4]), b = slots(c[(k + 1) % corners], c[4]);
       sums[a].add(centre - mesh.nodes[static_cast<std::size_t>(c[k])], centroids[e].stress);
-      if (a != b) sides.push_back(key(a, b));  // a degenerate quadrilateral's collapsed side is none
+      if (a != b) sides.push_back(side_key(a, b));  // a degenerate quadrilateral's collapsed side is none
     }
   }
   std::sort(sides.begin(), sides.end());
@@ -89,7 +87,7 @@ PeakStress recovered_peak(const Mesh<N>& mesh, const std::vector<PointValues>& c
     for (int k = 0; k < 4 && c[k] >= 0; ++k)
       for (int l = 0; l < 4 && c[l] >= 0; ++l) {
         const std::size_t a = slots(c[k], c[4]), b = slots(c[l], c[4]);
-        if (boundary[a] && !boundary[b]) reads.push_back((static_cast<std::uint64_t>(a) << 32) | b);
+        if (boundary[a] && !boundary[b]) reads.push_back(pair_key(a, b));
       }
   }
   std::sort(reads.begin(), reads.end());
