@@ -121,9 +121,9 @@ PointStresses<M::Kinematics::kStrain> point_stresses(const Assembler<M>& a, cons
                                                 (largest_u / side + lp.thermal_strain.cwiseAbs().maxCoeff()));
     std::array<std::size_t, E::kNodes> slot;
     for (int c = 0; c < E::kNodes; ++c) slot[c] = slots(cell[c], tag.material);
+    // Linear cells fitted here: the cell's sums about its first corner, moved to each corner's patch.
     const Vec2 origin = x.row(0).transpose();
-    PatchSums<S, P>
-        own;  // linear cells: the cell's sums about its first corner, moved to each corner's patch
+    PatchSums<S, P> own;
     for (int q = 0; q < E::kStiffnessPoints; ++q) {
       const PointValues& v                            = points.value[q];
       const Vec<S> s                                  = ElementKernel<Kin, E>::restrict(v.stress);
