@@ -21,6 +21,7 @@
 #include <limits>
 #include <stdexcept>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <Eigen/LU>
@@ -121,23 +122,17 @@ PointStresses<M::Kinematics::kStrain> point_stresses(const Assembler<M>& a, cons
                                                 (largest_u / side + lp.thermal_strain.cwiseAbs().maxCoeff()));
     std::array<std::size_t, E::kNodes> slot;
     for (int c = 0; c < E::kNodes; ++c) slot[c] = slots(cell[c], tag.material);
-    // Linear cells fitted here: the cell's sums about its first corner, moved to each corner's patch.
-    const Vec2 origin = x.row(0).transpose();
-    PatchSums<S, P> own;
+    const Vec<S>* at = out.stress.data() + first;
     for (int q = 0; q < E::kStiffnessPoints; ++q) {
-      const PointValues& v                            = points.value[q];
-      const Vec<S> s                                  = ElementKernel<Kin, E>::restrict(v.stress);
+      const Vec<S> s = ElementKernel<Kin, E>::restrict(points.value[q].stress);
       out.stress[first + static_cast<std::size_t>(q)] = s;
       out.peak                                        = std::max(out.peak, s.cwiseAbs().maxCoeff());
       if constexpr (Weighted)
         for (int c = 0; c < E::kNodes; ++c) out.recovered[slot[c]] += *weight++ * s;
-      else if constexpr (P == 3)
-        own.add(Vec2(v.r, v.z) - origin, s);
-      else  // a quadratic's sums do not move by a cheap shift: each node's own
-        for (int c = 0; c < E::kNodes; ++c) sums[slot[c]].add(Vec2(v.r, v.z) - mesh.nodes[cell[c]], s);
     }
-    if constexpr (P == 3 && !Weighted)
-      for (int c = 0; c < E::kNodes; ++c) sums[slot[c]].add_shifted(own, origin - mesh.nodes[cell[c]]);
+    if constexpr (!Weighted)
+      add_to_patches<E>(sums, slot, mesh, cell,
+                        [&](int q) { return std::pair(Vec2(points.value[q].r, points.value[q].z), at[q]); });
   });
   for (std::size_t k = 0; k < sums.size(); ++k) out.recovered[k] = sums[k].at_node();
   if (Weighted && weight != fit->weight.data() + fit->weight.size())  // RecoveryWeights::fits() guards this

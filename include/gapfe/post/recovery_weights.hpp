@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "gapfe/assembly/cells.hpp"
@@ -86,6 +87,27 @@ Vec2 stiffness_point_position(const Mat<E::kNodes, 2>& x, const Mat<E::kShapeNod
   return {g.r, g.N.dot(xs.col(1))};
 }
 
+/// Adds one cell's stiffness points to its nodes' patches (`slot`: its nodes' slots): point_at(q) gives
+/// point q's position and stress. A plane's sums are taken about the cell's first corner and moved to each
+/// corner (one set of point sums per cell); a quadratic's do not move by a cheap shift: each node's own.
+/// The estimate's own fit and the kept weights' build both add through here, so their sums are the same and
+/// node_row() takes the same branch (quadratic, plane or mean) either way.
+template <class E, int S, int P, class MeshT, std::size_t NPC, class PointAt>
+void add_to_patches(std::vector<PatchSums<S, P>>& sums, const std::array<std::size_t, E::kNodes>& slot,
+                    const MeshT& mesh, const std::array<int, NPC>& cell, PointAt&& point_at) {
+  const Vec2& origin = mesh.nodes[cell[0]];
+  PatchSums<S, P> own;
+  for (int q = 0; q < E::kStiffnessPoints; ++q) {
+    const auto [point, stress] = point_at(q);
+    if constexpr (P == 3)
+      own.add(point - origin, stress);
+    else
+      for (int c = 0; c < E::kNodes; ++c) sums[slot[c]].add(point - mesh.nodes[cell[c]], stress);
+  }
+  if constexpr (P == 3)
+    for (int c = 0; c < E::kNodes; ++c) sums[slot[c]].add_shifted(own, origin - mesh.nodes[cell[c]]);
+}
+
 /// A slot per node and material around it, of the cells not left out.
 template <class Elem, class MeshT>
 RecoverySlots recovery_slots(const MeshT& mesh, const std::vector<int>& skip) {
@@ -124,26 +146,18 @@ RecoveryWeights recovery_weights(const MeshT& mesh, const std::vector<int>& skip
     for (int q = 0; q < E::kStiffnessPoints; ++q)
       position.push_back(detail::stiffness_point_position<E>(x, xs, q));
   });
-  // Each patch's normal sums (of a stress of one component, left at zero), then its row. A plane's sums are
-  // taken about the cell's first corner and moved to each corner, as the estimate's own fit takes them: the
-  // same sums, so node_row() takes the same branch (quadratic, plane or mean) either way.
+  // Each patch's normal sums (of a stress of one component, left at zero: the right-hand side goes unused),
+  // then its row.
   using Sums = detail::PatchSums<1, P>;
   std::vector<Sums> sums(w.slots.size());
   const Vec2* point = position.data();
   each_cell(
       [&]<class E, std::size_t NPC>(std::type_identity<E>, const std::array<int, NPC>& cell, int material) {
-        const Vec2& origin = mesh.nodes[cell[0]];
-        Sums own;
-        for (int q = 0; q < E::kStiffnessPoints; ++q, ++point) {
-          if constexpr (P == 3)
-            own.add(*point - origin, Vec<1>::Zero());
-          else
-            for (int c = 0; c < E::kNodes; ++c)
-              sums[w.slots(cell[c], material)].add(*point - mesh.nodes[cell[c]], Vec<1>::Zero());
-        }
-        if constexpr (P == 3)
-          for (int c = 0; c < E::kNodes; ++c)
-            sums[w.slots(cell[c], material)].add_shifted(own, origin - mesh.nodes[cell[c]]);
+        std::array<std::size_t, E::kNodes> slot;
+        for (int c = 0; c < E::kNodes; ++c) slot[c] = w.slots(cell[c], material);
+        detail::add_to_patches<E>(sums, slot, mesh, cell,
+                                  [&](int q) { return std::pair(point[q], Vec<1>::Zero().eval()); });
+        point += E::kStiffnessPoints;
       });
   std::vector<Vec<P>> rows(sums.size());
   for (std::size_t k = 0; k < sums.size(); ++k) rows[k] = sums[k].node_row();
