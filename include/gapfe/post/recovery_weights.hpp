@@ -3,8 +3,8 @@
 // through a patch's point stresses is linear in those stresses, so the recovered stress at a node is a
 // weighted sum of them, sigma*_n = sum over the patch's points i of w_i sigma_i, with weights that depend on
 // where the points lie only (post/patch_recovery.hpp's node_row). A run estimates every accepted increment
-// on one mesh: it fits the patches once, here, and each estimate is then one weighted sum per point and node
-// (half the estimate's time was the patches' sums and their small solves).
+// on one mesh: it fits the patches once, here, and each later estimate is one weighted sum per point and node
+// (the patches' sums and their small solves were about a third of quad4's estimate: BENCHMARKS.md).
 #include <algorithm>
 #include <array>
 #include <bit>
