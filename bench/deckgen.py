@@ -94,7 +94,7 @@ def edge(m, n, value, wide=False):
 
 
 def tube_deck(ni, nj, a=100.0, b=200.0, h=None, p=100.0, extension=("format = elastic",), nodal=False,
-              wide=False):
+              wide=False, nu=0.3):
     """Thick tube a <= r <= b, 0 <= z <= h, plane strain (u_z = 0 on both ends), internal pressure p.
     Nodes (ni x nj grid): node(I, J) = (J - 1) ni + I. Legacy pressure cards (I5 node numbers) reach only
     node 99999 and segment cards (I3) index 999: wide=True writes `$ fields = wide` and the widened cards;
@@ -114,7 +114,7 @@ def tube_deck(ni, nj, a=100.0, b=200.0, h=None, p=100.0, extension=("format = el
     if nodal:
         lines += [bc(1, 1, 2, nj - 1, 0, force), bc(1, 1, 1, 1, 2, force / 2), bc(1, 1, nj, nj, 2, force / 2)]
     lines += [block(1, 1, ni, 1, nj)]
-    lines += material(1, [isotropic(200000.0, 0.3, 1.2e-5)], density=7.85e-9, elastic_format=True)
+    lines += material(1, [isotropic(200000.0, nu, 1.2e-5)], density=7.85e-9, elastic_format=True)
     if not nodal:
         lines += [edge(node(1, J + 1), node(1, J), p, wide) for J in range(1, nj)]
     return "\n".join(lines) + "\n"

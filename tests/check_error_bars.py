@@ -327,16 +327,23 @@ def scenes():
 def accuracy():
     """`--accuracy TOL`: the last run's values (estimates.csv's value column) within TOL of the closed forms."""
     s = P * A * A / (B * B - A * A)
-    sigma = (-P, 2 * NU * s, s * (B * B + A * A) / (A * A))
-    mises = math.sqrt(0.5 * sum((sigma[k] - sigma[(k + 1) % 3]) ** 2 for k in range(3)))
-    axial = 2 * math.pi * NU * P * A * A
     cube = B ** 3 - A ** 3
-    lame_truth = {"reaction bc1 R_z": axial, "reaction bc2 R_z": axial, "largest von Mises": mises,
-                  "largest |u|": (1 + NU) / E * s * ((1 - 2 * NU) * A + B * B / A)}
-    # The Lame deck with the element left to gapfe (the legacy cell): the ladder may raise the order.
+
+    def lame_truth(nu):
+        sigma = (-P, 2 * nu * s, s * (B * B + A * A) / (A * A))
+        mises = math.sqrt(0.5 * sum((sigma[k] - sigma[(k + 1) % 3]) ** 2 for k in range(3)))
+        axial = 2 * math.pi * nu * P * A * A
+        return {"reaction bc1 R_z": axial, "reaction bc2 R_z": axial, "largest von Mises": mises,
+                "largest |u|": (1 + nu) / E * s * ((1 - 2 * nu) * A + B * B / A)}
+
+    # The Lame deck with the element left to gapfe (the legacy cell): the ladder may raise the order; nearly
+    # incompressible too (quad8's linear pressure does not lock, so it may be probed there as well).
     auto = work / "lame_auto.deck"
     auto.write_text(deckgen.tube_deck(9, 3, extension=("format = elastic",)))
-    cases = [(work / "lame_quad4.deck", 1e-3, lame_truth), (auto, 1e-3, lame_truth), (auto, 1e-4, lame_truth),
+    incompressible = work / "lame_incompressible.deck"
+    incompressible.write_text(deckgen.tube_deck(9, 3, extension=("format = elastic",), nu=0.4999))
+    cases = [(work / "lame_quad4.deck", 1e-3, lame_truth(NU)), (auto, 1e-3, lame_truth(NU)),
+             (auto, 1e-4, lame_truth(NU)), (incompressible, 1e-4, lame_truth(0.4999)),
              (work / "sphere_quad.toml", 1e-2,
               {"reaction bottom R_z": P * math.pi * A * A, "largest von Mises": 3 * P * B ** 3 / (2 * cube),
                "largest |u|": P * A / (E * cube) * ((1 - 2 * NU) * A ** 3 + (1 + NU) * B ** 3 / 2)})]
@@ -377,6 +384,9 @@ def accuracy():
         check(f"accuracy: reached on the mesh at {reached}" in log, f"reached as foreseen: {log[-600:]}")
         cells = {block.type for block in meshio.read(out / "step_0001.vtu").cells}
         check(cells == ({"quad8"} if raised else {"quad"}), f"the last run's files are its cells': {cells}")
+    _, log = runs["accuracy_lame_incompressible_0.0001"]
+    check("quad8 on meshes 0 and 1" in log and "raising the order" in log,
+          f"nu = 0.4999 to 1e-4: quad8 probed and taken as at nu = 0.3: {log[-900:]}")
     _, log, _ = run(auto, "accuracy_loose", "--accuracy", "1e-2")
     check("quad8 on meshes" not in log and "reached on the mesh at 1/4 of the spacing;" in log,
           f"the legacy deck to 1e-2: no probe: {log[-600:]}")

@@ -24,6 +24,21 @@ struct Lame {
   }
 };
 
+/// A solid cylinder of `radius` spinning at omega, plane strain, free surface: u = c r - kappa r^3 / 8 with
+/// kappa = rho omega^2 / (lambda + 2 G), and sigma_r(radius) = 0 sets c. Its pressure varies as r^2.
+struct SpinningCylinder {
+  double radius, omega, density, E, nu;
+  double lambda() const { return E * nu / ((1 + nu) * (1 - 2 * nu)); }
+  double shear() const { return E / (2 * (1 + nu)); }
+  /// The stresses (rr, zz, hoop) at r.
+  Vec3 stress(double r) const {
+    const double l = lambda(), g = shear(), kappa = density * omega * omega / (l + 2 * g);
+    const double c   = (4 * l + 6 * g) * kappa * radius * radius / 8 / (2 * l + 2 * g);
+    const double e_r = c - 3 * kappa * r * r / 8, e_t = c - kappa * r * r / 8;
+    return {(l + 2 * g) * e_r + l * e_t, l * (e_r + e_t), l * e_r + (l + 2 * g) * e_t};
+  }
+};
+
 }  // namespace gapfe::test
 
 namespace gapfe::test {

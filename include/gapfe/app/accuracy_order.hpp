@@ -23,8 +23,9 @@ inline std::string order_kept(const Plan& p, const ModelDescription& d, const Sc
   if (s.is_quadratic()) return "its cells are quadratic already";
   if (d.options.element != ElementChoice::automatic) return "the model chooses its element";
   if (p.gaps) return "gap elements do not fit quadratic sides";
-  if (p.plastic) return "a law with history (quad8 locks in plastic flow)";
-  if (largest_poisson(d).second > kLockingPoisson) return "a Poisson's ratio near 1/2 (quad8 locks)";
+  if (p.plastic) return "a law with history (the choice is measured on elastic models only)";
+  if (largest_poisson(d).second > kLockingPoisson && !s.mesh.triangles.empty())
+    return "a Poisson's ratio near 1/2 (its 3-corner cells would become 6-node triangles, which lock)";
   return "";
 }
 

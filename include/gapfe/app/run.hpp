@@ -27,7 +27,7 @@ inline RunResult run(const RunRequest& r) {
         "solver = petsc runs a partitioned model: each process's part (RunRequest::part) on PETSc and MPI, "
         "which "
         "the program starts (the gapfe command does)");
-  warn_locking(r.plan, r.model, r.err);
+  warn_locking(r.plan, r.model, r.scene, r.err);
   RunResult result;
   const bool done = [&]<std::size_t... Shard>(std::index_sequence<Shard...>) {
     return (run_shard<Shard>(r, result) || ...);

@@ -6,9 +6,11 @@
 // element's nodes followed by its interior (condensed) nodes, so the first kDofs entries of a
 // shape-level vector are the element's own DOFs. Strain vectors have Kin::kStrain entries, the
 // rows Kin::kVoigt of the global Voigt-6 vector.
+#include <algorithm>
 #include <array>
 
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 
 #include "gapfe/core/concepts.hpp"
 
@@ -61,12 +63,39 @@ struct ElementKernel {
   using StrainDisplacement = Mat<kStrain, kShapeDofs>;
   using VolumetricRow      = Eigen::Matrix<double, 1, kShapeDofs>;
 
-  /// Elements that declare kMeanDilatation get B-bar (Hughes 1980): the volumetric strain
-  /// eps_rr + eps_zz + eps_hoop at each point is replaced by its volume average over the element, which
-  /// relieves the volumetric locking of near-incompressible (and plastic) flow.
-  static constexpr bool kMeanDilatation = requires { requires Elem::kMeanDilatation; };
+  /// B-bar (Hughes 1980; docs/theory.md 1.2): an element that declares kPressureModes has the volumetric
+  /// strain eps_rr + eps_zz + eps_hoop at each point replaced by its projection, over the element and in
+  /// the volume measure 2 pi r dA, on that many pressure modes: 1 (the mean dilatation), 1, r, z (a
+  /// pressure linear in the cell) or 1, r, z, r z. This relieves the volumetric locking of
+  /// near-incompressible (and plastic) flow; a quadratic cell needs the linear modes to keep its stresses
+  /// second order where the pressure varies (docs/accuracy.md, "Near incompressibility").
+  static constexpr int kPressureModes = [] {
+    if constexpr (requires { Elem::kPressureModes; })
+      return int{Elem::kPressureModes};
+    else
+      return 0;
+  }();
+  static_assert(kPressureModes == 0 || kPressureModes == 1 || kPressureModes == 3 || kPressureModes == 4,
+                "pressure modes: 1 (mean), 3 (linear) or 4 (bilinear)");
+  static constexpr bool kBBar = kPressureModes > 0;
+  using ModeRow               = Eigen::Matrix<double, 1, std::max(kPressureModes, 1)>;
 
-  /// The geometry of every stiffness point, for passes that visit them more than once (B-bar's mean,
+  /// The projected volumetric strain of one element: at a point with pressure modes p (a row),
+  /// eps_vol_bar = p * coefficients * u_s. Modes past the first are r and z about the nodes' centre over
+  /// their largest extent (well scaled at any cell size), evaluated through the shape functions.
+  struct Dilatation {
+    Mat<std::max(kPressureModes, 1), kShapeDofs> coefficients = decltype(coefficients)::Zero();
+    Vec<Elem::kShapeNodes> r = Vec<Elem::kShapeNodes>::Zero(), z = Vec<Elem::kShapeNodes>::Zero();
+  };
+  static ModeRow pressure_modes(const PointGeometry<Elem::kShapeNodes>& g, const Dilatation& d) {
+    ModeRow p;
+    p(0) = 1.0;
+    if constexpr (kPressureModes >= 3) p(1) = g.N.dot(d.r), p(2) = g.N.dot(d.z);
+    if constexpr (kPressureModes == 4) p(3) = p(1) * p(2);
+    return p;
+  }
+
+  /// The geometry of every stiffness point, for passes that visit them more than once (B-bar's projection,
   /// then each point): computed once per element.
   using Points = std::array<PointGeometry<Elem::kShapeNodes>, Elem::kStiffnessPoints>;
   static Points stiffness_points(const Coords& x) {
@@ -76,33 +105,57 @@ struct ElementKernel {
     return p;
   }
 
-  /// (1/V) int (B_rr + B_zz + B_hoop) dV over the stiffness points; zero when kMeanDilatation is off.
-  static VolumetricRow mean_volumetric(const Points& points) {
-    VolumetricRow mean = VolumetricRow::Zero();
-    if constexpr (kMeanDilatation) {
-      double volume = 0;
-      for (const auto& g : points) {
-        const StrainDisplacement b = Kin::B(g);
-        mean += g.weight * b.template topRows<3>().colwise().sum();
-        volume += g.weight;
+  /// The projection's coefficients, M^-1 int p^T (B_rr + B_zz + B_hoop) dV with M = int p^T p dV over the
+  /// stiffness points (one mode: the mean, (1/V) int B_vol dV); zero without B-bar.
+  static Dilatation dilatation(const Points& points, const Coords& x) {
+    Dilatation d;
+    if constexpr (kBBar) {
+      if constexpr (kPressureModes > 1) {
+        const auto xs       = Elem::shape_coords(x);
+        const Vec2 centre   = xs.colwise().mean().transpose();
+        const double extent = (xs.colwise().maxCoeff() - xs.colwise().minCoeff()).maxCoeff();
+        d.r                 = (xs.col(0).array() - centre(0)) / extent;
+        d.z                 = (xs.col(1).array() - centre(1)) / extent;
       }
-      mean /= volume;
+      using Modes = Mat<std::max(kPressureModes, 1), std::max(kPressureModes, 1)>;
+      Modes mass  = Modes::Zero();
+      for (const auto& g : points) {
+        const StrainDisplacement b     = Kin::B(g);
+        const ModeRow p                = pressure_modes(g, d);
+        const VolumetricRow volumetric = b.template topRows<3>().colwise().sum();
+        // lazyProduct: small fixed products unrolled rather than sent to Eigen's GEMM (stiffness_rows).
+        d.coefficients.noalias() += (g.weight * p.transpose()).lazyProduct(volumetric);
+        mass.noalias() += (g.weight * p.transpose()).lazyProduct(p);
+      }
+      // M^-1 by Eigen's closed form for 3 x 3 and 4 x 4 (a factorization's solve took a tenth of the
+      // element's time in its blocked triangular kernels); M is well scaled, its modes being O(1) on the
+      // cell.
+      if constexpr (kPressureModes == 1)
+        d.coefficients /= mass(0, 0);
+      else
+        d.coefficients = mass.inverse().lazyProduct(d.coefficients).eval();
+    } else {
+      (void)points, (void)x;
     }
-    return mean;
+    return d;
   }
-  static VolumetricRow mean_volumetric(const Coords& x) {
-    if constexpr (kMeanDilatation)
-      return mean_volumetric(stiffness_points(x));
+  static Dilatation dilatation(const Coords& x) {
+    if constexpr (kBBar)
+      return dilatation(stiffness_points(x), x);
     else
-      return VolumetricRow::Zero();
+      return {};
   }
-  /// B at a point; with B-bar, B + (1/3) m (mean_vol - B_vol), m = 1 on the normal rows rr, zz, hoop
+  /// B at a point; with B-bar, B + (1/3) m (eps_vol_bar - B_vol), m = 1 on the normal rows rr, zz, hoop
   /// (the first three rows of both kinematics).
-  static StrainDisplacement point_B(const PointGeometry<Elem::kShapeNodes>& g,
-                                    const VolumetricRow& mean_vol) {
+  static StrainDisplacement point_B(const PointGeometry<Elem::kShapeNodes>& g, const Dilatation& d) {
     StrainDisplacement b = Kin::B(g);
-    if constexpr (kMeanDilatation) {
-      const VolumetricRow shift = (mean_vol - b.template topRows<3>().colwise().sum()) / 3.0;
+    if constexpr (kBBar) {
+      VolumetricRow projected;
+      if constexpr (kPressureModes == 1)
+        projected = d.coefficients;
+      else
+        projected.noalias() = pressure_modes(g, d).lazyProduct(d.coefficients);
+      const VolumetricRow shift = (projected - b.template topRows<3>().colwise().sum()) / 3.0;
       for (int i = 0; i < 3; ++i) b.row(i) += shift;
     }
     return b;
@@ -116,11 +169,11 @@ struct ElementKernel {
   /// (for the legacy quad 2 of 10, a third of the products).
   template <int First, int Rows>
   static Mat<Rows, kShapeDofs> stiffness_rows(const Coords& x, const StrainMatrix& D) {
-    Mat<Rows, kShapeDofs> k  = Mat<Rows, kShapeDofs>::Zero();
-    const Points points      = stiffness_points(x);
-    const VolumetricRow mean = mean_volumetric(points);
+    Mat<Rows, kShapeDofs> k   = Mat<Rows, kShapeDofs>::Zero();
+    const Points points       = stiffness_points(x);
+    const Dilatation dilation = dilatation(points, x);
     for (const auto& g : points) {
-      const StrainDisplacement b   = point_B(g, mean);
+      const StrainDisplacement b   = point_B(g, dilation);
       const StrainDisplacement d_b = D * b;
       // lazyProduct: Eigen sends a fixed 8 x 4 by 4 x 8 product (and larger) to its blocked GEMM, whose
       // packing costs more than the product; coefficient-based, it unrolls (BENCHMARKS.md, "Levers, each
@@ -148,11 +201,11 @@ struct ElementKernel {
       }
     }
     if (!eps_th.isZero(0.0)) {
-      const StrainVector s_th  = D * eps_th;
-      const VolumetricRow mean = mean_volumetric(x);
+      const StrainVector s_th   = D * eps_th;
+      const Dilatation dilation = dilatation(x);
       for (int q = 0; q < Elem::kStiffnessPoints; ++q) {
         const auto g = Elem::stiffness_point(x, q, det);
-        f.noalias() += g.weight * (point_B(g, mean).transpose() * s_th);
+        f.noalias() += g.weight * (point_B(g, dilation).transpose() * s_th);
       }
     }
     return f;
@@ -200,10 +253,9 @@ struct ElementKernel {
   }
 
   /// Voigt-6 strain at a point from shape-level displacements (zero in slots the kinematics lacks);
-  /// `mean_vol` from mean_volumetric() of the same element.
-  static Vec6 strain(const PointGeometry<Elem::kShapeNodes>& g, const VolumetricRow& mean_vol,
-                     const ShapeVector& us) {
-    return extend(point_B(g, mean_vol) * us);
+  /// `d` from dilatation() of the same element.
+  static Vec6 strain(const PointGeometry<Elem::kShapeNodes>& g, const Dilatation& d, const ShapeVector& us) {
+    return extend(point_B(g, d) * us);
   }
 };
 

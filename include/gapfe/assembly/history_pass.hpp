@@ -24,16 +24,17 @@ void Assembler<M>::history_pass(const Problem<M>& p, const VecX& u, History<Stat
       p.mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
                                             const std::array<int, NPC>& cell, const CellTag& tag) {
         using Kernel                           = ElementKernel<Kin, E>;
-        const typename Kernel::Points geometry = Kernel::stiffness_points(cell_coords<E>(p.mesh, cell));
+        const auto x                           = cell_coords<E>(p.mesh, cell);
+        const typename Kernel::Points geometry = Kernel::stiffness_points(x);
         const auto& lp                         = local(p, tag, cell);
-        const auto mean                        = Kernel::mean_volumetric(geometry);
+        const auto dilation                    = Kernel::dilatation(geometry, x);
         const auto ue                          = gather(cell, u);
         const std::size_t first                = first_point<E>(e);
         typename Kernel::Matrix k              = Kernel::Matrix::Zero();
         typename Kernel::Vector f              = Kernel::Vector::Zero();
         for (int q = 0; q < E::kStiffnessPoints; ++q) {
           const auto& g   = geometry[q];
-          const auto b    = Kernel::point_B(g, mean);
+          const auto b    = Kernel::point_B(g, dilation);
           const auto resp = Law::update(lp, Kernel::extend(b * ue), points.committed(first + q), point_ctx);
           f.noalias() += g.weight * (b.transpose() * Kernel::restrict(resp.stress));
           if (values) {  // lazyProduct: see ElementKernel::shape_stiffness

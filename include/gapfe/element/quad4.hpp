@@ -36,11 +36,12 @@ struct Quad4 : Isoparametric<Quad4, 4, 4> {
   }
 };
 
-/// Quad4 with B-bar: the volumetric strain is the element's mean (assembly/element_kernel.hpp). Plain
-/// Quad4 locks when the flow is near-incompressible (nu -> 1/2, and fully plastic Hill/Mises flow, which
-/// is isochoric); this one does not (tests/test_plasticity.cpp measures both).
+/// Quad4 with B-bar: the volumetric strain is the element's mean, one pressure mode
+/// (assembly/element_kernel.hpp). Plain Quad4 locks when the flow is near-incompressible (nu -> 1/2, and
+/// fully plastic Hill/Mises flow, which is isochoric); this one does not (tests/test_plasticity.cpp
+/// measures both).
 struct Quad4BBar : Quad4 {
-  static constexpr bool kMeanDilatation = true;
+  static constexpr int kPressureModes = 1;
 };
 
 }  // namespace gapfe

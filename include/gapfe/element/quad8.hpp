@@ -1,5 +1,8 @@
 #pragma once
-// Quad8: 8-node serendipity quadrilateral, 3x3 Gauss, for accuracy (displacement error O(h^3)).
+// Quad8: 8-node serendipity quadrilateral, 3x3 Gauss, for accuracy (displacement error O(h^3)), with
+// B-bar on a pressure linear in each cell (1, r, z: assembly/element_kernel.hpp), so that it neither locks
+// near incompressibility nor loses its second-order stresses where the pressure varies (docs/theory.md 1.2;
+// measured in docs/accuracy.md "Near incompressibility").
 //
 //   4 -- 7 -- 3      corners 0..3 counterclockwise as Quad4 (0-based: 1 -> 0 ...),
 //   |         |      mid-sides 4 (0-1), 5 (1-2), 6 (2-3), 7 (3-0)
@@ -17,6 +20,7 @@ struct Quad8 : Isoparametric<Quad8, 8, 9> {
   static constexpr int kShapeNodes      = 8;
   static constexpr int kStiffnessPoints = 9;
   static constexpr int kLoadPoints      = 9;
+  static constexpr int kPressureModes   = 3;
   static constexpr int kEdgeNodes       = 3;  // (start, mid, end) at s = -1, 0, 1
   static constexpr std::array<std::array<int, 3>, 4> kEdges{{{0, 4, 1}, {1, 5, 2}, {2, 6, 3}, {3, 7, 0}}};
   static constexpr std::array<std::array<double, 2>, 8> kNodesRef{

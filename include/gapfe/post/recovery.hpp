@@ -191,8 +191,7 @@ class CellPoints {
         all_(what == Recovered::all),
         strain_(all_ || Source::kAnyPoint),  // a law's stress from the strain needs it
         xs_(E::shape_coords(x)) {
-    if (strain_)
-      us_ = shape_displacements<Kernel>(x, lp, inertia, ue), mean_vol_ = Kernel::mean_volumetric(x);
+    if (strain_) us_ = shape_displacements<Kernel>(x, lp, inertia, ue), dilatation_ = Kernel::dilatation(x);
     if (all_) to_strain_material_ = strain_rotation(lp.to_material);
   }
 
@@ -201,7 +200,7 @@ class CellPoints {
     PointValues v;
     v.cell = static_cast<int>(e_), v.triangle = triangle_, v.point = point;
     v.r = g.r, v.z = g.N.dot(xs_.col(1));
-    v.strain = strain_ ? Kernel::strain(g, mean_vol_, us_) : Vec6::Zero();
+    v.strain = strain_ ? Kernel::strain(g, dilatation_, us_) : Vec6::Zero();
     v.stress = source_.stress(lp_, v.strain, first_ + static_cast<std::size_t>(std::max(point, 0)));
     v.eqps   = source_.eqps(first_ + static_cast<std::size_t>(std::max(point, 0)));
     if (all_) {
@@ -263,7 +262,7 @@ class CellPoints {
   bool triangle_, all_, strain_;
   Mat<E::kShapeNodes, 2> xs_;
   typename Kernel::ShapeVector us_{};
-  typename Kernel::VolumetricRow mean_vol_{};
+  typename Kernel::Dilatation dilatation_{};
   Mat66 to_strain_material_ = Mat66::Zero();
 };
 
