@@ -239,6 +239,9 @@ def incompressible():
         if not warned:
             check(errors[0.4999] < 2 * errors[NU], f"{kind} at nu = 0.4999: L2 error {errors[0.4999]:.3e} "
                   f"against {errors[NU]:.3e} at nu = 0.3")
+        else:  # what the warning says: the triangles lock
+            check(errors[0.4999] > 10 * errors[NU], f"{kind} at nu = 0.4999: L2 error {errors[0.4999]:.3e}, "
+                  f"not locked against {errors[NU]:.3e} at nu = 0.3")
 
 
 def refusals():

@@ -603,7 +603,7 @@ TEST_CASE(
       CHECK(s32 < 5e-4);
       CHECK(s16 / s32 > 3.5);  // measured 4.0
       CHECK(l32 <= plain_lame * 1.01);
-      CHECK(s32 <= plain_spin * 1.05);
+      CHECK(s32 <= plain_spin * 1.1);          // measured up to 1.04
       if (nu > 0.49) CHECK(plain_lame > 0.1);  // the locking the linear pressure cures
     }
   MESSAGE("largest stress error, 16 -> 32 cells through the radius:" << table.str());

@@ -65,24 +65,26 @@ struct ElementKernel {
 
   /// B-bar (Hughes 1980; docs/theory.md 1.2): an element that declares kPressureModes has the volumetric
   /// strain eps_rr + eps_zz + eps_hoop at each point replaced by its projection, over the element and in
-  /// the volume measure 2 pi r dA, on that many pressure modes: 1 (the mean dilatation), 1, r, z (a
-  /// pressure linear in the cell) or 1, r, z, r z. This relieves the volumetric locking of
-  /// near-incompressible (and plastic) flow; a quadratic cell needs the linear modes to keep its stresses
-  /// second order where the pressure varies (docs/accuracy.md, "Near incompressibility").
+  /// the volume measure 2 pi r dA, on that many pressure modes: 1 (the mean dilatation) or 1, r, z (a
+  /// pressure linear in the cell). This relieves the volumetric locking of near-incompressible (and plastic)
+  /// flow; a quadratic cell needs the linear modes to keep its stresses second order where the pressure
+  /// varies. A bilinear pressure (1, r, z, r z) was measured to lock on mapped cells and is not offered
+  /// (docs/accuracy.md, "Near incompressibility").
   static constexpr int kPressureModes = [] {
     if constexpr (requires { Elem::kPressureModes; })
       return int{Elem::kPressureModes};
     else
       return 0;
   }();
-  static_assert(kPressureModes == 0 || kPressureModes == 1 || kPressureModes == 3 || kPressureModes == 4,
-                "pressure modes: 1 (mean), 3 (linear) or 4 (bilinear)");
+  static_assert(kPressureModes == 0 || kPressureModes == 1 || kPressureModes == 3,
+                "pressure modes: 1 (the mean) or 3 (linear)");
   static constexpr bool kBBar = kPressureModes > 0;
   using ModeRow               = Eigen::Matrix<double, 1, std::max(kPressureModes, 1)>;
 
   /// The projected volumetric strain of one element: at a point with pressure modes p (a row),
-  /// eps_vol_bar = p * coefficients * u_s. Modes past the first are r and z about the nodes' centre over
-  /// their largest extent (well scaled at any cell size), evaluated through the shape functions.
+  /// eps_vol_bar = p * coefficients * u_s. Modes past the first are r and z about the nodes' centre, each
+  /// over the nodes' extent in it (O(1) on a cell of any size or aspect; a thin cell along a diagonal still
+  /// makes them nearly dependent), evaluated through the shape functions.
   struct Dilatation {
     Mat<std::max(kPressureModes, 1), kShapeDofs> coefficients = decltype(coefficients)::Zero();
     Vec<Elem::kShapeNodes> r = Vec<Elem::kShapeNodes>::Zero(), z = Vec<Elem::kShapeNodes>::Zero();
@@ -90,8 +92,7 @@ struct ElementKernel {
   static ModeRow pressure_modes(const PointGeometry<Elem::kShapeNodes>& g, const Dilatation& d) {
     ModeRow p;
     p(0) = 1.0;
-    if constexpr (kPressureModes >= 3) p(1) = g.N.dot(d.r), p(2) = g.N.dot(d.z);
-    if constexpr (kPressureModes == 4) p(3) = p(1) * p(2);
+    if constexpr (kPressureModes == 3) p(1) = g.N.dot(d.r), p(2) = g.N.dot(d.z);
     return p;
   }
 
@@ -111,11 +112,11 @@ struct ElementKernel {
     Dilatation d;
     if constexpr (kBBar) {
       if constexpr (kPressureModes > 1) {
-        const auto xs       = Elem::shape_coords(x);
-        const Vec2 centre   = xs.colwise().mean().transpose();
-        const double extent = (xs.colwise().maxCoeff() - xs.colwise().minCoeff()).maxCoeff();
-        d.r                 = (xs.col(0).array() - centre(0)) / extent;
-        d.z                 = (xs.col(1).array() - centre(1)) / extent;
+        const auto xs     = Elem::shape_coords(x);
+        const Vec2 centre = xs.colwise().mean().transpose();
+        const Vec2 extent = (xs.colwise().maxCoeff() - xs.colwise().minCoeff()).transpose();
+        d.r               = (xs.col(0).array() - centre(0)) / extent(0);
+        d.z               = (xs.col(1).array() - centre(1)) / extent(1);
       }
       using Modes = Mat<std::max(kPressureModes, 1), std::max(kPressureModes, 1)>;
       Modes mass  = Modes::Zero();
@@ -127,9 +128,8 @@ struct ElementKernel {
         d.coefficients.noalias() += (g.weight * p.transpose()).lazyProduct(volumetric);
         mass.noalias() += (g.weight * p.transpose()).lazyProduct(p);
       }
-      // M^-1 by Eigen's closed form for 3 x 3 and 4 x 4 (a factorization's solve took a tenth of the
-      // element's time in its blocked triangular kernels); M is well scaled, its modes being O(1) on the
-      // cell.
+      // M^-1 by Eigen's closed form for 3 x 3 (a factorization's solve took a tenth of the element's time in
+      // its blocked triangular kernels); M is well scaled, its modes being O(1) on the cell.
       if constexpr (kPressureModes == 1)
         d.coefficients /= mass(0, 0);
       else

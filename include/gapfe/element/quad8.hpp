@@ -1,8 +1,9 @@
 #pragma once
 // Quad8: 8-node serendipity quadrilateral, 3x3 Gauss, for accuracy (displacement error O(h^3)), with
-// B-bar on a pressure linear in each cell (1, r, z: assembly/element_kernel.hpp), so that it neither locks
-// near incompressibility nor loses its second-order stresses where the pressure varies (docs/theory.md 1.2;
-// measured in docs/accuracy.md "Near incompressibility").
+// B-bar on a pressure linear in each cell (1, r, z: assembly/element_kernel.hpp): measured not to lock near
+// incompressibility, and to keep its second-order stresses where the pressure varies, which a constant
+// pressure would not (docs/theory.md 1.2; docs/accuracy.md "Near incompressibility", with what that rests
+// on).
 //
 //   4 -- 7 -- 3      corners 0..3 counterclockwise as Quad4 (0-based: 1 -> 0 ...),
 //   |         |      mid-sides 4 (0-1), 5 (1-2), 6 (2-3), 7 (3-0)
