@@ -21,7 +21,8 @@ closed forms (ctest `gapfe_error_bars`):
     Mises stress 3 p b^3 / (2 (b^3 - a^3)); two tubes closed by pressure on a Gmsh mesh with a soft layer,
     and the press fit's grid scene, each layer kept one cell thick: the contact force (and friction force);
   * `--accuracy TOL`: the Lame tube's deck to 1e-3 and the thick sphere's Gmsh scene to 1e-2 end with every
-    quantity's true error within TOL; a plastic tube climbs its load steps too; the stepped bar stops with its
+    quantity's true error within TOL; the Lame deck at nu = 0.4999 to 1e-4 too, quad8 probed there as at 0.3,
+    while the Gmsh triangles at nu = 0.4999 keep their order; a plastic tube climbs its load steps too; the stepped bar stops with its
     corner's stress not converging, and a time limit with the time named, exit 2 and one line each;
   * what --estimate refuses before it runs (a gap whose faces no segment card places, in a deck and in a grid
     scene), with the last run's files left as they were; and estimates.csv gone after a later
@@ -395,9 +396,12 @@ def accuracy():
     triangles = work / "lame_gmsh_tri_incompressible.toml"
     triangles.write_text((work / "lame_gmsh_tri.toml").read_text().replace("nu = 0.3", "nu = 0.4999"))
     # Tri3 locks there too, so its ladder stops on a quantity that does not converge (exit 2).
-    _, log, _ = run(triangles, "accuracy_tri_incompressible", "--accuracy", "1e-1", expect=2)
+    _, log, err = run(triangles, "accuracy_tri_incompressible", "--accuracy", "1e-1", expect=2)
     check("the cells' order stays: a Poisson's ratio near 1/2 (its 3-corner cells" in log,
           f"nu = 0.4999 on triangles: the order kept: {log[-600:]}")
+    warned = [line for line in err.splitlines() if "triangles lock near incompressibility" in line]
+    check(len(warned) >= 1 and "(its quadrilaterals do not)" not in warned[0],
+          f"nu = 0.4999 on triangles (legacy's Tri3): warned of, no quadrilaterals named: {err.strip()[:600]}")
     _, log, _ = run(auto, "accuracy_loose", "--accuracy", "1e-2")
     check("quad8 on meshes" not in log and "reached on the mesh at 1/4 of the spacing;" in log,
           f"the legacy deck to 1e-2: no probe: {log[-600:]}")

@@ -18,7 +18,8 @@
 
 namespace gapfe::app {
 
-/// Above this Poisson's ratio a run warns that element = quad4 locks.
+/// Above this Poisson's ratio a run warns that element = quad4, or a mesh's triangles, lock (warn_locking),
+/// and `--accuracy` keeps the order of a mesh with 3-corner cells (app/accuracy_order.hpp).
 inline constexpr double kLockingPoisson = 0.49;
 
 /// Above this relative residual |K u - f| / |f| of a linear solve a run warns of ill-conditioning. A
@@ -42,28 +43,30 @@ inline std::pair<int, double> largest_poisson(const ModelDescription& d) {
   return worst;
 }
 
-/// The warning of a plan on the plain bilinear quad (element = quad4), or on quadratic cells (quad8) some of
-/// them triangles, with a nearly incompressible material (any material: which cells carry it is not asked):
-/// the bilinear quad locks (its volumetric strain is enforced at every Gauss point), so its displacements
-/// come out too small; the 6-node triangles lock too (measured on the Lame tube at nu = 0.4999: the bore's
-/// stresses 1.26 times the pressure off at 32 cells through the wall, the L2 error of u_r 100 times nu =
-/// 0.3's), while quad8's quadrilaterals carry a pressure linear in each cell and do not. Every element's
-/// triangles are plain (Tri3 beside quad4bbar and legacy too), so the cure is a mesh of quadrilaterals. On
-/// the error stream, so that --quiet keeps it.
+/// The warning of a plan on the plain bilinear quad (element = quad4), or on a mesh with triangles, with a
+/// nearly incompressible material (any material: which cells carry it is not asked): the bilinear quad locks
+/// (its volumetric strain is enforced at every Gauss point), so its displacements come out too small. Every
+/// element's triangles are plain and lock too (Tri3 beside quad4bbar and legacy: the atlas' centroid stresses
+/// 32% to 130% off at nu = 0.4999; quad8's Tri6: measured on the Lame tube, the bore's stresses 1.26 times
+/// the pressure off at 32 cells through the wall, the L2 error of u_r 100 times nu = 0.3's), while quad8's
+/// and quad4bbar's quadrilaterals and the legacy quad do not; so the cure is a mesh of quadrilaterals. On the
+/// error stream, so that --quiet keeps it.
 inline void warn_locking(const Plan& p, const ModelDescription& d, const Scene& s, std::ostream& err) {
   const bool quad4            = p.key.element == ElementChoice::quad4;
-  const std::size_t triangles = p.key.element == ElementChoice::quad8 ? s.mesh.triangles.size() : 0;
+  const std::size_t triangles = s.mesh.triangles.size();
   if (!quad4 && triangles == 0) return;
   if (const auto [material, nu] = largest_poisson(d); nu > kLockingPoisson) {
     err << "gapfe: warning: element = " << name_of(p.key.element) << " with Poisson's ratio " << nu
         << " (material " << material << "): ";
     if (quad4)
       err << "the bilinear quad locks near incompressibility and its displacements come out too small; use "
-             "element = quad4bbar or legacy\n";
+             "element = quad4bbar or legacy"
+          << (triangles > 0 ? " on a mesh of quadrilaterals only" : "") << "\n";
     else
-      err << "the mesh's " << triangles
-          << " 6-node triangles lock near incompressibility (its quadrilaterals do not); mesh with "
-             "quadrilaterals only\n";
+      err << "the mesh's " << triangles << (p.key.element == ElementChoice::quad8 ? " 6-node" : "")
+          << " triangles lock near incompressibility"
+          << (s.mesh.cells.empty() ? "" : " (its quadrilaterals do not)")
+          << "; mesh with quadrilaterals only\n";
   }
 }
 
