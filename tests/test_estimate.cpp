@@ -255,8 +255,9 @@ void check_same_estimate(const ErrorEstimate& kept, const ErrorEstimate& afresh,
 }
 
 /// Three estimates through one kept fit, with the centroid stresses a run takes from the same pass: the first
-/// fits its own stresses and notes the mesh, the second builds the weights, the third reuses them; each the
-/// estimate fitted afresh. `skips`: the left-out materials to try in turn (a new skip starts again).
+/// fits its own stresses and notes the mesh (builds the weights, when `several`), the second builds the
+/// weights, the third reuses them; each the estimate fitted afresh. `skips`: the left-out materials to try in
+/// turn (a new skip starts again).
 template <class Fe>
 void check_kept_fit(const Fe& fe, RecoveryWeights& kept, std::initializer_list<std::vector<int>> skips) {
   for (const std::vector<int>& skip : skips) {
@@ -266,7 +267,7 @@ void check_kept_fit(const Fe& fe, RecoveryWeights& kept, std::initializer_list<s
       std::vector<PointValues> centroids;
       check_same_estimate(fe.error_estimate(skip, &centroids, &kept), afresh, fe.problem().mesh);
       check_same_values(centroids, expected);
-      CHECK(kept.built == (call > 0));
+      CHECK(kept.built == (call > 0 || kept.several));
     }
   }
 }
@@ -288,6 +289,13 @@ TEST_CASE_TEMPLATE("[estimate] the patch fit kept across a run's increments give
   int& material = fe.problem().mesh.cell_tags[2].material;
   material      = 1 - material;
   check_kept_fit(fe, kept, {{}, {1}});
+  // A run of several load steps builds the weights at its first estimate, and on each new mesh.
+  RecoveryWeights at_once;
+  at_once.several = true;
+  check_kept_fit(fe, at_once, {{}, {1}});
+  fe.problem().mesh.nodes[9] += Vec2(-1e-3, 5e-4);
+  check_kept_fit(fe, at_once, {{}});
+  CHECK(at_once.several);
 }
 
 TEST_CASE("[estimate] the kept fit of quadratic patches (Quad8), and of a law's stored stresses") {
@@ -507,4 +515,52 @@ TEST_CASE("[estimate] the recovered peak at a boundary node reads its interior n
   REQUIRE(peak.node >= 0);
   CHECK(mesh.nodes[static_cast<std::size_t>(peak.node)](0) == doctest::Approx(3));
   CHECK(peak.mises == doctest::Approx(7).epsilon(1e-12));
+}
+
+namespace {
+
+/// One cell's stresses as the estimate takes them (CellPoints::stresses(): plain Quad4 with 2 DOF through its
+/// bilinear fields, the others through the law restricted to the kinematics' strains) against the recovery's
+/// (points(): the strain at each point into the law's full 6 x 6 update), on a distorted cell of a helically
+/// wound orthotropic law with a thermal strain that has shear parts in the global axes.
+template <class Kin, class E>
+void check_estimate_stresses() {
+  using Kernel = ElementKernel<Kin, E>;
+  ElasticConstants c;
+  c.E_N = 140e9, c.E_S = 10e9, c.E_T = 9e9, c.nu_NS = 0.3, c.nu_NT = 0.28, c.nu_ST = 0.4;
+  c.G_NS = 5e9, c.G_ST = 3.5e9, c.G_TN = 4.5e9, c.alpha_N = -1e-6, c.alpha_S = 3e-5, c.alpha_T = 2e-5;
+  const ElasticPoint lp = Orthotropic::constant(c).localize({0.3, 0.5}, 120, 20);
+  REQUIRE(lp.thermal_strain.tail<2>().norm() > 1e-5);  // shear in the global axes, which Axisym2 leaves out
+  Mat<E::kNodes, 2> x;  // a distorted cell, with a quadratic cell's middle nodes off the chords
+  if constexpr (E::kNodes >= 4) x.template topRows<4>() << 0.50, 0.10, 0.82, 0.05, 0.90, 0.41, 0.47, 0.36;
+  if constexpr (E::kNodes == 8) x.template bottomRows<4>() << 0.66, 0.09, 0.86, 0.22, 0.69, 0.40, 0.49, 0.22;
+  if constexpr (E::kNodes == 3 || E::kNodes == 6)
+    x.template topRows<3>() << 0.50, 0.10, 0.82, 0.05, 0.70, 0.41;
+  if constexpr (E::kNodes == 6) x.template bottomRows<3>() << 0.66, 0.09, 0.75, 0.22, 0.61, 0.24;
+  typename Kernel::Vector ue;
+  for (int i = 0; i < ue.size(); ++i) ue(i) = 1e-4 * std::sin(1.0 + 0.7 * i);
+  const ElasticStress<Orthotropic> source;
+  const CellPoints<Kin, E, ElasticPoint, ElasticStress<Orthotropic>> values(x, lp, InertiaLoad{}, ue, source,
+                                                                            0, false, 0, Recovered::stress);
+  const auto fast = values.stresses();
+  const auto all  = values.points();
+  for (int q = 0; q < E::kStiffnessPoints; ++q) {
+    const Vec<Kin::kStrain> reference = Kernel::restrict(all.value[q].stress);
+    CHECK((fast.stress[q] - reference).norm() <= 1e-12 * reference.norm());
+    CHECK(std::abs(fast.position[q](0) - all.value[q].r) <= 1e-14);
+    CHECK(std::abs(fast.position[q](1) - all.value[q].z) <= 1e-14);
+    CHECK(std::abs(fast.weight[q] - all.weight[q]) <= 1e-13 * all.weight[q]);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("[estimate] the estimate's point stresses are the recovery's, to round-off (1e-12)") {
+  check_estimate_stresses<Axisym2, Quad4>();  // the bilinear fields
+  check_estimate_stresses<Axisym3, Quad4>();  // the restricted law from here on
+  check_estimate_stresses<Axisym2, Quad4BBar>();
+  check_estimate_stresses<Axisym2, Quad8>();
+  check_estimate_stresses<Axisym3, Quad8>();
+  check_estimate_stresses<Axisym2, Tri3>();
+  check_estimate_stresses<Axisym3, Tri6>();
 }

@@ -183,6 +183,7 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
   if (!threads.limited.empty()) err << "gapfe: warning: " << threads.limited << "\n";
   log << "threads: " << threads.threads << (a.threads == 1 ? " (--threads N for more)" : "") << "\n";
   RecoveryWeights recovery;
+  recovery.several = d.steps() > 1;  // every step estimates: fit the patches once, at the first
   const RunRequest request{d,
                            s,
                            plan,

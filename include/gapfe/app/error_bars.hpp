@@ -91,6 +91,7 @@ inline LevelRun run_level(ModelDescription& d, const Scene& s, int level, const 
   d.options.error_estimate = (files || s.is_quadratic()) && d.options.error_estimate;
   std::ostringstream quiet;
   RecoveryWeights recovery;
+  recovery.several = d.steps() > 1;  // every step estimates: fit the patches once, at the first
   const RunRequest r{d, s, plan, dir, quiet, false, pictures, units, nullptr, files, true, &recovery};
   RunResult run_result = app::run(r);
   LevelRun out{level, s.mesh.node_count(),

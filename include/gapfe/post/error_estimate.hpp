@@ -12,7 +12,9 @@
 //      quad4 sigma_h is bilinear through its 2 x 2 points' values (at those points alone it is at its most
 //      accurate, and the error would read as nothing there), on a constant-strain triangle it is constant;
 //      Quad8's biquadratic through its 3 x 3 points is integrated on 4 x 4, Tri6's on its own 6 points.
-// The relative error is eta / sqrt(|u_h|^2 + eta^2), |u_h|^2 the integral of sigma_h^T C^-1 sigma_h dV.
+// The relative error is eta / sqrt(|u_h|^2 + eta^2), |u_h|^2 = sum over the stiffness points of
+// w sigma_h^T C^-1 sigma_h: the stiffness's own quadrature, so for a linear law without thermal strain it is
+// u^T K u, the discrete solution's energy norm that Galerkin orthogonality speaks of (docs/accuracy.md).
 // Each material is recovered on its own: its stresses jump across a bond to another material.
 #include <algorithm>
 #include <array>
@@ -26,7 +28,7 @@
 
 #include <Eigen/LU>
 
-#include "gapfe/post/cell_energies.hpp"
+#include "gapfe/post/cell_error.hpp"
 #include "gapfe/post/patch_recovery.hpp"
 #include "gapfe/post/recovery.hpp"
 #include "gapfe/post/recovery_weights.hpp"
@@ -73,6 +75,7 @@ template <int S>
 struct PointStresses {
   std::vector<Vec<S>> stress, recovered;
   double peak = 0, noise = 0;
+  double energy = 0;  ///< |u_h|^2: sum over the stiffness points of w sigma_h^T C^-1 sigma_h
 };
 
 /// Step 1 of estimate_error(): every cell's stiffness-point stresses, and sigma* on `slots` either from
@@ -95,6 +98,7 @@ PointStresses<M::Kinematics::kStrain> point_stresses(const Assembler<M>& a, cons
   if (centroids) centroids->clear(), centroids->reserve(mesh.cells.size() + mesh.triangles.size());
   const double* weight = Weighted ? fit->weight.data() : nullptr;
   a.reset_cache();
+  Mat<S, S> stiffness = Mat<S, S>::Zero(), compliance = Mat<S, S>::Zero();  // the last cell's
   for_each_cell<Elem>(mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
                                                           const std::array<int, NPC>& cell,
                                                           const CellTag& tag) {
@@ -114,8 +118,20 @@ PointStresses<M::Kinematics::kStrain> point_stresses(const Assembler<M>& a, cons
       centroids->push_back(values.centroid());
       return;
     }
-    const auto points = values.points();
-    if (centroids) centroids->push_back(values.centroid(points));
+    using Values = std::decay_t<decltype(values)>;
+    typename Values::Stresses points;
+    if constexpr (Values::kCentroidPoint) {
+      points = values.stresses();
+      if (centroids) centroids->push_back(values.centroid());
+    } else {  // the centroid is the points' mean: one pass for both
+      const auto all = values.points();
+      if (centroids) centroids->push_back(values.centroid(all));
+      for (int q = 0; q < E::kStiffnessPoints; ++q)
+        points.stress[q]   = ElementKernel<Kin, E>::restrict(all.value[q].stress),
+        points.position[q] = Vec2(all.value[q].r, all.value[q].z), points.weight[q] = all.weight[q];
+    }
+    const Mat<S, S> cs = ElementKernel<Kin, E>::restrict(lp.stiffness);
+    if (cs != stiffness) stiffness = cs, compliance = cs.inverse();  // neighbours mostly share a material
     const double side = std::min((x.row(E::kEdges.front().back()) - x.row(0)).norm(),
                                  (x.row(E::kEdges.back().front()) - x.row(0)).norm());
     out.noise         = std::max(out.noise, lp.stiffness.diagonal().maxCoeff() *
@@ -123,16 +139,22 @@ PointStresses<M::Kinematics::kStrain> point_stresses(const Assembler<M>& a, cons
     std::array<std::size_t, E::kNodes> slot;
     for (int c = 0; c < E::kNodes; ++c) slot[c] = slots(cell[c], tag.material);
     const Vec<S>* at = out.stress.data() + first;
+    // The cell's sums in locals: `out`'s members could alias the stresses stored, and would go through
+    // memory at every point.
+    double peak = 0, energy = 0;
+    Vec<S>* recovered = out.recovered.data();
     for (int q = 0; q < E::kStiffnessPoints; ++q) {
-      const Vec<S> s = ElementKernel<Kin, E>::restrict(points.value[q].stress);
+      const Vec<S>& s                                 = points.stress[q];
       out.stress[first + static_cast<std::size_t>(q)] = s;
-      out.peak                                        = std::max(out.peak, s.cwiseAbs().maxCoeff());
+      peak                                            = std::max(peak, s.cwiseAbs().maxCoeff());
+      energy += points.weight[q] * s.dot(compliance * s);
       if constexpr (Weighted)
-        for (int c = 0; c < E::kNodes; ++c) out.recovered[slot[c]] += *weight++ * s;
+        for (int c = 0; c < E::kNodes; ++c) recovered[slot[c]] += weight[E::kNodes * q + c] * s;
     }
+    if constexpr (Weighted) weight += E::kNodes * E::kStiffnessPoints;
+    out.peak = std::max(out.peak, peak), out.energy += energy;
     if constexpr (!Weighted)
-      add_to_patches<E>(sums, slot, mesh, cell,
-                        [&](int q) { return std::pair(Vec2(points.value[q].r, points.value[q].z), at[q]); });
+      add_to_patches<E>(sums, slot, mesh, cell, [&](int q) { return std::pair(points.position[q], at[q]); });
   });
   for (std::size_t k = 0; k < sums.size(); ++k) out.recovered[k] = sums[k].at_node();
   if (Weighted && weight != fit->weight.data() + fit->weight.size())  // RecoveryWeights::fits() guards this
@@ -164,10 +186,11 @@ ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const V
   if (weights) {
     const void* element       = &detail::kElementTag<Elem>;
     const std::uint64_t print = detail::mesh_fingerprint(mesh);
-    if (!weights->fits(element, print, skip))
-      weights->remember(element, print, skip);
-    else if (!weights->built)
-      *weights = recovery_weights<Elem, P>(mesh, skip);
+    const bool several        = weights->several;
+    const bool seen           = weights->fits(element, print, skip);
+    if (!seen) weights->remember(element, print, skip);
+    if (!weights->built && (seen || several))
+      *weights = recovery_weights<Elem, P>(mesh, skip), weights->several = several;
     if (weights->built) fit = weights;
   }
   const detail::RecoverySlots own_slots =
@@ -204,17 +227,13 @@ ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const V
     for (int c = 0; c < E::kNodes; ++c)
       corner[c] = recovered[slots(cell[c], tag.material)], centre += corner[c] / E::kNodes;
     for (int c = E::kNodes; c < E::kShapeNodes; ++c) corner[c] = centre;  // a condensed centre: the mean
-    double error = 0, energy = 0;
+    double error = 0;
     if constexpr (E::kEdgeNodes == 3 && E::kNodes == 6) {
-      const auto both = detail::triangle_cell_energies<E, S>(x, corner, at, compliance);
-      error += both[0], energy += both[1];
+      error = detail::triangle_cell_error<E, S>(x, corner, at, compliance);
     } else if constexpr (E::kEdgeNodes == 3) {
-      const auto both = detail::quadratic_cell_energies<E, S>(x, corner, at, compliance);
-      error += both[0], energy += both[1];
+      error = detail::quadratic_cell_error<E, S>(x, corner, at, compliance);
     } else if constexpr (requires { E::kCorners; }) {
-      const auto both = detail::bilinear_cell_energies<E, S>(x, {corner[0], corner[1], corner[2], corner[3]},
-                                                             at, compliance);
-      error += both[0], energy += both[1];
+      error = detail::bilinear_cell_error<S>(x, {corner[0], corner[1], corner[2], corner[3]}, at, compliance);
     } else {  // constant-strain triangles: sigma* - sigma_h is linear on each, integrated exactly
       const Mat<E::kShapeNodes, 2> xs = E::shape_coords(x);
       constexpr auto triangles        = detail::cst_triangles<E>();
@@ -225,13 +244,13 @@ ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const V
         const Vec<3> r(xs(n[0], 0), xs(n[1], 0), xs(n[2], 0));
         const std::array<Vec<S>, 3> diff{corner[n[0]] - at[t], corner[n[1]] - at[t], corner[n[2]] - at[t]};
         error += detail::linear_field_energy<S>(diff, compliance, r, area);
-        energy += kTwoPi * area * r.sum() / 3 * at[t].dot(compliance * at[t]);
       }
     }
     const std::size_t index = std::is_same_v<E, Elem> ? e : mesh.cells.size() + e;
     out.cell[index]         = error;
-    out.error_squared += error, out.energy_squared += energy;
+    out.error_squared += error;
   });
+  out.energy_squared = at_points.energy;
   if (const Subdomain* part = p.subdomain.get()) {  // the whole problem's norms
     double both[2] = {out.error_squared, out.energy_squared};
     part->sum(both, 2);

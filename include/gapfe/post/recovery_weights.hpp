@@ -20,9 +20,10 @@
 namespace gapfe {
 
 /// The recovery's slots and weights for one mesh, element and set of left-out materials (estimate_error's
-/// `weights`): the first estimate given it notes the mesh, the second on the same mesh builds them, and
-/// later ones reuse them. A different mesh, element or skip list starts it again; the mesh is told by a
-/// fingerprint of its node coordinates, cells and materials, so a mesh changed in place is one too.
+/// `weights`): the first estimate given it notes the mesh, the second on the same mesh builds them (the
+/// first, when `several`), and later ones reuse them. A different mesh, element or skip list starts it again;
+/// the mesh is told by a fingerprint of its node coordinates, cells and materials, so a mesh changed in place
+/// is one too.
 struct RecoveryWeights {
   const void* element = nullptr;  ///< whose stiffness points (detail::kElementTag)
   std::uint64_t mesh  = 0;        ///< detail::mesh_fingerprint of the mesh
@@ -33,14 +34,18 @@ struct RecoveryWeights {
   std::vector<double> weight;
   bool seen  = false;  ///< an estimate ran on this mesh: the next one builds the weights
   bool built = false;
+  /// Set by a caller that will estimate on one mesh several times (a run of several load steps): the first
+  /// estimate builds the weights, rather than fitting its own stresses first. Kept when the mesh changes.
+  bool several = false;
 
   bool fits(const void* elem, std::uint64_t fingerprint, const std::vector<int>& left_out) const {
     return seen && elem == element && fingerprint == mesh && left_out == skip;
   }
   /// Forget the weights and note the mesh as seen.
   void remember(const void* elem, std::uint64_t fingerprint, const std::vector<int>& left_out) {
-    *this   = RecoveryWeights{};
-    element = elem, mesh = fingerprint, skip = left_out, seen = true;
+    const bool keep = several;
+    *this           = RecoveryWeights{};
+    element = elem, mesh = fingerprint, skip = left_out, seen = true, several = keep;
   }
 };
 
@@ -51,26 +56,31 @@ template <class E>
 inline constexpr char kElementTag = 0;
 
 /// A fingerprint of what a patch fit depends on: the node coordinates, the cells' nodes and their materials
-/// (word by word, multiply and xor-shift: any change changes it but for a chance of about 2^-64).
+/// (word by word, multiply and xor-shift: any change changes it but for a chance of about 2^-64). Four
+/// independent lanes (r, z, the cells' nodes, their materials), folded at the end: a run takes it at every
+/// increment, and one lane's chain of multiplies would take four times as long.
 template <class MeshT>
 std::uint64_t mesh_fingerprint(const MeshT& mesh) {
-  std::uint64_t h = 0xcbf29ce484222325ULL;
-  const auto mix  = [&](std::uint64_t word) {
+  std::uint64_t lane[4] = {0xcbf29ce484222325ULL, 0x84222325cbf29ce4ULL, 0x9e3779b97f4a7c15ULL,
+                           0xbf58476d1ce4e5b9ULL};
+  const auto mix        = [](std::uint64_t& h, std::uint64_t word) {
     h = (h ^ word) * 0x100000001b3ULL;
     h ^= h >> 29;
   };
   const auto index = [](int i) { return static_cast<std::uint64_t>(static_cast<std::uint32_t>(i)); };
   for (const Vec2& x : mesh.nodes)
-    mix(std::bit_cast<std::uint64_t>(x(0))), mix(std::bit_cast<std::uint64_t>(x(1)));
+    mix(lane[0], std::bit_cast<std::uint64_t>(x(0))), mix(lane[1], std::bit_cast<std::uint64_t>(x(1)));
   for (std::size_t e = 0; e < mesh.cells.size(); ++e) {
-    for (const int n : mesh.cells[e]) mix(index(n));
-    mix(index(mesh.cell_tag(e).material));
+    for (const int n : mesh.cells[e]) mix(lane[2], index(n));
+    mix(lane[3], index(mesh.cell_tag(e).material));
   }
-  mix(mesh.cells.size());  // where the cells end and the triangles begin
+  mix(lane[2], mesh.cells.size());  // where the cells end and the triangles begin
   for (std::size_t e = 0; e < mesh.triangles.size(); ++e) {
-    for (const int n : mesh.triangles[e]) mix(index(n));
-    mix(index(mesh.triangle_tag(e).material));
+    for (const int n : mesh.triangles[e]) mix(lane[2], index(n));
+    mix(lane[3], index(mesh.triangle_tag(e).material));
   }
+  std::uint64_t h = mesh.nodes.size();
+  for (const std::uint64_t l : lane) mix(h, l);
   return h;
 }
 
