@@ -156,7 +156,8 @@ class LinearStatic {
   /// The recovery estimate of the energy-norm error, per cell and whole, leaving out cells of the `skip`
   /// materials (post/error_estimate.hpp); and, into `centroids` when given,
   /// centroid_values(Recovered::stress) from the same pass; `weights`, when given, keeps the recovery's fit
-  /// for the next estimate on this mesh (post/recovery_weights.hpp: clear it after moving the nodes).
+  /// for the next estimate on this mesh (post/recovery_weights.hpp: a mesh changed in place, nodes moved, is
+  /// noticed by its fingerprint and fitted again).
   ErrorEstimate error_estimate(const std::vector<int>& skip        = {},
                                std::vector<PointValues>* centroids = nullptr,
                                RecoveryWeights* weights            = nullptr) const {

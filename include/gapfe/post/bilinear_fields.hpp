@@ -27,6 +27,8 @@ static_assert(Quad4::kRule.point[0][0] < 0 && Quad4::kRule.point[0][1] < 0 && Qu
                   Quad4::kRule.point[2][1] > 0 && Quad4::kRule.point[3][0] > 0 &&
                   Quad4::kRule.point[3][1] > 0,
               "through_points(): the 2 x 2 points with xi fastest");
+static_assert(Quad4::kRule.point[3][0] == gauss::Line<2>::a && Quad4::kRule.point[3][1] == gauss::Line<2>::a,
+              "through_points(): the points at +-1/sqrt 3");
 
 /// The coefficients (c0, c1, c2, c3) of c0 + c1 xi + c2 eta + c3 xi eta through the values at the corners
 /// (-1, -1), (1, -1), (1, 1), (-1, 1): Quad4's shape functions (1 + xi_c xi)(1 + eta_c eta) / 4 written out.

@@ -14,7 +14,8 @@
 //      Quad8's biquadratic through its 3 x 3 points is integrated on 4 x 4, Tri6's on its own 6 points.
 // The relative error is eta / sqrt(|u_h|^2 + eta^2), |u_h|^2 = sum over the stiffness points of
 // w sigma_h^T C^-1 sigma_h: the stiffness's own quadrature, so for a linear law without thermal strain it is
-// u^T K u, the discrete solution's energy norm that Galerkin orthogonality speaks of (docs/accuracy.md).
+// u^T K u (without body loads on the legacy quad), the discrete energy that Galerkin orthogonality speaks of
+// (docs/accuracy.md).
 // Each material is recovered on its own: its stresses jump across a bond to another material.
 #include <algorithm>
 #include <array>
@@ -45,7 +46,7 @@ struct ErrorEstimate {
   /// eta_e / sqrt(|u_h|^2 + eta^2) [-]; their squares sum to relative()^2.
   std::vector<double> cell;
   double error_squared  = 0;  ///< eta^2, summed over the cells [force x length]
-  double energy_squared = 0;  ///< |u_h|^2 = integral sigma_h^T C^-1 sigma_h dV, twice the strain energy
+  double energy_squared = 0;  ///< |u_h|^2: w sigma_h^T C^-1 sigma_h summed at the stiffness points
   /// The largest von Mises stress of the recovered field sigma* over the nodes (a node between materials
   /// has each material's), and that node [stress]; -1: no cell estimated. On quadratic cells it converges
   /// at second order with a small constant, the boundary's nodes included; on linear cells a boundary
@@ -120,7 +121,7 @@ PointStresses<M::Kinematics::kStrain> point_stresses(const Assembler<M>& a, cons
     }
     using Values = std::decay_t<decltype(values)>;
     typename Values::Stresses points;
-    if constexpr (Values::kCentroidPoint) {
+    if constexpr (Values::kCentroidPoint && requires { values.stresses(); }) {
       points = values.stresses();
       if (centroids) centroids->push_back(values.centroid());
     } else {  // the centroid is the points' mean: one pass for both
@@ -171,8 +172,9 @@ PointStresses<M::Kinematics::kStrain> point_stresses(const Assembler<M>& a, cons
 /// norms over every part (collective). `centroids`, when given, receives what recover() gives for the
 /// cells' centroids with Recovered::stress (every cell's, the skipped ones' too), from the same pass: a run
 /// that writes them and estimates recovers each cell once (the legacy quad's condensed centre is the costly
-/// part). `weights`, when given, keeps the patches' fit from the second call on one mesh on
-/// (post/recovery_weights.hpp): a single estimate fits the patches to its stresses directly, for less.
+/// part). `weights`, when given, keeps the patches' fit from the second call on one mesh on (from the first
+/// when `weights->several`, as a run of several load steps sets it; post/recovery_weights.hpp): a single
+/// estimate fits the patches to its stresses directly, for less.
 template <class M, class Source>
 ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const VecX& u, const Source& source,
                              const std::vector<int>& skip = {}, std::vector<PointValues>* centroids = nullptr,
@@ -190,7 +192,7 @@ ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const V
     const bool seen           = weights->fits(element, print, skip);
     if (!seen) weights->remember(element, print, skip);
     if (!weights->built && (seen || several))
-      *weights = recovery_weights<Elem, P>(mesh, skip), weights->several = several;
+      *weights = recovery_weights<Elem, P>(mesh, skip, print), weights->several = several;
     if (weights->built) fit = weights;
   }
   const detail::RecoverySlots own_slots =

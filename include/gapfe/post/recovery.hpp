@@ -248,20 +248,25 @@ class CellPoints {
     std::array<Vec2, E::kStiffnessPoints> position;
     std::array<double, E::kStiffnessPoints> weight;
   };
-  Stresses stresses() const {
-    if constexpr (std::is_same_v<E, Quad4> && std::is_same_v<Kin, Axisym2> &&
-                  requires { source_.template restricted<Kernel>(lp_); }) {  // the common cell, 5x cheaper
-      const RestrictedStress<Kernel> law = source_.template restricted<Kernel>(lp_);
+  /// A linear law's only (ElasticStress::restricted): a law's stored stresses come through points().
+  Stresses stresses() const requires requires(const Source& s, const Local& lp) {
+    s.template restricted<Kernel>(lp);
+  }
+  {
+    const RestrictedStress<Kernel> law = source_.template restricted<Kernel>(lp_);
+    if constexpr (std::is_same_v<E, Quad4> && std::is_same_v<Kin, Axisym2>) {  // the commonest cell
       const detail::Quad4Stresses at(x_, us_, law.stiffness, law.thermal);
       return {at.stress, at.position, at.weight};
-    } else if constexpr (requires { source_.template restricted<Kernel>(lp_); }) {
-      const RestrictedStress<Kernel> law = source_.template restricted<Kernel>(lp_);
-      return stresses_by([&](const auto& g, int) { return law(Kernel::point_B(g, dilatation_) * us_); });
     } else {
-      return stresses_by([&](const auto& g, int q) {
-        const Vec6 strain = strain_ ? Kernel::strain(g, dilatation_, us_) : Vec6::Zero();
-        return Kernel::restrict(source_.stress(lp_, strain, first_ + static_cast<std::size_t>(q)));
-      });
+      Stresses out;
+      const auto points = Kernel::stiffness_points(x_);
+      for (int q = 0; q < E::kStiffnessPoints; ++q) {
+        const auto& g   = points[q];
+        out.stress[q]   = law(Kernel::point_B(g, dilatation_) * us_);
+        out.position[q] = Vec2(g.r, g.N.dot(xs_.col(1)));
+        out.weight[q]   = g.weight;
+      }
+      return out;
     }
   }
   /// The centroid's values; `p` the stiffness points' (points()) when the centroid is their mean.
@@ -308,19 +313,6 @@ class CellPoints {
   typename Kernel::ShapeVector us_{};
   typename Kernel::Dilatation dilatation_{};
   Mat66 to_strain_material_;  // set and read only when all_ (no 36 stores per cell otherwise)
-
-  template <class StressAt>
-  Stresses stresses_by(StressAt&& stress_at) const {
-    Stresses out;
-    const auto points = Kernel::stiffness_points(x_);
-    for (int q = 0; q < E::kStiffnessPoints; ++q) {
-      const auto& g   = points[q];
-      out.stress[q]   = stress_at(g, q);
-      out.position[q] = Vec2(g.r, g.N.dot(xs_.col(1)));
-      out.weight[q]   = g.weight;
-    }
-    return out;
-  }
 };
 
 /// Strain and stress at every stiffness point of every cell, or (`centroids`) one value per cell; cells

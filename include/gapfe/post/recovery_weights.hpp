@@ -10,6 +10,7 @@
 #include <bit>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -136,10 +137,12 @@ RecoverySlots recovery_slots(const MeshT& mesh, const std::vector<int>& skip) {
 
 /// The weights of the patch recovery with P terms (3: a plane, 6: a quadratic) on `mesh`, leaving out the
 /// cells of the `skip` materials.
+/// `fingerprint`: the mesh's (detail::mesh_fingerprint), when the caller has it already.
 template <class Elem, int P, class MeshT>
-RecoveryWeights recovery_weights(const MeshT& mesh, const std::vector<int>& skip) {
+RecoveryWeights recovery_weights(const MeshT& mesh, const std::vector<int>& skip,
+                                 std::optional<std::uint64_t> fingerprint = std::nullopt) {
   RecoveryWeights w;
-  w.remember(&detail::kElementTag<Elem>, detail::mesh_fingerprint(mesh), skip);
+  w.remember(&detail::kElementTag<Elem>, fingerprint ? *fingerprint : detail::mesh_fingerprint(mesh), skip);
   w.slots = detail::recovery_slots<Elem>(mesh, skip);
   std::vector<Vec2> position;  // of each recovered cell's stiffness points, in order
   const auto each_cell = [&](auto&& f) {
