@@ -60,6 +60,47 @@ TEST_CASE("[solver] CHOLMOD in the mesh's coordinate dissection order: the solut
   CHECK(u(0, 0) == doctest::Approx(x(fe.dofs().equation[0])).epsilon(1e-12));
 }
 
+TEST_CASE("[solver] CHOLMOD's factor statistics are its factor's; release_solver() keeps the results") {
+  // An independent count: Eigen's simplicial LLT on the matrix permuted into the same elimination order has
+  // the same pattern of L (the fill depends on the order alone), whose column counts c_j (diagonal
+  // included) give nnz(L) = sum c_j and the LL' flops sum c_j^2: per column its square root and c_j - 1
+  // divisions, and the c_j (c_j - 1) of the update it sends on (CHOLMOD's count; cholmod_core.h: less n
+  // for LDL').
+  using M            = Model<Axisym2, Quad4, Isotropic, CholmodLlt>;
+  const Problem<M> p = lame_tube<M>(40, 20);
+  LinearStatic<M> fe(p);
+  const Eigen::MatrixX3d u = fe.solve().displacement;
+  const FactorStatistics s = fe.factor_statistics();
+  const SpMat& k           = fe.stiffness();
+  Assembler<M> assembler(p, {});
+  const std::vector<int> order = fill_reducing_order(assembler, p);
+  REQUIRE(order.size() == static_cast<std::size_t>(k.rows()));
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> to_order(k.rows());
+  for (std::size_t i = 0; i < order.size(); ++i) to_order.indices()[order[i]] = static_cast<int>(i);
+  SpMat permuted;
+  permuted.selfadjointView<Eigen::Lower>() = k.selfadjointView<Eigen::Lower>().twistedBy(to_order);
+  Eigen::SimplicialLLT<SpMat, Eigen::Lower, Eigen::NaturalOrdering<int>> llt(permuted);
+  REQUIRE(llt.info() == Eigen::Success);
+  const SpMat l  = llt.matrixL();
+  double entries = 0, flops = 0;
+  for (Eigen::Index j = 0; j < l.outerSize(); ++j) {
+    const double c = l.outerIndexPtr()[j + 1] - l.outerIndexPtr()[j];
+    entries += c, flops += c * c;
+  }
+  CHECK(s.entries == entries);
+  CHECK(s.flops == flops);
+  CHECK(s.stored >= s.entries);  // with the relaxed supernodes' zeros and their dense triangles
+  // The factorization freed: the displacements, the estimate and the statistics stand; solving again is a
+  // logic error, not a solve on an empty matrix.
+  const double estimate = fe.error_estimate().relative();
+  fe.release_solver();
+  CHECK(fe.stiffness().nonZeros() == 0);
+  CHECK(fe.solution().displacement == u);
+  CHECK(fe.error_estimate().relative() == estimate);
+  CHECK(fe.factor_statistics().flops == s.flops);
+  CHECK_THROWS_AS(fe.solve(), std::logic_error);
+}
+
 TEST_CASE("[solver] CHOLMOD reports a singular system instead of returning garbage") {
   using Fast = Model<Axisym2, Quad4, Isotropic, CholmodLlt>;
   LinearStatic<Fast> fe(lame_tube<Fast>(4, 2, /*held=*/false));

@@ -211,6 +211,7 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
     log << "time [s]: read " << t_read << ", mesh " << t_mesh << ", setup " << setup << ", assemble "
         << result.assemble << ", factorize " << result.factorize << ", solve " << result.solve
         << ", recovery " << result.recovery << ", write " << result.write << "\n";
+    report_throughput(log, result, a.out, writes);
     report_run(log, err, plan, d, result);
     if (a.accuracy > 0) {
       finer.reset();  // the ladder makes its own

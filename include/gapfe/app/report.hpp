@@ -5,16 +5,20 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <filesystem>
 #include <iomanip>
 #include <ostream>
 #include <sstream>
 #include <string>
+#include <system_error>
 #include <utility>
 #include <vector>
 
 #include "gapfe/app/plan.hpp"
 #include "gapfe/app/run_result.hpp"
 #include "gapfe/driver/newton_options.hpp"
+#include "gapfe/output/run_folder.hpp"
 
 namespace gapfe::app {
 
@@ -220,6 +224,28 @@ inline void report_error_estimate(std::ostream& log, const ModelDescription& d, 
     log << ", the largest share in element " << r.error_element + 1 << " at r = " << r.error_element_at(0)
         << ", z = " << r.error_element_at(1) << " (the VTU cell array error_estimate)";
   log << "; it measures the mesh, not the load steps or a gap's penalty (docs/accuracy.md)\n";
+}
+
+/// How far the run is from this machine's limits (bench/limits.py sets them beside dgemm's rate and a plain
+/// write's): the factorization's flops and rate, when the solver counts them, and the bytes of the files in
+/// the run's folder with the time spent writing them.
+inline void report_throughput(std::ostream& log, const RunResult& r, const std::string& dir, bool writes) {
+  if (const FactorStatistics& f = r.factor; f.flops > 0 && r.factorizations > 0) {
+    const double flops = f.flops * r.factorizations;
+    log << "factorization: " << flops << " flops in " << r.factorize << " s";
+    if (r.factorize > 0) log << " (" << flops / r.factorize / 1e9 << " GFLOP/s)";
+    log << "; " << r.factorizations << " numeric factorization(s), the factor's " << f.entries << " entries ("
+        << f.stored << " stored with the supernodes' zeros: " << f.stored * sizeof(double) / 1e6 << " MB)\n";
+  }
+  if (!writes) return;
+  std::uintmax_t bytes = 0;  // the run's own files (RunFolder::run_file), not a deck or mesh beside them
+  std::error_code failed;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, failed))
+    if (RunFolder::run_file(entry.path().filename().string()) && entry.is_regular_file(failed))
+      if (const std::uintmax_t size = entry.file_size(failed); !failed) bytes += size;
+  log << "files: " << bytes << " bytes in " << r.write << " s";
+  if (r.write > 0) log << " (" << static_cast<double>(bytes) / r.write / 1e6 << " MB/s)";
+  log << "\n";
 }
 
 /// The run's figures after it ends: residuals per step, equilibrium, global balance, the plastic and contact

@@ -125,6 +125,8 @@ template <class Fe>
 void write_increment(const RunRequest& r, RunResult& times, RunFiles& files, int step, double inc,
                      const Fe& fe, std::vector<VtuField> extra_cells = {},
                      const IncrementSummary& summary = {}) {
+  if constexpr (requires { fe.factor_statistics(); })
+    times.factor = fe.factor_statistics(), times.factorizations = fe.factorizations();
   const Solution& solution = fe.solution();
   if (!std::isfinite(solution.residual) || !solution.displacement.allFinite() ||
       !solution.reaction.allFinite() || !std::isfinite(solution.balance.relative()))

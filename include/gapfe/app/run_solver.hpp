@@ -47,6 +47,7 @@ class ChosenSolver {
   VecX solve(const VecX& b) const;
   std::string failure() const;
   int failed_equation() const;
+  FactorStatistics statistics();
 
  private:
   struct Chosen;  // the RuntimeSolver over this build's solvers (app/run_solver_impl.hpp)

@@ -119,6 +119,11 @@ int ChosenSolver<Storage>::failed_equation() const {
   return chosen_->solver.failed_equation();
 }
 
+template <MatrixStorage Storage>
+FactorStatistics ChosenSolver<Storage>::statistics() {
+  return chosen_->solver.statistics();
+}
+
 template class ChosenSolver<MatrixStorage::lower>;
 template class ChosenSolver<MatrixStorage::full>;
 

@@ -73,7 +73,10 @@ class Assembler {
     sb.add(p.mesh.cells);
     if constexpr (kHasTriangles<Elem>) sb.add(p.mesh.triangles);
     sb.add(links_);
-    pattern_      = sb.build(kStorage);
+    {
+      SpMat built = sb.build(kStorage);
+      pattern_.swap(built);  // Eigen 3.4's SparseMatrix has no move: assigning would copy
+    }
     nonzeros_     = pattern_.nonZeros();
     cell_offsets_ = scatter_offsets<kNd>(pattern_, dofs_.equation, p.mesh.cells, kStorage);
     if constexpr (kHasTriangles<Elem>)
@@ -87,7 +90,13 @@ class Assembler {
   const DofMap<kNd>& dofs() const { return dofs_; }
   /// The free DOFs' pattern in kStorage, values zero, handed over once to the System that will hold the
   /// values (a second copy of the matrix was 113 MB at 1e6 equations); the assembler keeps its size.
-  SpMat take_pattern() { return std::move(pattern_); }
+  /// Swapped out, not moved: Eigen 3.4's SparseMatrix has no move constructor, so std::move copies (the
+  /// return is a named local: no copy where the compiler elides it, as GCC and Clang do even at -O0).
+  SpMat take_pattern() {
+    SpMat out;
+    out.swap(pattern_);
+    return out;
+  }
   const Connectivity<2>& links() const { return links_; }
   /// Whether link l adds anything here: it is not zero and this part assembles it.
   bool assembles_link(std::size_t l) const { return link_owned_[l] && !link_values_[l].zero(); }

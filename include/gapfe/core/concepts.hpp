@@ -95,6 +95,13 @@ concept LinearSolver = std::default_initializable<S> && requires(S s, const SpMa
   { s.failure() } -> std::convertible_to<std::string>;  // why factorize() returned false
 };
 
+/// The size of a factorization and the work it took, from a solver that counts them (CHOLMOD): `flops` of
+/// the factor without the explicit zeros a supernodal solver adds (its analysis' count), `entries` of
+/// that factor, `stored` the values actually held (those zeros included). 0: not known.
+struct FactorStatistics {
+  double flops = 0, entries = 0, stored = 0;
+};
+
 /// A LinearSolver that can take the elimination order from the caller: analyze(K, order), order[k] =
 /// the equation eliminated k-th (a permutation of 0 .. rows - 1). The assembler knows the mesh, so it can
 /// find a better order than a solver that sees only the pattern (solver/coordinate_dissection.hpp).

@@ -75,6 +75,16 @@ class LinearStatic {
   /// Values of the node links, parallel to links(); change them, then solve() or resolve_links().
   std::vector<NodeLink>& link_values() { return assembler_.link_values(); }
   const std::vector<NodeLink>& link_values() const { return assembler_.link_values(); }
+  /// The last solve is done: frees the factorization and the stiffness (System::release; a partitioned
+  /// problem's distributed system keeps them). The recovery, the error estimate and the files read the
+  /// displacements, the problem and the assembler only. solve() and resolve_links() after it are logic
+  /// errors.
+  void release_solver() {
+    (void)solution();  // deferred reactions read the matrix: now or never
+    system_.release();
+  }
+  /// The last factorization's size and work, when the solver counts them (System::statistics).
+  const FactorStatistics& factor_statistics() const { return system_.statistics(); }
   /// Number of numeric factorizations so far.
   int factorizations() const { return system_.factorizations(); }
   /// The "adjacent structure's stiffness" per node over the cells whose tag passes `keep`.
@@ -89,6 +99,7 @@ class LinearStatic {
   /// `same_stiffness`: the caller changed only loads and prescribed values since the last solve (not
   /// materials or temperatures) and kept the link stiffnesses, so the last factorization is reused.
   const Solution& solve(bool same_stiffness = false) {
+    if (system_.released()) throw std::logic_error("LinearStatic::solve() after release_solver()");
     const auto t0 = std::chrono::steady_clock::now();
     if (stiffness_current()) {  // loads only: the element values are those of the last assembly
       if (!links().empty() && system_.saved()) system_.restore();
@@ -109,8 +120,9 @@ class LinearStatic {
   /// conditions are as they were, so the element system is reused and, when `same_link_stiffness`,
   /// the factorization too (one back-substitution: an augmented-Lagrangian update, a split step).
   const Solution& resolve_links(bool same_link_stiffness) {
-    if (links().empty() || !system_.saved())
-      throw std::logic_error("resolve_links() needs node links and a solve() before it");
+    if (links().empty() || !system_.saved() || system_.released())
+      throw std::logic_error(
+          "resolve_links() needs node links and a solve() before it, and no release_solver()");
     const auto t0 = std::chrono::steady_clock::now();
     system_.restore();
     assembler_.add_links(system_.values(), system_.rhs());
@@ -120,6 +132,7 @@ class LinearStatic {
   /// Assemble stiffness values and right-hand side only (what solve() does first, without the links);
   /// for benchmarks and for callers that want the system without solving it.
   void assemble_system() {
+    if (system_.released()) throw std::logic_error("LinearStatic: assembling after release_solver()");
     assembler_.refresh(p_);
     external_ = assembler_.external_forces(p_);
     assembler_.linear_system(p_, external_, system_.values(), system_.rhs());

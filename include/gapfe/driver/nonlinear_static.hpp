@@ -22,8 +22,7 @@
 // History is committed only by commit(): a rejected, repeated or split step leaves no trace. The caller
 // sets the step's time and dt in context() before solve(); rate-dependent laws read them.
 //
-// Elements with condensed interior nodes (LegacyQuad) are not supported here yet: their interior
-// displacements would need to be history too. Use Quad4BBar, Quad4 or Quad8.
+// Not LegacyQuad: its condensed interior displacements would need history too (Quad4, Quad4BBar, Quad8 are).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -91,6 +90,7 @@ class NonlinearStatic {
   const std::vector<NodeLink>& link_values() const { return assembler_.link_values(); }
   /// Numeric factorizations so far (an iteration whose tangent is the last one, bit for bit, reuses it).
   int factorizations() const { return system_.factorizations(); }
+  const FactorStatistics& factor_statistics() const { return system_.statistics(); }  ///< the last one's
   /// Elastic stiffness per node over the cells `keep` passes: what a contact penalty is scaled by.
   template <class Keep>
   std::vector<Mat33> nodal_stiffness(Keep&& keep) const {

@@ -59,6 +59,12 @@ class CholmodLlt {
     return true;
   }
   VecX solve(const VecX& b) const { return llt_.solve(b); }
+  /// The last analysis' flop count and factor size (cholmod_common fl, lnz) and the values the last
+  /// factorization stores (the relaxed supernodes' zeros included).
+  FactorStatistics statistics() {
+    const cholmod_factor* f = llt_.factor();
+    return {llt_.cholmod().fl, llt_.cholmod().lnz, f != nullptr ? static_cast<double>(f->xsize) : 0.0};
+  }
   const std::string& failure() const { return failure_; }
   /// After a failed factorize(): the equation (caller's numbering) where L's pivot broke down (CHOLMOD's
   /// `minor`) or, when every pivot was positive but the condition estimate too small, the one with the

@@ -68,6 +68,8 @@ class RuntimeSolver {
   VecX solve(const VecX& b) const { return impl_->solve(b); }
   std::string failure() const { return impl_->failure(); }
   int failed_equation() const { return impl_->failed_equation(); }
+  /// The chosen solver's FactorStatistics, zeros when it keeps none.
+  FactorStatistics statistics() { return impl_->statistics(); }
 
  private:
   struct Interface {
@@ -81,6 +83,7 @@ class RuntimeSolver {
     virtual VecX solve(const VecX& b) const                             = 0;
     virtual std::string failure() const                                 = 0;
     virtual int failed_equation() const                                 = 0;
+    virtual FactorStatistics statistics()                               = 0;
   };
   template <class S>
   struct Impl final : Interface {
@@ -116,6 +119,12 @@ class RuntimeSolver {
         return s.failed_equation();
       else
         return -1;
+    }
+    FactorStatistics statistics() override {
+      if constexpr (requires { s.statistics(); })
+        return s.statistics();
+      else
+        return {};
     }
   };
   template <std::size_t K>

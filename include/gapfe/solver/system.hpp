@@ -9,6 +9,7 @@
 // (friction's tangent). The assembler builds the pattern in that storage; the System takes it as it is.
 #include <algorithm>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -29,7 +30,8 @@ class System {
   /// and set up, e.g. a RuntimeSolver); empty: a default-constructed one.
   explicit System(SpMat pattern, const std::vector<int>& order = {}, const EquationLayout* layout = nullptr,
                   std::unique_ptr<Solver> solver = nullptr)
-      : k_(std::move(pattern)), solver_(solver ? std::move(solver) : std::make_unique<Solver>()) {
+      : solver_(solver ? std::move(solver) : std::make_unique<Solver>()) {
+    k_.swap(pattern);  // Eigen 3.4's SparseMatrix has no move constructor: std::move would copy it
     if (layout) {
       if constexpr (DistributedSolver<Solver>) {
         solver_->distribute(*layout);
@@ -95,6 +97,7 @@ class System {
       ++reuses_;
       return;
     }
+    if (released_) throw std::logic_error("System::factorize() after release()");
     ++factorizations_;
     if (!(factorized_ = solver_->factorize(k_))) {
       std::string where;
@@ -109,10 +112,32 @@ class System {
                : ": check that the constraints remove every rigid-body motion (axial translation; in "
                  "3-DOF also rotation about the axis) and that no element is degenerate"));
     }
+    if constexpr (requires { solver_->statistics(); }) statistics_ = solver_->statistics();
     if (skip_unchanged_ && !distributed_)
       factorized_values_.assign(k_.valuePtr(), k_.valuePtr() + k_.nonZeros());
   }
-  VecX solve(const VecX& b) const { return solver_->solve(b); }
+  VecX solve(const VecX& b) const {
+    if (!solver_) throw std::logic_error("System::solve() after release()");
+    return solver_->solve(b);
+  }
+
+  /// The last solve is done: frees the factorization, the matrix and the values kept beside it (on the
+  /// 1e6-equation tube the factor alone is about 1 GB, half the run's memory, which the recovery and the
+  /// files written after the last solve can then have). factorize() and solve() after it are logic
+  /// errors. A distributed system keeps everything (its solver's objects are freed collectively, at its
+  /// end).
+  void release() {
+    if (distributed_) return;
+    solver_.reset();
+    SpMat().swap(k_);
+    std::vector<double>().swap(factorized_values_), std::vector<double>().swap(saved_values_);
+    factorized_ = false, released_ = true;
+  }
+  /// The last numeric factorization's size and work (FactorStatistics), kept past release(); zeros when the
+  /// solver counts none.
+  const FactorStatistics& statistics() const { return statistics_; }
+  /// Whether release() freed the solver.
+  bool released() const { return released_; }
 
   /// Keep the current values and right-hand side (the elements' system) to come back to them with
   /// restore() after changing only node links: a contact step re-solves without re-assembling.
@@ -144,6 +169,8 @@ class System {
   bool factorized_     = false;
   bool skip_unchanged_ = false;
   bool distributed_    = false;
+  bool released_       = false;
+  FactorStatistics statistics_;
   std::vector<double> factorized_values_;  ///< skip_unchanged: the values of the last factorization
   std::vector<double> saved_values_;
   VecX saved_rhs_;
