@@ -72,6 +72,32 @@ TEST_CASE(
   CHECK(rel(f3.col(1).sum(), f.col(1).sum()) < 1e-13);
 }
 
+TEST_CASE(
+    "[element] the edge index finds a later call's edges too, and refuses an edge the wrong way round") {
+  // EdgeIndex indexes only the edges its loads name: a later step's loads on other edges get the forces a
+  // fresh index gives, bit for bit, and the closed form's total: a pressure p on the ring r = const of
+  // height L pushes 2 pi r L p inward on the outer edge, outward on the bore.
+  const int nr = 4, nz = 2;
+  const double a = 0.1, b = 0.2, height = 0.05, p = 3e6;
+  const Mesh<4> m                = rectangle_mesh<4>(a, b, 0, height, nr, nz);
+  const std::array<int, 4>&first = m.cells[0], &last = m.cells[nr - 1];    // the bore's, the outer edge's
+  const EdgeLoad bore{first[3], first[0], p}, outer{last[1], last[2], p};  // the cell to the left of M -> N
+  EdgeIndex<Quad4> reused, fresh;
+  VecX on_bore = VecX::Zero(2 * m.node_count()), later = on_bore, afresh = on_bore;
+  reused.add_loads<2>(m, {bore}, on_bore);
+  reused.add_loads<2>(m, {outer}, later);
+  fresh.add_loads<2>(m, {outer}, afresh);
+  CHECK(later == afresh);
+  const double cell_height = height / nz;
+  CHECK(rel(on_bore(Eigen::seqN(0, m.node_count(), 2)).sum(), kTwoPi * a * cell_height * p) < 1e-13);
+  CHECK(rel(later(Eigen::seqN(0, m.node_count(), 2)).sum(), -kTwoPi * b * cell_height * p) < 1e-13);
+  VecX unused = on_bore;
+  CHECK_THROWS_WITH_AS(reused.add_loads<2>(m, {EdgeLoad{outer.node_n, outer.node_m, p}}, unused),
+                       doctest::Contains("swap M and N"), InputError);
+  CHECK_THROWS_WITH_AS(reused.add_loads<2>(m, {EdgeLoad{first[0], last[2], p}}, unused),
+                       doctest::Contains("not the ends of an element edge"), InputError);
+}
+
 TEST_CASE("[element] the vectorized Quad4 2-DOF batch kernel equals the generic kernel (1e-12)") {
   // A general, fully populated 4x4 material block (helical orthotropic) and distorted cells.
   ElasticConstants c;

@@ -1,11 +1,14 @@
 #pragma once
 // Edge tractions (seed Data 13-15) onto nodal forces. A load names its edge by the two end nodes M -> N
 // and the element must lie to its left (counterclockwise), so the index maps the ordered pair (start,
-// end) of every cell edge to its cell; a load given the wrong way round gets an error that says so.
+// end) of a cell edge to its cell; a load given the wrong way round gets an error that says so. Only the
+// loads' edges are indexed, either way round: an index of every edge was 80 MB of hash nodes at 1e6
+// equations, held through the run (BENCHMARKS.md "Memory first").
 #include <cstdint>
 #include <string>
 #include <type_traits>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "gapfe/assembly/cells.hpp"
@@ -31,7 +34,7 @@ class EdgeIndex {
   template <int DofsPerNode, class MeshT>
   void add_loads(const MeshT& m, const std::vector<EdgeLoad>& loads, VecX& out) {
     if (loads.empty()) return;
-    if (edges_.empty()) build(m);
+    if (!covers(loads)) build(m, loads);
     for (std::size_t k = 0; k < loads.size(); ++k) {
       const EdgeLoad& l = loads[k];
       const auto it     = edges_.find(pair_key(l.node_m, l.node_n));
@@ -49,13 +52,24 @@ class EdgeIndex {
     std::size_t cell;
     int edge;
   };
+  /// Whether the index was built for every edge of `loads` (the loads of a later step may name others).
+  bool covers(const std::vector<EdgeLoad>& loads) const {
+    for (const EdgeLoad& l : loads)
+      if (wanted_.count(pair_key(l.node_m, l.node_n)) == 0) return false;
+    return true;
+  }
+  /// The cells' edges that `loads` name, either way round (the other way for the error's hint).
   template <class MeshT>
-  void build(const MeshT& m) {
+  void build(const MeshT& m, const std::vector<EdgeLoad>& loads) {
+    wanted_.clear(), edges_.clear();
+    for (const EdgeLoad& l : loads)
+      wanted_.insert({pair_key(l.node_m, l.node_n), pair_key(l.node_n, l.node_m)});
     for_each_cell<Elem>(m, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
                                                          const std::array<int, NPC>& cell, const CellTag&) {
       for (int k = 0; k < static_cast<int>(E::kEdges.size()); ++k)
-        edges_[pair_key(cell[E::kEdges[k].front()], cell[E::kEdges[k].back()])] = {!std::is_same_v<E, Elem>,
-                                                                                   e, k};
+        if (const std::uint64_t key = pair_key(cell[E::kEdges[k].front()], cell[E::kEdges[k].back()]);
+            wanted_.count(key) > 0)
+          edges_[key] = {!std::is_same_v<E, Elem>, e, k};
     });
   }
   template <class E, int DofsPerNode, std::size_t NPC>
@@ -71,6 +85,7 @@ class EdgeIndex {
       for (int c = 0; c < DofsPerNode; ++c) out(node[a] * DofsPerNode + c) += f(a, c);
   }
 
+  std::unordered_set<std::uint64_t> wanted_;  ///< the ordered pairs indexed (found or not)
   std::unordered_map<std::uint64_t, EdgeRef> edges_;
 };
 
