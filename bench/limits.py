@@ -11,8 +11,9 @@ The peaks beside them, measured here in this process:
   dgemm  numpy's matrix product on one thread (OPENBLAS_NUM_THREADS=1), n = 1000, 2000, 4000, best of
          three each: the BLAS-3 kernel a supernodal factorization's time is spent in. numpy and gapfe load
          the same libblas.so.3 (Debian's alternatives); both paths are printed so that a reader can check.
-  disk   as many bytes as the run's files, written to the same folder as 8 MiB writes into one file per
-         run-file, without fsync (what the run does: the page cache) and with one fsync at the end.
+  disk   as many bytes as the run's files, file for file in 8 MiB writes, into the folder that holds the
+         run's (the same filesystem), without fsync (what the run does: the page cache) and with an fsync
+         per file.
 """
 import argparse
 import os

@@ -88,6 +88,15 @@ TEST_CASE(
   reused.add_loads<2>(m, {outer}, later);
   fresh.add_loads<2>(m, {outer}, afresh);
   CHECK(later == afresh);
+  // The interior edge between cells 0 and 1, named the way cell 1 has it (cell 0 has it the other way),
+  // after an index built without it, and a subset of the loads already indexed: both as a fresh index.
+  const EdgeLoad interior{first[2], first[1], p};
+  VecX both = VecX::Zero(2 * m.node_count()), both_afresh = both, subset = both;
+  reused.add_loads<2>(m, {interior, outer}, both);
+  EdgeIndex<Quad4>().add_loads<2>(m, {interior, outer}, both_afresh);
+  CHECK(both == both_afresh);
+  reused.add_loads<2>(m, {outer}, subset);
+  CHECK(subset == afresh);
   const double cell_height = height / nz;
   CHECK(rel(on_bore(Eigen::seqN(0, m.node_count(), 2)).sum(), kTwoPi * a * cell_height * p) < 1e-13);
   CHECK(rel(later(Eigen::seqN(0, m.node_count(), 2)).sum(), -kTwoPi * b * cell_height * p) < 1e-13);

@@ -239,10 +239,11 @@ inline void report_throughput(std::ostream& log, const RunResult& r, const std::
   }
   if (!writes) return;
   std::uintmax_t bytes = 0;  // the run's own files (RunFolder::run_file), not a deck or mesh beside them
-  std::error_code failed;
-  for (const auto& entry : std::filesystem::directory_iterator(dir, failed))
-    if (RunFolder::run_file(entry.path().filename().string()) && entry.is_regular_file(failed))
-      if (const std::uintmax_t size = entry.file_size(failed); !failed) bytes += size;
+  std::error_code failed;  // a file that vanishes while counted is left out, never an error of a finished run
+  for (std::filesystem::directory_iterator entry(dir, failed), end; !failed && entry != end;
+       entry.increment(failed))
+    if (RunFolder::run_file(entry->path().filename().string()) && entry->is_regular_file(failed))
+      if (const std::uintmax_t size = entry->file_size(failed); !failed) bytes += size;
   log << "files: " << bytes << " bytes in " << r.write << " s";
   if (r.write > 0) log << " (" << static_cast<double>(bytes) / r.write / 1e6 << " MB/s)";
   log << "\n";

@@ -2,8 +2,8 @@
 // Edge tractions (seed Data 13-15) onto nodal forces. A load names its edge by the two end nodes M -> N
 // and the element must lie to its left (counterclockwise), so the index maps the ordered pair (start,
 // end) of a cell edge to its cell; a load given the wrong way round gets an error that says so. Only the
-// loads' edges are indexed, either way round: an index of every edge was 80 MB of hash nodes at 1e6
-// equations, held through the run (BENCHMARKS.md "Memory first").
+// loads' edges are indexed, either way round: an index of every edge held a hash node per cell edge through
+// the run (an estimated 80 MB at 1e6 equations; BENCHMARKS.md "Memory first").
 #include <cstdint>
 #include <string>
 #include <type_traits>
@@ -58,10 +58,11 @@ class EdgeIndex {
       if (wanted_.count(pair_key(l.node_m, l.node_n)) == 0) return false;
     return true;
   }
-  /// The cells' edges that `loads` name, either way round (the other way for the error's hint).
+  /// The cells' edges that `loads` or earlier calls' loads name, either way round (the other way for the
+  /// error's hint): steps that alternate between edges scan the cells once per new edge set, not per call.
   template <class MeshT>
   void build(const MeshT& m, const std::vector<EdgeLoad>& loads) {
-    wanted_.clear(), edges_.clear();
+    edges_.clear();
     for (const EdgeLoad& l : loads)
       wanted_.insert({pair_key(l.node_m, l.node_n), pair_key(l.node_n, l.node_m)});
     for_each_cell<Elem>(m, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,

@@ -124,7 +124,9 @@ Problem<M> scene_problem(const ModelDescription& d, const Scene& s, int step,
 }
 
 /// Run every load step; `on_step(step, inc, const LinearStatic<M>&)` sees each solved step (inc = the
-/// load increments applied so far; whole numbers in a linear run, which never splits a step).
+/// load increments applied so far; whole numbers in a linear run, which never splits a step). The last
+/// step's driver has released its factorization and stiffness (LinearStatic::release_solver): what it
+/// offers on_step then is the solution, the recovery and the estimate, not stiffness() or another solve.
 template <class M, class OnStep>
 void run_scene(const ModelDescription& d, const Scene& s, OnStep&& on_step, const ScenePart* part = nullptr,
                std::unique_ptr<typename M::LinearSolver> solver = nullptr) {
@@ -133,7 +135,7 @@ void run_scene(const ModelDescription& d, const Scene& s, OnStep&& on_step, cons
   for (int step = 1; step <= d.steps(); ++step) {
     if (step > 1) set_loads(fe.problem(), loads.at(step), s);
     fe.solve(/*same_stiffness=*/step > 1);
-    // The last step's recovery and files need no factorization: its on_step sees a released driver.
+    // The last step's recovery and files need no factorization.
     if (step == d.steps()) fe.release_solver();
     on_step(step, static_cast<double>(step), static_cast<const LinearStatic<M>&>(fe));
   }

@@ -131,6 +131,7 @@ class System {
     solver_.reset();
     SpMat().swap(k_);
     std::vector<double>().swap(factorized_values_), std::vector<double>().swap(saved_values_);
+    rhs_.resize(0), saved_rhs_.resize(0);
     factorized_ = false, released_ = true;
   }
   /// The last numeric factorization's size and work (FactorStatistics), kept past release(); zeros when the
