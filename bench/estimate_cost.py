@@ -12,13 +12,11 @@ interleaved. Two measures of the cost, as a share of the run with the estimate:
   whole  the difference of the two whole processes' medians, wall and CPU time (user + system): what a user
          waits, but on a shared machine good to 5-15% of the run at best (BENCHMARKS.md).
 """
-import argparse
 import os
 import re
 import statistics
 import subprocess
 import sys
-import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -44,15 +42,9 @@ def timed_run(gapfe, deck, out, work, options):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--cases", default="tube-1e5,plastic-1e4,plastic-1e5,tube-1e6,contact")
-    ap.add_argument("--runs", type=int, default=5)
-    ap.add_argument("--gapfe", default="build/bench/examples/gapfe")
-    ap.add_argument("--work", default=None)
-    args = ap.parse_args()
-    gapfe = os.path.abspath(args.gapfe)
-    work = args.work or tempfile.mkdtemp(prefix="estimate_cost_")
-    os.makedirs(work, exist_ok=True)
+    cases = "tube-1e5,plastic-1e4,plastic-1e5,tube-1e6,contact"
+    args = run_vs_ccx.comparison_options(__doc__, cases, 5).parse_args()
+    gapfe, work = run_vs_ccx.gapfe_and_work(args, "estimate_cost_")
     print("| case | equations | increments | run [s] | recovery [s] | without [s] | cost, phase | "
           "run without [s] | cost, whole wall | cost, whole CPU |")
     print("|---|---|---|---|---|---|---|---|---|---|")

@@ -15,12 +15,10 @@ The peaks beside them, measured here in this process:
          run's (the same filesystem), without fsync (what the run does: the page cache) and with an fsync
          per file.
 """
-import argparse
 import os
 import re
 import subprocess
 import sys
-import tempfile
 import time
 
 os.environ["OPENBLAS_NUM_THREADS"] = os.environ["OMP_NUM_THREADS"] = "1"  # before numpy loads OpenBLAS
@@ -101,15 +99,8 @@ def run_once(gapfe, deck, out, work, options):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--cases", default="tube-1e5,tube-1e6")
-    ap.add_argument("--runs", type=int, default=3)
-    ap.add_argument("--gapfe", default="build/bench/examples/gapfe")
-    ap.add_argument("--work", default=None)
-    args = ap.parse_args()
-    gapfe = os.path.abspath(args.gapfe)
-    work = args.work or tempfile.mkdtemp(prefix="limits_")
-    os.makedirs(work, exist_ok=True)
+    args = run_vs_ccx.comparison_options(__doc__, "tube-1e5,tube-1e6", 3).parse_args()
+    gapfe, work = run_vs_ccx.gapfe_and_work(args, "limits_")
     peak, numpy_blas = dgemm_peak()
     print(f"dgemm, one thread: {peak:.1f} GFLOP/s (numpy's BLAS: {numpy_blas})")
     print("| case | equations | flops | factorize [s] | GFLOP/s | of dgemm | files [MB] | write [s] | MB/s "

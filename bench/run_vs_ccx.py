@@ -130,6 +130,25 @@ def run_measured(argv, cwd, log_path):
 
 # ---------------------------------------------------------------------------------- closed forms ------
 
+def comparison_options(doc, cases, runs):
+    """The options of a script that times `gapfe run` on these cases (bench/estimate_cost.py, limits.py,
+    dolfinx_tube.py): --cases, --runs, --gapfe and --work; the caller adds its own and parses."""
+    ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--cases", default=cases)
+    ap.add_argument("--runs", type=int, default=runs)
+    ap.add_argument("--gapfe", default="build/bench/examples/gapfe")
+    ap.add_argument("--work", default=None)
+    return ap
+
+
+def gapfe_and_work(args, prefix):
+    """(the gapfe program's absolute path, the work folder: --work or a new temporary one, made) of parsed
+    comparison_options."""
+    work = args.work or tempfile.mkdtemp(prefix=prefix)
+    os.makedirs(work, exist_ok=True)
+    return os.path.abspath(args.gapfe), work
+
+
 def lame_bore(p):
     """Plane-strain Lame u_r(a) of the tube under bore pressure p."""
     d = B * B - A * A
