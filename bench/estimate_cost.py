@@ -48,10 +48,7 @@ def main():
     print("| case | equations | increments | run [s] | recovery [s] | without [s] | cost, phase | "
           "run without [s] | cost, whole wall | cost, whole CPU |")
     print("|---|---|---|---|---|---|---|---|---|---|")
-    for name in args.cases.split(","):
-        case = run_vs_ccx.CASES[name]
-        deck, _ = run_vs_ccx.write_inputs(case, work)
-        _, options = case.variants[0]
+    for name, case, deck, options in run_vs_ccx.case_decks(args.cases, work):
         runs = {"energy": [], "none": []}
         for k in range(args.runs):
             for mode in ("energy", "none"):

@@ -106,10 +106,7 @@ def main():
     print("| case | equations | flops | factorize [s] | GFLOP/s | of dgemm | files [MB] | write [s] | MB/s "
           "| plain write MB/s (no fsync, fsync) | of plain |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
-    for name in args.cases.split(","):
-        case = run_vs_ccx.CASES[name]
-        deck, _ = run_vs_ccx.write_inputs(case, work)
-        _, options = case.variants[0]
+    for name, case, deck, options in run_vs_ccx.case_decks(args.cases, work):
         out = os.path.join(work, name)
         runs = [run_once(gapfe, deck, out, work, options) for _ in range(args.runs)]
         flops, t_fact = min(((r[0], r[1]) for r in runs), key=lambda r: r[1])

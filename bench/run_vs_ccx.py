@@ -149,6 +149,15 @@ def gapfe_and_work(args, prefix):
     return os.path.abspath(args.gapfe), work
 
 
+def case_decks(names, work):
+    """For each case in the comma-separated `names`: (name, case, gapfe deck path, its first variant's
+    options), the deck written into `work`."""
+    for name in names.split(","):
+        case = CASES[name]
+        deck, _ = write_inputs(case, work)
+        yield name, case, deck, case.variants[0][1]
+
+
 def lame_bore(p):
     """Plane-strain Lame u_r(a) of the tube under bore pressure p."""
     d = B * B - A * A
