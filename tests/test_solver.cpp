@@ -1,7 +1,16 @@
 // Solver policies without a mesh: the nested-dissection ordering is a valid permutation (connected or
 // not), gives the same solution as AMD, and less fill than the natural order on a grid; the coordinate
 // dissection cuts a grid along grid lines. (EigenLu, the
-// full-storage policy, is checked through the drivers in test_verification.cpp.)
+// full-storage policy, is checked through the drivers in test_verification.cpp.) And the worker pool's
+// loop (core/workers.hpp).
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "gapfe/core/workers.hpp"
 #include "gapfe/solver/coordinate_dissection.hpp"
 #include "gapfe/solver/eigen_ldlt.hpp"
 
@@ -138,4 +147,31 @@ TEST_CASE(
                                                     << ops_natural);
   CHECK(ops_given < ops_natural / 5);
   CHECK(ops_given < 1.3 * ops_amd);
+}
+
+TEST_CASE("[threads] parallel_for runs every task once, nested loops inline, and rethrows the lowest failure") {
+  // core/workers.hpp: on 3 threads (more than this machine may have: the pool must not care) and on 1.
+  for (const int threads : {3, 1}) {
+    set_worker_threads(threads);
+    CHECK(worker_threads() == threads);
+    std::vector<std::atomic<int>> runs(1000);
+    std::vector<long> inner(1000, 0);
+    parallel_for(runs.size(), [&](std::size_t t) {
+      runs[t].fetch_add(1);
+      parallel_for(10, [&](std::size_t k) { inner[t] += static_cast<long>(k); });  // on the task's thread
+    });
+    CHECK(std::all_of(runs.begin(), runs.end(), [](const std::atomic<int>& r) { return r.load() == 1; }));
+    CHECK(std::all_of(inner.begin(), inner.end(), [](long s) { return s == 45; }));
+    // Tasks 700 and 100 fail (700 may well fail first on another thread): a serial loop meets 100 first.
+    for (int repeat = 0; repeat < 20; ++repeat)
+      CHECK_THROWS_WITH(parallel_for(1000,
+                                     [&](std::size_t t) {
+                                       if (t == 700) throw std::runtime_error("task 700");
+                                       if (t == 100) {
+                                         std::this_thread::sleep_for(std::chrono::microseconds(200));
+                                         throw std::runtime_error("task 100");
+                                       }
+                                     }),
+                        "task 100");
+  }
 }

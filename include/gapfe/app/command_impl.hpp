@@ -35,6 +35,7 @@
 #ifdef GAPFE_HAS_SCENE
 #include "gapfe/input/scene_file.hpp"
 #endif
+#include "gapfe/core/workers.hpp"
 #include "gapfe/mesh/cell_partition.hpp"
 #include "gapfe/solver/threads.hpp"
 #include "gapfe/version.hpp"
@@ -178,10 +179,15 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
   std::optional<ScenePart> part;
   const int rank = plan.solver == SolverChoice::petsc ? partition(a, s, process.start_mpi, part, log) : 0;
   log << "solver: " << solver_text(plan) << "; element " << name_of(plan.key.element) << "\n";
-  // CHOLMOD's OpenMP and OpenBLAS; one thread unless asked, and one with an OpenMP-built BLAS (threads.hpp)
+  // CHOLMOD's OpenMP and OpenBLAS; one thread unless asked, and one with an OpenMP-built BLAS (threads.hpp);
+  // gapfe's own loops on as many (core/workers.hpp)
   const SolverThreads threads = set_solver_threads(a.threads);
+  set_worker_threads(a.threads);
+  prepare_solvers();
   if (!threads.limited.empty()) err << "gapfe: warning: " << threads.limited << "\n";
-  log << "threads: " << threads.threads << (a.threads == 1 ? " (--threads N for more)" : "") << "\n";
+  log << "threads: " << a.threads << (a.threads == 1 ? " (--threads N for more)" : "")
+      << (threads.threads != a.threads ? "; OpenBLAS on " + std::to_string(threads.threads) : std::string())
+      << "\n";
   RecoveryWeights recovery;
   recovery.several = d.steps() > 1;  // every step estimates: fit the patches once, at the first
   const RunRequest request{d,

@@ -66,6 +66,14 @@ std::size_t chosen_index([[maybe_unused]] SolverChoice choice) {
 
 }  // namespace built
 
+/// What the command does to this build's solver libraries beside their threads (solver/threads.hpp):
+/// CHOLMOD's large blocks touched on gapfe's threads (solver/cholmod.hpp).
+inline void prepare_solvers() {
+#ifdef GAPFE_HAS_CHOLMOD
+  touch_cholmod_blocks_on_workers();
+#endif
+}
+
 template <MatrixStorage Storage>
 struct ChosenSolver<Storage>::Chosen {
   std::conditional_t<Storage == MatrixStorage::lower, built::LowerSolvers, built::FullSolvers> solver;

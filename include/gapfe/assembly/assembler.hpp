@@ -23,6 +23,7 @@
 #include <utility>
 #include <vector>
 
+#include "gapfe/assembly/cell_blocks.hpp"
 #include "gapfe/assembly/cells.hpp"
 #include "gapfe/assembly/dof_map.hpp"
 #include "gapfe/assembly/edge_index.hpp"
@@ -50,6 +51,14 @@ class Assembler {
   static constexpr bool kBatchedQuad4 = std::is_same_v<Elem, Quad4> && kNd == 2;
   /// What the model's solver reads: the lower triangle, or every entry (assembly/sparsity.hpp).
   static constexpr MatrixStorage kStorage = storage_of<typename M::LinearSolver>();
+  using LawCache                          = LocalLawCache<Law>;
+  /// One cell's element matrix and vector, computed on any thread before they are added in the cells'
+  /// order (assembly/cell_blocks.hpp).
+  template <class E>
+  struct CellSystem {
+    typename ElementKernel<Kin, E>::Matrix k;
+    typename ElementKernel<Kin, E>::Vector f;
+  };
 
   /// Checks the model (assembly/problem_check.hpp) and builds the pattern. `links`: node pairs that may
   /// carry node links; their values start at zero.
@@ -238,12 +247,18 @@ class Assembler {
     return out;
   }
 
-  /// The law resolved for a cell (cached across consecutive cells; reset_cache() at the start of a pass).
+  /// The law resolved for a cell (cached across consecutive cells; reset_cache() at the start of a pass),
+  /// in the assembler's cache or in `cache` (a task's, assembly/cell_blocks.hpp).
+  template <std::size_t NPC>
+  const typename Law::Local& local(const Problem<M>& p, const CellTag& tag, const std::array<int, NPC>& cell,
+                                   const LawCache& cache) const {
+    return cache.get(p.materials, tag, cell_temperature(p.temperature, p.reference_temperature, cell),
+                     p.reference_temperature, p.thermal_fraction);
+  }
   template <std::size_t NPC>
   const typename Law::Local& local(const Problem<M>& p, const CellTag& tag,
                                    const std::array<int, NPC>& cell) const {
-    return cache_.get(p.materials, tag, cell_temperature(p.temperature, p.reference_temperature, cell),
-                      p.reference_temperature, p.thermal_fraction);
+    return local(p, tag, cell, cache_);
   }
   void reset_cache() const { cache_.reset(); }
 
@@ -282,8 +297,14 @@ class Assembler {
   /// Condensed element stiffness and load (body + thermal) of one cell of a linear law.
   template <class E, std::size_t NPC>
   void element_system(const Problem<M>& p, const std::array<int, NPC>& cell, const CellTag& tag,
+                      typename ElementKernel<Kin, E>::Matrix& k, typename ElementKernel<Kin, E>::Vector& f,
+                      const LawCache& cache) const;
+  template <class E, std::size_t NPC>
+  void element_system(const Problem<M>& p, const std::array<int, NPC>& cell, const CellTag& tag,
                       typename ElementKernel<Kin, E>::Matrix& k,
-                      typename ElementKernel<Kin, E>::Vector& f) const;
+                      typename ElementKernel<Kin, E>::Vector& f) const {
+    element_system<E>(p, cell, tag, k, f, cache_);
+  }
 
   /// Element load into the right-hand side, and the prescribed-displacement columns moved there:
   /// rhs_i += f_i - sum_j K_ij u_j over prescribed j. `k(i, j)` gives the element stiffness.
@@ -340,7 +361,7 @@ class Assembler {
   std::vector<char> link_owned_;  ///< per link: whether this part assembles it (all, when whole)
   std::size_t cells_ = 0, points_ = 0;
   EdgeIndex<Elem> edges_;
-  LocalLawCache<Law> cache_;
+  LawCache cache_;
   std::shared_ptr<const Subdomain> subdomain_;  ///< the problem's, when it is a part
   mutable struct {  // linear_internal's element stiffnesses of the cells with a prescribed DOF
     std::vector<double> values;

@@ -20,35 +20,41 @@ void Assembler<M>::history_pass(const Problem<M>& p, const VecX& u, History<Stat
   cache_.reset();
   StepContext point_ctx = ctx;  // a residual pass: the laws may skip their tangents
   point_ctx.tangent     = values != nullptr;
-  for_each_cell<Elem>(
-      p.mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
-                                            const std::array<int, NPC>& cell, const CellTag& tag) {
-        using Kernel                           = ElementKernel<Kin, E>;
-        const auto x                           = cell_coords<E>(p.mesh, cell);
-        const typename Kernel::Points geometry = Kernel::stiffness_points(x);
-        const auto& lp                         = local(p, tag, cell);
-        const auto dilation                    = Kernel::dilatation(geometry, x);
-        const auto ue                          = gather(cell, u);
-        const std::size_t first                = first_point<E>(e);
-        typename Kernel::Matrix k              = Kernel::Matrix::Zero();
-        typename Kernel::Vector f              = Kernel::Vector::Zero();
-        for (int q = 0; q < E::kStiffnessPoints; ++q) {
-          const auto& g   = geometry[q];
-          const auto b    = Kernel::point_B(g, dilation);
-          const auto resp = Law::update(lp, Kernel::extend(b * ue), points.committed(first + q), point_ctx);
-          f.noalias() += g.weight * (b.transpose() * Kernel::restrict(resp.stress));
-          if (values) {  // lazyProduct: see ElementKernel::shape_stiffness
-            const typename Kernel::StrainDisplacement d_b = Kernel::restrict(resp.tangent) * b;
-            k.noalias() += g.weight * b.transpose().lazyProduct(d_b);
-          }
-          points.trial(first + q) = resp.state;
-          stress[first + q]       = resp.stress;
-        }
-        add_to(cell, f, internal);
-        if (!values) return;
-        scatter<kStorage>(values, offsets<E>(e), k);
-        if (prescribed_step) add_predictor(cell, k, *prescribed_step, *predictor);
-      });
+  // Each cell's points on any thread, its forces and stiffness added in the cells' order
+  // (assembly/cell_blocks.hpp); a cell writes only its own points' trial states and stresses.
+  const auto compute = [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
+                                                     const std::array<int, NPC>& cell, const CellTag& tag,
+                                                     CellSystem<E>& s, const LawCache& cache) {
+    using Kernel                           = ElementKernel<Kin, E>;
+    const auto x                           = cell_coords<E>(p.mesh, cell);
+    const typename Kernel::Points geometry = Kernel::stiffness_points(x);
+    const auto& lp                         = local(p, tag, cell, cache);
+    const auto dilation                    = Kernel::dilatation(geometry, x);
+    const auto ue                          = gather(cell, u);
+    const std::size_t first                = first_point<E>(e);
+    s.k.setZero(), s.f.setZero();
+    for (int q = 0; q < E::kStiffnessPoints; ++q) {
+      const auto& g   = geometry[q];
+      const auto b    = Kernel::point_B(g, dilation);
+      const auto resp = Law::update(lp, Kernel::extend(b * ue), points.committed(first + q), point_ctx);
+      s.f.noalias() += g.weight * (b.transpose() * Kernel::restrict(resp.stress));
+      if (values) {  // lazyProduct: see ElementKernel::shape_stiffness
+        const typename Kernel::StrainDisplacement d_b = Kernel::restrict(resp.tangent) * b;
+        s.k.noalias() += g.weight * b.transpose().lazyProduct(d_b);
+      }
+      points.trial(first + q) = resp.state;
+      stress[first + q]       = resp.stress;
+    }
+  };
+  const auto commit = [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
+                                                    const std::array<int, NPC>& cell, const CellTag&,
+                                                    const CellSystem<E>& s) {
+    add_to(cell, s.f, internal);
+    if (!values) return;
+    scatter<kStorage>(values, offsets<E>(e), s.k);
+    if (prescribed_step) add_predictor(cell, s.k, *prescribed_step, *predictor);
+  };
+  for_each_cell_ordered<Elem, CellSystem, LawCache>(p.mesh, CellGroups::all, compute, commit);
   add_link_forces(u, internal);
   if (!values) return;
   constexpr int n = 2 * kNd;

@@ -15,18 +15,20 @@ void Assembler<M>::linear_system(const Problem<M>& p, const VecX& external, doub
   cache_.reset();
   for (std::size_t d = 0; d < dofs_.equation.size(); ++d)
     if (dofs_.equation[d] >= 0) rhs(dofs_.equation[d]) += external(static_cast<Eigen::Index>(d));
-  for_each_cell<Elem>(p.mesh,
-                      [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
-                                                    const std::array<int, NPC>& cell, const CellTag& tag) {
-                        if constexpr (kBatchedQuad4 && std::is_same_v<E, Elem>)
-                          return;  // done in batches below
-                        typename ElementKernel<Kin, E>::Matrix k;
-                        typename ElementKernel<Kin, E>::Vector f;
-                        element_system<E>(p, cell, tag, k, f);
-                        scatter<kStorage>(values, offsets<E>(e), k);
-                        add_element_rhs(
-                            cell, f, [&](int i, int j) { return k(i, j); }, rhs);
-                      });
+  // Each cell's system on any thread, added in the cells' order (assembly/cell_blocks.hpp); the batches
+  // below do the model's cells.
+  for_each_cell_ordered<Elem, CellSystem, LawCache>(
+      p.mesh, kBatchedQuad4 ? CellGroups::triangles : CellGroups::all,
+      [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t, const std::array<int, NPC>& cell,
+                                    const CellTag& tag, CellSystem<E>& s, const LawCache& cache) {
+        element_system<E>(p, cell, tag, s.k, s.f, cache);
+      },
+      [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e, const std::array<int, NPC>& cell,
+                                    const CellTag&, const CellSystem<E>& s) {
+        scatter<kStorage>(values, offsets<E>(e), s.k);
+        add_element_rhs(
+            cell, s.f, [&](int i, int j) { return s.k(i, j); }, rhs);
+      });
   if constexpr (kBatchedQuad4) quad4_batched(p, values, rhs);
 }
 
@@ -99,10 +101,10 @@ template <class M>
 template <class E, std::size_t NPC>
 void Assembler<M>::element_system(const Problem<M>& p, const std::array<int, NPC>& cell, const CellTag& tag,
                                   typename ElementKernel<Kin, E>::Matrix& k,
-                                  typename ElementKernel<Kin, E>::Vector& f) const {
+                                  typename ElementKernel<Kin, E>::Vector& f, const LawCache& cache) const {
   using Kernel                          = ElementKernel<Kin, E>;
   const auto x                          = cell_coords<E>(p.mesh, cell);
-  const auto& lp                        = local(p, tag, cell);
+  const auto& lp                        = local(p, tag, cell, cache);
   const typename Kernel::StrainMatrix d = Kernel::restrict(lp.stiffness);
   if (!has_element_load<E>(p, lp)) {
     k = Kernel::stiffness(x, d);
@@ -139,43 +141,58 @@ void Assembler<M>::quad4_batched(const Problem<M>& p, double* values, VecX& rhs)
   using Kernel                 = ElementKernel<Kin, Elem>;
   using Batch                  = Quad4Axisym2Batch<8>;
   const auto& m                = p.mesh;
-  const std::size_t count      = m.cells.size();
   static constexpr auto kUpper = [] {  // (i, j) -> index in the upper-triangle row-major list
     std::array<std::array<int, 8>, 8> t{};
     for (int i = 0, c = 0; i < 8; ++i)
       for (int j = i; j < 8; ++j, ++c) t[i][j] = t[j][i] = c;
     return t;
   }();
-  Batch batch;
-  for (std::size_t e0 = 0; e0 < count; e0 += Batch::kLanes) {
-    const int lanes = static_cast<int>(std::min<std::size_t>(Batch::kLanes, count - e0));
-    for (int l = 0; l < Batch::kLanes; ++l) {
-      const std::size_t e = e0 + static_cast<std::size_t>(std::min(l, lanes - 1));  // pad with the last cell
-      for (int a = 0; a < 4; ++a)
-        batch.r[a][l] = m.nodes[m.cells[e][a]](0), batch.z[a][l] = m.nodes[m.cells[e][a]](1);
-      batch.set_material(l, local(p, m.cell_tag(e), m.cells[e]).stiffness.template topLeftCorner<4, 4>());
-    }
-    batch.compute();
-    for (int l = 0; l < lanes; ++l) {
-      const std::size_t e = e0 + static_cast<std::size_t>(l);
-      const int* off      = cell_offsets_.data() + e * offset_count(8, kStorage);
-      if constexpr (kStorage == MatrixStorage::lower) {  // the batch's upper-triangle order is the offsets'
-        for (int c = 0; c < 36; ++c)
-          if (off[c] >= 0) values[off[c]] += batch.k[c][l];
-      } else {
-        for (int i = 0, c = 0; i < 8; ++i)
-          for (int j = 0; j < 8; ++j, ++c)
-            if (off[c] >= 0) values[off[c]] += batch.k[kUpper[i][j]][l];
+  struct Slot {  // one cell's upper triangle (the batch's order) and load
+    std::array<double, 36> k;
+    typename Kernel::Vector f;
+  };
+  static_assert(kCellsPerTask % Batch::kLanes == 0, "a task's cells fill whole batches");
+  // Batches on any thread, added in the cells' order (assembly/cell_blocks.hpp).
+  auto task = [&](std::size_t begin, std::size_t end, Slot* slots) {
+    Batch batch;
+    LawCache cache;
+    for (std::size_t e0 = begin; e0 < end; e0 += Batch::kLanes) {
+      const int lanes = static_cast<int>(std::min<std::size_t>(Batch::kLanes, end - e0));
+      for (int l = 0; l < Batch::kLanes; ++l) {
+        const std::size_t e =
+            e0 + static_cast<std::size_t>(std::min(l, lanes - 1));  // pad with the last cell
+        for (int a = 0; a < 4; ++a)
+          batch.r[a][l] = m.nodes[m.cells[e][a]](0), batch.z[a][l] = m.nodes[m.cells[e][a]](1);
+        batch.set_material(
+            l, local(p, m.cell_tag(e), m.cells[e], cache).stiffness.template topLeftCorner<4, 4>());
       }
-      const auto& lp            = local(p, m.cell_tag(e), m.cells[e]);
-      typename Kernel::Vector f = Kernel::Vector::Zero();
-      if (has_element_load<Elem>(p, lp))
-        f = Kernel::shape_load(cell_coords<Elem>(m, m.cells[e]), Kernel::restrict(lp.stiffness),
-                               Kernel::restrict(lp.thermal_strain), body_force(p.inertia, lp.density));
-      add_element_rhs(
-          m.cells[e], f, [&](int i, int j) { return batch.k[kUpper[i][j]][l]; }, rhs);
+      batch.compute();
+      for (int l = 0; l < lanes; ++l) {
+        const std::size_t e = e0 + static_cast<std::size_t>(l);
+        Slot& s             = slots[e - begin];
+        for (int c = 0; c < 36; ++c) s.k[c] = batch.k[c][l];
+        const auto& lp = local(p, m.cell_tag(e), m.cells[e], cache);
+        s.f.setZero();
+        if (has_element_load<Elem>(p, lp))
+          s.f = Kernel::shape_load(cell_coords<Elem>(m, m.cells[e]), Kernel::restrict(lp.stiffness),
+                                   Kernel::restrict(lp.thermal_strain), body_force(p.inertia, lp.density));
+      }
     }
-  }
+  };
+  auto commit = [&](std::size_t e, const Slot& s) {
+    const int* off = cell_offsets_.data() + e * offset_count(8, kStorage);
+    if constexpr (kStorage == MatrixStorage::lower) {  // the batch's upper-triangle order is the offsets'
+      for (int c = 0; c < 36; ++c)
+        if (off[c] >= 0) values[off[c]] += s.k[c];
+    } else {
+      for (int i = 0, c = 0; i < 8; ++i)
+        for (int j = 0; j < 8; ++j, ++c)
+          if (off[c] >= 0) values[off[c]] += s.k[kUpper[i][j]];
+    }
+    add_element_rhs(
+        m.cells[e], s.f, [&](int i, int j) { return s.k[kUpper[i][j]]; }, rhs);
+  };
+  ordered_tasks<Slot>(m.cells.size(), task, commit);
 }
 
 }  // namespace gapfe

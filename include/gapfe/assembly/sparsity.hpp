@@ -8,10 +8,12 @@
 // (i <= j, row-major, n (n + 1) / 2 entries) or its whole matrix (row-major, n^2 entries); -1 where
 // either DOF is prescribed.
 #include <algorithm>
+#include <array>
 #include <vector>
 
 #include "gapfe/core/concepts.hpp"
 #include "gapfe/core/types.hpp"
+#include "gapfe/core/workers.hpp"
 #include "gapfe/mesh/mesh.hpp"
 
 namespace gapfe {
@@ -104,25 +106,29 @@ std::vector<int> scatter_offsets(const SpMat& pattern, const std::vector<int>& e
   const int per   = offset_count(n, storage);
   const bool full = storage == MatrixStorage::full;
   std::vector<int> off(cells.size() * static_cast<std::size_t>(per));
-  const int* outer = pattern.outerIndexPtr();
-  const int* inner = pattern.innerIndexPtr();
-  std::array<int, n> eq;
-  for (std::size_t e = 0; e < cells.size(); ++e) {
-    for (int a = 0; a < static_cast<int>(NPC); ++a)
-      for (int c = 0; c < DofsPerNode; ++c) eq[a * DofsPerNode + c] = equation[cells[e][a] * DofsPerNode + c];
-    int k = 0;
-    for (int i = 0; i < n; ++i)
-      for (int j = full ? 0 : i; j < n; ++j, ++k) {
-        if (eq[i] < 0 || eq[j] < 0) {
-          off[e * per + k] = -1;
-          continue;
+  const int* outer               = pattern.outerIndexPtr();
+  const int* inner               = pattern.innerIndexPtr();
+  constexpr std::size_t kPerTask = 4096;  // each cell's offsets its own: any thread (core/workers.hpp)
+  parallel_for((cells.size() + kPerTask - 1) / kPerTask, [&](std::size_t task) {
+    std::array<int, n> eq;
+    for (std::size_t e = task * kPerTask; e < std::min(cells.size(), (task + 1) * kPerTask); ++e) {
+      for (int a = 0; a < static_cast<int>(NPC); ++a)
+        for (int c = 0; c < DofsPerNode; ++c)
+          eq[a * DofsPerNode + c] = equation[cells[e][a] * DofsPerNode + c];
+      int k = 0;
+      for (int i = 0; i < n; ++i)
+        for (int j = full ? 0 : i; j < n; ++j, ++k) {
+          if (eq[i] < 0 || eq[j] < 0) {
+            off[e * per + k] = -1;
+            continue;
+          }
+          // Entry (eq_i, eq_j); the lower triangle keeps a symmetric pair once, at (max, min).
+          const int row = full ? eq[i] : std::max(eq[i], eq[j]), col = full ? eq[j] : std::min(eq[i], eq[j]);
+          off[e * per + k] =
+              static_cast<int>(std::lower_bound(inner + outer[col], inner + outer[col + 1], row) - inner);
         }
-        // Entry (eq_i, eq_j); the lower triangle keeps a symmetric pair once, at (max, min).
-        const int row = full ? eq[i] : std::max(eq[i], eq[j]), col = full ? eq[j] : std::min(eq[i], eq[j]);
-        off[e * per + k] =
-            static_cast<int>(std::lower_bound(inner + outer[col], inner + outer[col + 1], row) - inner);
-      }
-  }
+    }
+  });
   return off;
 }
 

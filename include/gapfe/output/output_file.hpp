@@ -150,9 +150,12 @@ class OutputFile {
 
 namespace detail {
 
-/// Write `text` to `path` whole: a temporary created exclusively beside it, completed and closed, then
-/// renamed over the path; the temporary is removed on any failure (see the top).
-inline void write_file_atomically(const std::string& path, std::string_view text) {
+/// Write a file to `path` whole from pieces: produce(put) calls put(std::string_view) with the file's
+/// bytes in order (a VTU file's arrays one by one, never all in memory at once). Into a temporary created
+/// exclusively beside it, completed and closed, then renamed over the path; the temporary is removed on any
+/// failure, the producer's exceptions included (see the top).
+template <class Produce>
+void write_file_atomically_from(const std::string& path, Produce&& produce) {
   const std::size_t slash = path.rfind('/');
   std::string temporary   = (slash == std::string::npos ? std::string() : path.substr(0, slash + 1)) + "." +
                           path.substr(slash == std::string::npos ? 0 : slash + 1) + ".gapfe-XXXXXX";
@@ -161,14 +164,28 @@ inline void write_file_atomically(const std::string& path, std::string_view text
   const mode_t mask = ::umask(0);  // mkstemp makes 0600; the file gets what open(0666) would give
   ::umask(mask);
   ::fchmod(fd, 0666 & ~mask);
-  bool ok           = write_all(fd, text);
-  std::string fault = ok ? std::string() : system_reason();
+  bool ok = true;
+  std::string fault;
+  try {
+    produce([&](std::string_view piece) {
+      if (ok && !write_all(fd, piece)) ok = false, fault = system_reason();
+    });
+  } catch (...) {
+    ::close(fd);
+    ::unlink(temporary.c_str());
+    throw;
+  }
   if (::close(fd) != 0 && ok) ok = false, fault = system_reason();
   if (ok && ::rename(temporary.c_str(), path.c_str()) != 0) ok = false, fault = system_reason();
   if (!ok) {
     ::unlink(temporary.c_str());
     throw FileError("cannot write " + path + ": " + fault);
   }
+}
+
+/// Write `text` to `path` whole (write_file_atomically_from, in one piece).
+inline void write_file_atomically(const std::string& path, std::string_view text) {
+  write_file_atomically_from(path, [&](const auto& put) { put(text); });
 }
 
 }  // namespace detail

@@ -38,9 +38,10 @@ class ResultTables {
     elements_.append("step,inc,t,element,i,j,material,r,z,s_rr,s_zz,s_tt,s_rz,s_rt,s_zt,eqps\n");
   }
 
-  /// The tables' rows, written in chunks (a 1e6-node table is 100 MB of text). Every row starts with the
-  /// increment's step,inc,t and the mesh's part of the row (node,i,j,r,z or element,i,j,material,r,z),
-  /// which is formatted once, at the second increment written, and copied from then on.
+  /// The tables' rows, formatted on every thread and written in chunks (a 1e6-node table is 100 MB of text).
+  /// Every row starts with the increment's step,inc,t and the mesh's part of the row (node,i,j,r,z or
+  /// element,i,j,material,r,z), which is formatted once, at the second increment written, and copied from
+  /// then on.
   void write(int step, double inc, const Solution& solution, const std::vector<PointValues>& values) {
     const IJGrid& g = scene_.grid;
     const auto& u   = solution.displacement;
@@ -57,44 +58,36 @@ class ResultTables {
                          std::size_t k) {
       s.append(heads, k == 0 ? 0 : end[k - 1], end[k] - (k == 0 ? 0 : end[k - 1]));
     };
-    std::string s;
-    constexpr std::size_t kChunk = std::size_t(1) << 20;
-    s.reserve(kChunk + 512);
-    const auto row_end = [&](OutputFile& out) {  // (a piece of whole rows, one write: see output_file.hpp)
-      s += '\n';
-      if (s.size() >= kChunk) out.append(s), s.clear();
-    };
-    const auto flush  = [&](OutputFile& out) { out.append(s), s.clear(); };
-    const bool cached = !node_heads_.empty();
-    for (int n = 0; n < g.node_count(); ++n) {
+    const bool cached       = !node_heads_.empty();
+    const std::size_t nodes = static_cast<std::size_t>(g.node_count());
+    // Rows formatted on every thread, written in order (detail::write_rows).
+    detail::write_rows(nodes_, nodes, [&](std::string& s, std::size_t n) {
+      const auto i = static_cast<Eigen::Index>(n);
       s += prefix;
-      cached ? head(s, node_heads_, node_head_end_, static_cast<std::size_t>(n)) : node_head(s, n);
-      detail::csv_number(s, u(n, 0)), detail::csv_number(s, u(n, 1)), detail::append_number(s, u(n, 2));
-      row_end(nodes_);
-    }
-    flush(nodes_);
-    for (int n = 0; n < g.node_count(); ++n) {
-      const int code = prescribed_[static_cast<std::size_t>(n)];
-      if (code == 0) continue;
+      cached ? head(s, node_heads_, node_head_end_, n) : node_head(s, static_cast<int>(n));
+      detail::csv_number(s, u(i, 0)), detail::csv_number(s, u(i, 1)), detail::append_number(s, u(i, 2));
+      return true;
+    });
+    detail::write_rows(reactions_, nodes, [&](std::string& s, std::size_t n) {
+      const int code = prescribed_[n];
+      if (code == 0) return false;
       s += prefix;
-      cached ? head(s, node_heads_, node_head_end_, static_cast<std::size_t>(n)) : node_head(s, n);
+      cached ? head(s, node_heads_, node_head_end_, n) : node_head(s, static_cast<int>(n));
       for (int c = 0; c < 3; ++c) {
-        detail::append_number(s, (code >> c) & 1 ? solution.reaction(n, c) : 0.0);
+        detail::append_number(s, (code >> c) & 1 ? solution.reaction(static_cast<Eigen::Index>(n), c) : 0.0);
         if (c < 2) s += ',';
       }
-      row_end(reactions_);
-    }
-    flush(reactions_);
-    for (std::size_t e = 0; e < g.cells.size(); ++e) {
+      return true;
+    });
+    detail::write_rows(elements_, g.cells.size(), [&](std::string& s, std::size_t e) {
       const PointValues& v = by_element(values, e);
       s += prefix;
       cached ? head(s, element_heads_, element_head_end_, e) : element_head(s, e, v);
       for (const int k : {voigt::rr, voigt::zz, voigt::hoop, voigt::rz, voigt::theta_r, voigt::z_theta})
         detail::csv_number(s, v.stress(k));
       detail::append_number(s, v.eqps);
-      row_end(elements_);
-    }
-    flush(elements_);
+      return true;
+    });
   }
 
   void close() {

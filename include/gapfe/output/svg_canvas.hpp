@@ -50,7 +50,22 @@ std::vector<std::array<int, 2>> outline_sides(std::size_t cells, const SidesOf& 
     sides_of(e, [&](int a, int b) {
       sides.push_back({{std::min(a, b), std::max(a, b)}, material.empty() ? 0 : material[e]});
     });
-  std::sort(sides.begin(), sides.end());
+  // In the order of their node pairs: bucketed by the smaller node (linear in the sides, where one sort of
+  // them all took a tenth of a second at 1e6 cells), each bucket's few sorted.
+  int top = -1;
+  for (const Side& s : sides) top = std::max(top, s.nodes[1]);
+  std::vector<std::size_t> start(static_cast<std::size_t>(top) + 2, 0);
+  for (const Side& s : sides) ++start[static_cast<std::size_t>(s.nodes[0]) + 1];
+  for (std::size_t n = 1; n < start.size(); ++n) start[n] += start[n - 1];
+  {
+    std::vector<Side> bucketed(sides.size());
+    std::vector<std::size_t> next(start.begin(), start.end() - 1);
+    for (const Side& s : sides) bucketed[next[static_cast<std::size_t>(s.nodes[0])]++] = s;
+    sides.swap(bucketed);
+  }
+  for (std::size_t n = 0; n + 1 < start.size(); ++n)
+    std::sort(sides.begin() + static_cast<std::ptrdiff_t>(start[n]),
+              sides.begin() + static_cast<std::ptrdiff_t>(start[n + 1]));
   std::vector<std::array<int, 2>> out;
   for (std::size_t k = 0; k < sides.size();) {
     std::size_t end = k + 1;

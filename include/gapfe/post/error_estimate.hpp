@@ -79,8 +79,23 @@ struct PointStresses {
   double energy = 0;  ///< |u_h|^2: sum over the stiffness points of w sigma_h^T C^-1 sigma_h
 };
 
+/// One cell's part of step 1, computed on any thread (assembly/cell_blocks.hpp): its stresses with their
+/// positions and weights, its energy, largest stress and round-off.
+template <int S>
+struct CellStressesOf {
+  template <class E>
+  struct Slot {
+    std::array<Vec<S>, E::kStiffnessPoints> stress;
+    std::array<Vec2, E::kStiffnessPoints> position;
+    std::array<double, E::kStiffnessPoints> weight;
+    double energy = 0, peak = 0, noise = 0;
+    bool skipped = false;
+  };
+};
+
 /// Step 1 of estimate_error(): every cell's stiffness-point stresses, and sigma* on `slots` either from
-/// `fit`'s weights (`Weighted`) or from this call's patch sums (`P` terms).
+/// `fit`'s weights (`Weighted`) or from this call's patch sums (`P` terms). The cells on every thread of
+/// the pool, their sums added in the cells' order (assembly/cell_blocks.hpp).
 template <int P, bool Weighted, class M, class Source>
 PointStresses<M::Kinematics::kStrain> point_stresses(const Assembler<M>& a, const Problem<M>& p,
                                                      const VecX& u, const Source& source,
@@ -96,67 +111,77 @@ PointStresses<M::Kinematics::kStrain> point_stresses(const Assembler<M>& a, cons
   out.recovered.assign(slots.size(), Vec<S>::Zero());
   std::vector<PatchSums<S, P>> sums(Weighted ? 0 : slots.size());
   const double largest_u = u.size() > 0 ? u.cwiseAbs().maxCoeff() : 0.0;
-  if (centroids) centroids->clear(), centroids->reserve(mesh.cells.size() + mesh.triangles.size());
-  const double* weight = Weighted ? fit->weight.data() : nullptr;
-  a.reset_cache();
-  Mat<S, S> stiffness = Mat<S, S>::Zero(), compliance = Mat<S, S>::Zero();  // the last cell's
-  for_each_cell<Elem>(mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
-                                                          const std::array<int, NPC>& cell,
-                                                          const CellTag& tag) {
+  if (centroids) centroids->assign(mesh.cells.size() + mesh.triangles.size(), PointValues{});
+  struct TaskCache {  // a task's law, and its last cell's compliance (neighbours mostly share a material)
+    typename Assembler<M>::LawCache law;
+    Mat<S, S> stiffness = Mat<S, S>::Zero(), compliance = Mat<S, S>::Zero();
+  };
+  const auto compute = [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
+                                                     const std::array<int, NPC>& cell, const CellTag& tag,
+                                                     auto& out_cell, TaskCache& cache) {
     static_assert(
         requires { E::kCorners; } || requires { E::kTri; } || requires { E::kTriangles; } ||
             (E::kEdgeNodes == 3 && (E::kStiffnessPoints == 9 || E::kNodes == 6)),
         "cells the recovery knows: Quad4, its B-bar form, the legacy quad, Tri3 (planes), Quad8 and Tri6 "
         "(quadratics)");
-    const bool skip_cell = left_out(skip, tag.material);
-    if (skip_cell && !centroids) return;
-    const auto x     = cell_coords<E>(mesh, cell);
-    const auto& lp   = a.local(p, tag, cell);
-    const auto first = a.template first_point<E>(e);
+    out_cell.skipped = left_out(skip, tag.material);
+    if (out_cell.skipped && !centroids) return;
+    const auto x          = cell_coords<E>(mesh, cell);
+    const auto& lp        = a.local(p, tag, cell, cache.law);
+    const auto first      = a.template first_point<E>(e);
+    constexpr bool kTri   = !std::is_same_v<E, Elem>;
+    PointValues* centroid = centroids ? centroids->data() + (kTri ? mesh.cells.size() + e : e) : nullptr;
     const CellPoints<Kin, E, std::decay_t<decltype(lp)>, Source> values(
-        x, lp, p.inertia, a.gather(cell, u), source, e, !std::is_same_v<E, Elem>, first, Recovered::stress);
-    if (skip_cell) {
-      centroids->push_back(values.centroid());
+        x, lp, p.inertia, a.gather(cell, u), source, e, kTri, first, Recovered::stress);
+    if (out_cell.skipped) {
+      *centroid = values.centroid();
       return;
     }
     using Values = std::decay_t<decltype(values)>;
-    typename Values::Stresses points;
     if constexpr (Values::kCentroidPoint && requires { values.stresses(); }) {
-      points = values.stresses();
-      if (centroids) centroids->push_back(values.centroid());
+      const auto points = values.stresses();
+      out_cell.stress = points.stress, out_cell.position = points.position, out_cell.weight = points.weight;
+      if (centroid) *centroid = values.centroid();
     } else {  // the centroid is the points' mean: one pass for both
       const auto all = values.points();
-      if (centroids) centroids->push_back(values.centroid(all));
+      if (centroid) *centroid = values.centroid(all);
       for (int q = 0; q < E::kStiffnessPoints; ++q)
-        points.stress[q]   = ElementKernel<Kin, E>::restrict(all.value[q].stress),
-        points.position[q] = Vec2(all.value[q].r, all.value[q].z), points.weight[q] = all.weight[q];
+        out_cell.stress[q]   = ElementKernel<Kin, E>::restrict(all.value[q].stress),
+        out_cell.position[q] = Vec2(all.value[q].r, all.value[q].z), out_cell.weight[q] = all.weight[q];
     }
     const Mat<S, S> cs = ElementKernel<Kin, E>::restrict(lp.stiffness);
-    if (cs != stiffness) stiffness = cs, compliance = cs.inverse();  // neighbours mostly share a material
+    if (cs != cache.stiffness) cache.stiffness = cs, cache.compliance = cs.inverse();
     const double side = std::min((x.row(E::kEdges.front().back()) - x.row(0)).norm(),
                                  (x.row(E::kEdges.back().front()) - x.row(0)).norm());
-    out.noise         = std::max(out.noise, lp.stiffness.diagonal().maxCoeff() *
-                                                (largest_u / side + lp.thermal_strain.cwiseAbs().maxCoeff()));
-    std::array<std::size_t, E::kNodes> slot;
-    for (int c = 0; c < E::kNodes; ++c) slot[c] = slots(cell[c], tag.material);
-    const Vec<S>* at = out.stress.data() + first;
-    // The cell's sums in locals: `out`'s members could alias the stresses stored, and would go through
-    // memory at every point.
-    double peak = 0, energy = 0;
-    Vec<S>* recovered = out.recovered.data();
+    out_cell.noise =
+        lp.stiffness.diagonal().maxCoeff() * (largest_u / side + lp.thermal_strain.cwiseAbs().maxCoeff());
+    out_cell.peak = 0, out_cell.energy = 0;
     for (int q = 0; q < E::kStiffnessPoints; ++q) {
-      const Vec<S>& s                                 = points.stress[q];
+      const Vec<S>& s                                 = out_cell.stress[q];
       out.stress[first + static_cast<std::size_t>(q)] = s;
-      peak                                            = std::max(peak, s.cwiseAbs().maxCoeff());
-      energy += points.weight[q] * s.dot(compliance * s);
-      if constexpr (Weighted)
-        for (int c = 0; c < E::kNodes; ++c) recovered[slot[c]] += weight[E::kNodes * q + c] * s;
+      out_cell.peak                                   = std::max(out_cell.peak, s.cwiseAbs().maxCoeff());
+      out_cell.energy += out_cell.weight[q] * s.dot(cache.compliance * s);
     }
-    if constexpr (Weighted) weight += E::kNodes * E::kStiffnessPoints;
-    out.peak = std::max(out.peak, peak), out.energy += energy;
-    if constexpr (!Weighted)
-      add_to_patches<E>(sums, slot, mesh, cell, [&](int q) { return std::pair(points.position[q], at[q]); });
-  });
+  };
+  const double* weight = Weighted ? fit->weight.data() : nullptr;
+  const auto commit    = [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t,
+                                                    const std::array<int, NPC>& cell, const CellTag& tag,
+                                                    const auto& c) {
+    if (c.skipped) return;
+    out.noise = std::max(out.noise, c.noise), out.peak = std::max(out.peak, c.peak), out.energy += c.energy;
+    std::array<std::size_t, E::kNodes> slot;
+    for (int n = 0; n < E::kNodes; ++n) slot[n] = slots(cell[n], tag.material);
+    if constexpr (Weighted) {
+      Vec<S>* recovered = out.recovered.data();
+      for (int q = 0; q < E::kStiffnessPoints; ++q)
+        for (int n = 0; n < E::kNodes; ++n) recovered[slot[n]] += weight[E::kNodes * q + n] * c.stress[q];
+      weight += E::kNodes * E::kStiffnessPoints;
+    } else {
+      add_to_patches<E>(sums, slot, mesh, cell, [&](int q) { return std::pair(c.position[q], c.stress[q]); });
+    }
+  };
+  for_each_cell_ordered<Elem, CellStressesOf<S>::template Slot, TaskCache>(mesh, CellGroups::all, compute,
+                                                                           commit);
   for (std::size_t k = 0; k < sums.size(); ++k) out.recovered[k] = sums[k].at_node();
   if (Weighted && weight != fit->weight.data() + fit->weight.size())  // RecoveryWeights::fits() guards this
     throw std::logic_error("estimate_error: the kept recovery weights are another mesh's");
@@ -214,16 +239,21 @@ ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const V
           s > out.peak_mises)
         out.peak_mises = s, out.peak_node = node;
   out.cell.assign(mesh.cells.size() + (kHasTriangles<Elem> ? mesh.triangles.size() : 0), 0.0);
-  a.reset_cache();
-  Mat<S, S> stiffness = Mat<S, S>::Zero(), compliance = Mat<S, S>::Zero();  // the last cell's
-  for_each_cell<Elem>(mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
-                                                          const std::array<int, NPC>& cell,
-                                                          const CellTag& tag) {
+  struct TaskCache {  // a task's law, and its last cell's compliance (neighbours mostly share a material)
+    typename Assembler<M>::LawCache law;
+    Mat<S, S> stiffness = Mat<S, S>::Zero(), compliance = Mat<S, S>::Zero();
+  };
+  // Each cell's error on any thread into its own entry, summed below in the cells' order.
+  for_each_cell_parallel<Elem, TaskCache>(mesh, [&]<class E, std::size_t NPC>(
+                                                    std::type_identity<E>, std::size_t e,
+                                                    const std::array<int, NPC>& cell, const CellTag& tag,
+                                                    TaskCache& cache) {
     if (detail::left_out(skip, tag.material)) return;
     const auto x       = cell_coords<E>(mesh, cell);
-    const Mat<S, S> cs = ElementKernel<Kin, E>::restrict(a.local(p, tag, cell).stiffness);
-    if (cs != stiffness) stiffness = cs, compliance = cs.inverse();  // neighbours mostly share a material
-    const Vec<S>* at = stress.data() + a.template first_point<E>(e);
+    const Mat<S, S> cs = ElementKernel<Kin, E>::restrict(a.local(p, tag, cell, cache.law).stiffness);
+    if (cs != cache.stiffness) cache.stiffness = cs, cache.compliance = cs.inverse();
+    const Mat<S, S>& compliance = cache.compliance;
+    const Vec<S>* at            = stress.data() + a.template first_point<E>(e);
     std::array<Vec<S>, E::kShapeNodes> corner;
     Vec<S> centre = Vec<S>::Zero();
     for (int c = 0; c < E::kNodes; ++c)
@@ -250,8 +280,8 @@ ErrorEstimate estimate_error(const Assembler<M>& a, const Problem<M>& p, const V
     }
     const std::size_t index = std::is_same_v<E, Elem> ? e : mesh.cells.size() + e;
     out.cell[index]         = error;
-    out.error_squared += error;
   });
+  for (const double c : out.cell) out.error_squared += c;  // the left-out cells' zeros change no sum
   out.energy_squared = at_points.energy;
   if (const Subdomain* part = p.subdomain.get()) {  // the whole problem's norms
     double both[2] = {out.error_squared, out.energy_squared};

@@ -316,28 +316,31 @@ class CellPoints {
 };
 
 /// Strain and stress at every stiffness point of every cell, or (`centroids`) one value per cell; cells
-/// first, then triangles.
+/// first, then triangles. The cells on every thread of the pool (assembly/cell_blocks.hpp), each writing
+/// only its own values.
 template <class M, class Source>
 std::vector<PointValues> recover(const Assembler<M>& a, const Problem<M>& p, const VecX& u,
                                  const Source& source, bool centroids, Recovered what = Recovered::all) {
-  using Kin  = typename M::Kinematics;
-  using Elem = typename M::Element;
-  std::vector<PointValues> out;
-  out.reserve(centroids ? p.mesh.cells.size() + p.mesh.triangles.size() : a.point_count());  // 232 B each
-  a.reset_cache();
-  for_each_cell<Elem>(p.mesh, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t e,
-                                                            const std::array<int, NPC>& cell,
-                                                            const CellTag& tag) {
-    const auto x   = cell_coords<E>(p.mesh, cell);
-    const auto& lp = a.local(p, tag, cell);
+  using Kin               = typename M::Kinematics;
+  using Elem              = typename M::Element;
+  using LawCache          = typename Assembler<M>::LawCache;
+  const std::size_t cells = p.mesh.cells.size();
+  std::vector<PointValues> out(centroids ? cells + p.mesh.triangles.size() : a.point_count());  // 232 B each
+  for_each_cell_parallel<Elem, LawCache>(p.mesh, [&]<class E, std::size_t NPC>(
+                                                     std::type_identity<E>, std::size_t e,
+                                                     const std::array<int, NPC>& cell, const CellTag& tag,
+                                                     const LawCache& cache) {
+    constexpr bool kTriangle = !std::is_same_v<E, Elem>;
+    const auto x             = cell_coords<E>(p.mesh, cell);
+    const auto& lp           = a.local(p, tag, cell, cache);
+    const std::size_t first  = a.template first_point<E>(e);
     const CellPoints<Kin, E, std::decay_t<decltype(lp)>, Source> values(x, lp, p.inertia, a.gather(cell, u),
-                                                                        source, e, !std::is_same_v<E, Elem>,
-                                                                        a.template first_point<E>(e), what);
+                                                                        source, e, kTriangle, first, what);
     if (centroids) {
-      out.push_back(values.centroid());
+      out[kTriangle ? cells + e : e] = values.centroid();
     } else {
       const auto points = values.points();
-      out.insert(out.end(), points.value.begin(), points.value.end());
+      std::copy(points.value.begin(), points.value.end(), out.begin() + static_cast<std::ptrdiff_t>(first));
     }
   });
   return out;

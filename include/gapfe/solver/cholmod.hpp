@@ -6,17 +6,49 @@
 // opt-in: it is not in gapfe.hpp, and needs the gapfe::cholmod CMake target (GAPFE_HAS_CHOLMOD).
 // Link BLAS from OpenBLAS: the supernodal factorization is BLAS-3 bound, several times slower on the
 // reference BLAS.
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
 #include <Eigen/CholmodSupport>
 
 #include "gapfe/core/concepts.hpp"
+#include "gapfe/core/workers.hpp"
 
 namespace gapfe {
+
+namespace detail {
+
+/// CHOLMOD's malloc once a program asks for it (touch_cholmod_blocks_on_workers): a block of 64 MiB or more,
+/// the factor's values, gets its pages touched on every thread of the pool (core/workers.hpp) before CHOLMOD
+/// writes it. The kernel zeroes each page at its first touch, about 2 s per GB on the machine of
+/// BENCHMARKS.md, a third of the factorization at 1e6 equations when CHOLMOD's own clearing does it on one
+/// thread. With one thread this is malloc. No value changes: CHOLMOD writes every entry it reads.
+inline void* touched_malloc(std::size_t size) {
+  constexpr std::size_t kTouched = std::size_t(64) << 20, kPiece = std::size_t(2) << 20, kPage = 4096;
+  void* block = std::malloc(size);
+  if (block == nullptr || size < kTouched || worker_threads() < 2) return block;
+  auto* bytes = static_cast<volatile char*>(block);
+  parallel_for((size + kPiece - 1) / kPiece, [&](std::size_t piece) {
+    for (std::size_t at = piece * kPiece, end = std::min(size, at + kPiece); at < end; at += kPage)
+      bytes[at] = 0;
+  });
+  return block;
+}
+
+}  // namespace detail
+
+/// From now on CHOLMOD allocates through detail::touched_malloc, unless its malloc (SuiteSparse_config's,
+/// process-wide) is already another than the C library's. For programs to call, like set_solver_threads
+/// (solver/threads.hpp): the `gapfe` command does.
+inline void touch_cholmod_blocks_on_workers() {
+  if (SuiteSparse_config.malloc_func == &std::malloc)
+    SuiteSparse_config.malloc_func = &detail::touched_malloc;
+}
 
 class CholmodLlt {
  public:
@@ -31,6 +63,8 @@ class CholmodLlt {
     c.postorder          = 1;
     c.supernodal         = CHOLMOD_SUPERNODAL;
     c.print              = 0;  // failures are reported through failure(), not printed by CHOLMOD
+    if (SuiteSparse_config.malloc_func == &std::malloc)
+      SuiteSparse_config.malloc_func = &detail::touched_malloc;
   }
   void analyze(const SpMat& k) {
     relax_supernodes(k.rows());

@@ -47,8 +47,8 @@ inline SolverThreads set_solver_threads(int n) {
     given.limited =
         "--threads " + std::to_string(given.threads) +
         ": this process's OpenBLAS threads with OpenMP, which gapfe keeps on one thread (CHOLMOD's "
-        "fixed 4-thread regions would oversubscribe the cores); running on 1 thread. The pthread "
-        "build (libopenblas0-pthread, Debian's default) takes --threads";
+        "fixed 4-thread regions would oversubscribe the cores); the factorization's dense kernels run on "
+        "1 thread. The pthread build (libopenblas0-pthread, Debian's default) takes --threads";
     given.threads = 1;
   }
   if (omp_set_max_active_levels && omp_set_num_threads) {

@@ -1,0 +1,113 @@
+#pragma once
+// for_each_cell (assembly/cells.hpp) on every thread of the pool (core/workers.hpp):
+//
+//   for_each_cell_parallel  each cell's work on any thread, for passes whose cells write only their own
+//                           results (a recovery's values at the cell's points, a cell's error);
+//   for_each_cell_ordered   each cell's work on any thread into a slot of its own, then the slots added
+//                           into shared sums (stiffness values, force vectors) on the calling thread in
+//                           the cells' order: every sum is added in the order of a serial loop, so the
+//                           results are the same bit for bit on any number of threads.
+//
+// Cells go to the threads in tasks of kCellsPerTask consecutive cells, each task with a law cache of its
+// own (LocalLawCache: consecutive cells usually share a material); the ordered loop works through the
+// mesh in rounds of kTasksPerRound tasks, adding one round while the next is computed, so its slots hold
+// at most two rounds of kCellsPerTask x kTasksPerRound cells (8,192 each: 4.7 MB of 8 x 8 element
+// matrices with their loads) whatever the mesh.
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <type_traits>
+#include <vector>
+
+#include "gapfe/assembly/cells.hpp"
+#include "gapfe/core/workers.hpp"
+
+namespace gapfe {
+
+/// Which of for_each_cell's groups a loop visits.
+enum class CellGroups { all, triangles };
+
+inline constexpr std::size_t kCellsPerTask  = 256;
+inline constexpr std::size_t kTasksPerRound = 32;
+
+/// [0, count) in tasks of kCellsPerTask: task(begin, end, slots for begin..end) on the pool's threads,
+/// then commit(i, slot i) for every i in increasing order, in rounds of kTasksPerRound tasks. The commits
+/// of a round run as one more task beside the next round's tasks (they write what no task writes), so a
+/// thread adds while the others compute; two rounds' slots are alive (see the top).
+template <class Slot, class Task, class Commit>
+void ordered_tasks(std::size_t count, Task& task, Commit& commit) {
+  const std::size_t round  = std::min(count, kCellsPerTask * kTasksPerRound);
+  const std::size_t rounds = round == 0 ? 0 : (count + round - 1) / round;
+  std::vector<Slot> slots(2 * round);
+  const auto size = [&](std::size_t r) { return std::min(round, count - r * round); };
+  for (std::size_t r = 0; r <= rounds; ++r) {  // round r's tasks and round r - 1's commits
+    const std::size_t tasks = r < rounds ? (size(r) + kCellsPerTask - 1) / kCellsPerTask : 0;
+    const std::size_t add   = r > 0 ? 1 : 0;
+    parallel_for(add + tasks, [&](std::size_t t) {
+      if (t < add) {
+        const std::size_t first = (r - 1) * round;
+        Slot* s                 = slots.data() + ((r - 1) % 2) * round;
+        for (std::size_t i = 0; i < size(r - 1); ++i) commit(first + i, s[i]);
+        return;
+      }
+      const std::size_t begin = r * round + (t - add) * kCellsPerTask;
+      task(begin, std::min(r * round + size(r), begin + kCellsPerTask),
+           slots.data() + (r % 2) * round + (begin - r * round));
+    });
+  }
+}
+
+namespace detail {
+
+/// One group of for_each_cell's (the model's cells, or the triangles) in tasks over [first, first + count).
+template <class E, class Cache, class Cells, class TagOf, class F>
+void cell_tasks(const Cells& cells, TagOf&& tag_of, std::size_t first, std::size_t count, F& f) {
+  parallel_for((count + kCellsPerTask - 1) / kCellsPerTask, [&](std::size_t task) {
+    Cache cache;
+    const std::size_t begin = first + task * kCellsPerTask,
+                      end   = std::min(first + count, begin + kCellsPerTask);
+    for (std::size_t e = begin; e < end; ++e) f(std::type_identity<E>{}, e, cells[e], tag_of(e), cache);
+  });
+}
+
+template <class E, template <class> class Slot, class Cache, class Cells, class TagOf, class Compute,
+          class Commit>
+void ordered_group(const Cells& cells, TagOf&& tag_of, Compute& compute, Commit& commit) {
+  auto task = [&](std::size_t begin, std::size_t end, Slot<E>* slot) {
+    Cache cache;
+    for (std::size_t e = begin; e < end; ++e)
+      compute(std::type_identity<E>{}, e, cells[e], tag_of(e), *slot++, cache);
+  };
+  auto add = [&](std::size_t e, const Slot<E>& slot) {
+    commit(std::type_identity<E>{}, e, cells[e], tag_of(e), slot);
+  };
+  gapfe::ordered_tasks<Slot<E>>(cells.size(), task, add);
+}
+
+}  // namespace detail
+
+/// f(std::type_identity<E>{}, e, cell nodes, tag, cache) for every cell of `m` (for_each_cell's
+/// arguments and a Cache of the task's), on the pool's threads in any order.
+template <class Elem, class Cache, class MeshT, class F>
+void for_each_cell_parallel(const MeshT& m, F&& f) {
+  detail::cell_tasks<Elem, Cache>(
+      m.cells, [&](std::size_t e) { return m.cell_tag(e); }, 0, m.cells.size(), f);
+  if constexpr (kHasTriangles<Elem>)
+    detail::cell_tasks<typename Elem::Degenerate, Cache>(
+        m.triangles, [&](std::size_t e) { return m.triangle_tag(e); }, 0, m.triangles.size(), f);
+}
+
+/// compute(std::type_identity<E>{}, e, cell, tag, Slot<E>& slot, Cache& cache) for every cell on the
+/// pool's threads, then commit(std::type_identity<E>{}, e, cell, tag, const Slot<E>& slot) on the calling
+/// thread in for_each_cell's order (see the top); the triangles alone when `groups` says so.
+template <class Elem, template <class> class Slot, class Cache, class MeshT, class Compute, class Commit>
+void for_each_cell_ordered(const MeshT& m, CellGroups groups, Compute&& compute, Commit&& commit) {
+  if (groups == CellGroups::all)
+    detail::ordered_group<Elem, Slot, Cache>(
+        m.cells, [&](std::size_t e) { return m.cell_tag(e); }, compute, commit);
+  if constexpr (kHasTriangles<Elem>)
+    detail::ordered_group<typename Elem::Degenerate, Slot, Cache>(
+        m.triangles, [&](std::size_t e) { return m.triangle_tag(e); }, compute, commit);
+}
+
+}  // namespace gapfe
