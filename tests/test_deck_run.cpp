@@ -2,9 +2,11 @@
 // API and the Lame closed form, the same deck in the smallest and a richer variant, load-step ramps,
 // the constant-temperature card and the per-radian load option.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -23,6 +25,10 @@
 #include "gapfe/gapfe.hpp"
 #include "gapfe/input/deck_scene.hpp"
 #include "gapfe/input/input_file.hpp"
+#include "gapfe/output/csv_rows.hpp"
+#include "gapfe/output/svg_canvas.hpp"
+#include "gapfe/output/vtu_writer.hpp"
+#include "gapfe/solver/threads.hpp"
 
 #include "deck_support.hpp"
 #include "rate_reference.hpp"
@@ -1740,10 +1746,122 @@ TEST_CASE("solver = petsc and PETSc's options: clear refusals where the run cann
   ::unsetenv("OMPI_COMM_WORLD_RANK");
 }
 
+namespace {
+
+/// One thread for gapfe's pool and for OpenBLAS when a test that changed them ends, failed or not.
+struct OneThreadAfter {
+  OneThreadAfter()                                 = default;
+  OneThreadAfter(const OneThreadAfter&)            = delete;
+  OneThreadAfter& operator=(const OneThreadAfter&) = delete;
+  ~OneThreadAfter() {
+    gapfe::set_worker_threads(1);
+    gapfe::set_solver_threads(1);
+  }
+};
+
+/// RFC 4648 base64 of `bytes`, with padding: the reference the VTU writer's encoder is checked against.
+std::string base64(const std::vector<unsigned char>& bytes) {
+  static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (std::size_t k = 0; k < bytes.size(); k += 3) {
+    const std::size_t n = std::min<std::size_t>(3, bytes.size() - k);
+    std::uint32_t b     = std::uint32_t(bytes[k]) << 16;
+    if (n > 1) b |= std::uint32_t(bytes[k + 1]) << 8;
+    if (n > 2) b |= bytes[k + 2];
+    for (std::size_t c = 0; c < 4; ++c) out += c <= n ? digits[(b >> (18 - 6 * c)) & 63] : '=';
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("[threads] the files' pieces on 3 threads: the rows, base64 and outline of a serial loop") {
+  const OneThreadAfter restore;
+  // write_rows: three rounds of 8 tasks of 8,192 rows and a few rows more, every seventh row left out;
+  // against the same rows appended one by one (OutputFile lays rows out the same whatever the pieces).
+  const std::size_t rows = 2 * 65536 + 5;
+  const auto row         = [](std::string& s, std::size_t i) {
+    if (i % 7 == 3) return false;
+    gapfe::detail::append_number(s, static_cast<long long>(i)), s += ',';
+    gapfe::detail::append_number(s, 0.1 * static_cast<double>(i) * static_cast<double>(i));
+    return true;
+  };
+  const auto table = [&](const std::string& name, bool one_by_one) {
+    const fs::path path = scratch("threads_pieces") / name;
+    gapfe::OutputFile out(path.string());
+    out.append("i,value\n");
+    if (one_by_one) {
+      for (std::size_t i = 0; i < rows; ++i)
+        if (std::string s; row(s, i)) out.append(s + "\n");
+    } else {
+      gapfe::detail::write_rows(out, rows, row);
+    }
+    out.close();
+    return read_text(path);
+  };
+  const std::string expected = table("one_by_one.csv", true);
+  gapfe::set_worker_threads(3);
+  CHECK(table("rows.csv", false) == expected);
+
+  // append_binary: the UInt32 byte count and the values, as one base64 stream, for every way the header's
+  // four bytes and the data share the groups of three, and for an array of several tasks' pieces.
+  std::vector<std::vector<double>> arrays;
+  for (std::size_t n = 0; n < 4; ++n) arrays.emplace_back(n, 1.0 / 3.0);
+  arrays.emplace_back(2 * 3 * (std::size_t(1) << 18) / 8 + 11);
+  for (std::size_t i = 0; i < arrays.back().size(); ++i) arrays.back()[i] = std::sin(static_cast<double>(i));
+  for (const auto& values : arrays) {
+    CAPTURE(values.size());
+    const auto count = static_cast<std::uint32_t>(values.size() * sizeof(double));
+    std::vector<unsigned char> stream(sizeof count + count);
+    std::memcpy(stream.data(), &count, sizeof count);
+    if (count > 0) std::memcpy(stream.data() + sizeof count, values.data(), count);
+    std::string encoded = "<";
+    gapfe::detail::append_binary(encoded, values);
+    CHECK(encoded == "<" + base64(stream) + "\n");
+  }
+  std::vector<std::uint8_t> bytes;  // 0 to 8 data bytes after the header
+  for (int n = 0; n <= 8; ++n, bytes.push_back(static_cast<std::uint8_t>(37 * n + 1))) {
+    std::vector<unsigned char> stream = {static_cast<unsigned char>(n), 0, 0, 0};
+    stream.insert(stream.end(), bytes.begin(), bytes.end());
+    std::string encoded;
+    gapfe::detail::append_binary(encoded, bytes);
+    CHECK(encoded == base64(stream) + "\n");
+  }
+
+  // outline_sides: the sides of one cell or between materials, in node-pair order, as sorting them all
+  // gives (a 40 x 30 grid, the cells of i >= 25 another material).
+  const int ni = 40, nj = 30;
+  std::vector<int> material;
+  for (int j = 0; j < nj; ++j)
+    for (int i = 0; i < ni; ++i) material.push_back(i >= 25 ? 1 : 0);
+  const auto sides_of = [&](std::size_t e, const auto& side) {
+    const int i = static_cast<int>(e) % ni, j = static_cast<int>(e) / ni, n = j * (ni + 1) + i;
+    const int corner[4] = {n, n + 1, n + ni + 2, n + ni + 1};
+    for (int k = 0; k < 4; ++k) side(corner[k], corner[(k + 1) % 4]);
+  };
+  std::vector<std::pair<std::array<int, 2>, int>> all;
+  for (std::size_t e = 0; e < material.size(); ++e)
+    sides_of(e, [&](int a, int b) { all.push_back({{std::min(a, b), std::max(a, b)}, material[e]}); });
+  std::sort(all.begin(), all.end());
+  std::vector<std::array<int, 2>> sorted;
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    const bool shared = (k > 0 && all[k - 1].first == all[k].first) ||
+                        (k + 1 < all.size() && all[k + 1].first == all[k].first);
+    const bool between =
+        k + 1 < all.size() && all[k + 1].first == all[k].first && all[k + 1].second != all[k].second;
+    if (!shared || between) sorted.push_back(all[k].first);
+  }
+  const auto outline = gapfe::detail::outline_sides(material.size(), sides_of, material);
+  CHECK(outline == sorted);
+  CHECK(outline.size() == static_cast<std::size_t>(2 * (ni + nj) + nj));  // the boundary and the interface
+}
+
 TEST_CASE("[threads] gapfe run --threads 3 writes the files of --threads 1, byte for byte") {
+  const OneThreadAfter restore;
   // A plastic tube on a 60 x 20 grid scene: 1,200 cells, several tasks in every cell loop, 10 steps of
   // return mapping (assembly/cell_blocks.hpp), each written as tables and VTU files on the pool's threads.
-  // The solver is Eigen's, which runs on one thread: OpenBLAS on several rounds otherwise (docs/decks.md).
+  // The solver is Eigen's, which runs on one thread (CHOLMOD's factor on several OpenBLAS threads rounds
+  // otherwise past 250,000 equations: docs/process.md "Threads").
   const fs::path scene = scratch("threads") / "plastic_grid.toml";
   std::ofstream(scene) << R"(title = "PLASTIC TUBE 100 < r < 200 ON A 60 X 20 GRID, PRESSURE 300 IN 10 STEPS"
 [mesh]
@@ -1776,13 +1894,14 @@ pressure = 300.0
 )";
   const fs::path one   = run_deck_file(scene, "threads_1", {"--solver", "eigen", "--threads", "1"});
   const fs::path three = run_deck_file(scene, "threads_3", {"--solver", "eigen", "--threads", "3"});
-  int files = 0;
+  int files            = 0;
   for (const auto& entry : fs::directory_iterator(one)) {
     const std::string name = entry.path().filename().string();
     CAPTURE(name);
     CHECK(read_text(entry.path()) == read_text(three / name));
     ++files;
   }
-  CHECK(files >= 18);  // the tables, history.csv, plasticity.csv, 10 steps' VTU files, result.pvd, deformed.svg
+  CHECK(files >=
+        18);  // the tables, history.csv, plasticity.csv, 10 steps' VTU files, result.pvd, deformed.svg
   CHECK(read_csv(one / "plasticity.csv").size() > 0);
 }

@@ -149,7 +149,8 @@ TEST_CASE(
   CHECK(ops_given < 1.3 * ops_amd);
 }
 
-TEST_CASE("[threads] parallel_for runs every task once, nested loops inline, and rethrows the lowest failure") {
+TEST_CASE(
+    "[threads] parallel_for runs every task once, nested loops inline, and rethrows the lowest failure") {
   // core/workers.hpp: on 3 threads (more than this machine may have: the pool must not care) and on 1.
   for (const int threads : {3, 1}) {
     set_worker_threads(threads);

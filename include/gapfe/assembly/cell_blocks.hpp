@@ -4,15 +4,15 @@
 //   for_each_cell_parallel  each cell's work on any thread, for passes whose cells write only their own
 //                           results (a recovery's values at the cell's points, a cell's error);
 //   for_each_cell_ordered   each cell's work on any thread into a slot of its own, then the slots added
-//                           into shared sums (stiffness values, force vectors) on the calling thread in
+//                           into shared sums (stiffness values, force vectors) by one thread at a time in
 //                           the cells' order: every sum is added in the order of a serial loop, so the
 //                           results are the same bit for bit on any number of threads.
 //
 // Cells go to the threads in tasks of kCellsPerTask consecutive cells, each task with a law cache of its
 // own (LocalLawCache: consecutive cells usually share a material); the ordered loop works through the
-// mesh in rounds of kTasksPerRound tasks, adding one round while the next is computed, so its slots hold
-// at most two rounds of kCellsPerTask x kTasksPerRound cells (8,192 each: 4.7 MB of 8 x 8 element
-// matrices with their loads) whatever the mesh.
+// mesh in rounds of about kRoundBytes of slots (8,192 cells of 8 x 8 element matrices with their loads, at
+// least kCellsPerTask cells), adding one round while the next is computed, so at most two rounds of slots
+// are alive whatever the mesh.
 #include <algorithm>
 #include <array>
 #include <cstddef>
@@ -27,18 +27,20 @@ namespace gapfe {
 /// Which of for_each_cell's groups a loop visits.
 enum class CellGroups { all, triangles };
 
-inline constexpr std::size_t kCellsPerTask  = 256;
-inline constexpr std::size_t kTasksPerRound = 32;
+inline constexpr std::size_t kCellsPerTask = 256;
+inline constexpr std::size_t kRoundBytes   = std::size_t(4608) << 10;  ///< 4.5 MiB: 8,192 slots of 576 B
 
 /// [0, count) in tasks of kCellsPerTask: task(begin, end, slots for begin..end) on the pool's threads,
-/// then commit(i, slot i) for every i in increasing order, in rounds of kTasksPerRound tasks. The commits
-/// of a round run as one more task beside the next round's tasks (they write what no task writes), so a
-/// thread adds while the others compute; two rounds' slots are alive (see the top).
+/// then commit(i, slot i) for every i in increasing order, in rounds of about kRoundBytes of slots. The
+/// commits of a round run as one more task beside the next round's tasks (they write what no task
+/// writes), so one thread adds while the others compute; two rounds' slots are alive (see the top).
 template <class Slot, class Task, class Commit>
 void ordered_tasks(std::size_t count, Task& task, Commit& commit) {
-  const std::size_t round  = std::min(count, kCellsPerTask * kTasksPerRound);
+  constexpr std::size_t kRound =
+      std::max<std::size_t>(1, kRoundBytes / sizeof(Slot) / kCellsPerTask) * kCellsPerTask;
+  const std::size_t round  = std::min(count, kRound);
   const std::size_t rounds = round == 0 ? 0 : (count + round - 1) / round;
-  std::vector<Slot> slots(2 * round);
+  std::vector<Slot> slots(std::min<std::size_t>(rounds, 2) * round);
   const auto size = [&](std::size_t r) { return std::min(round, count - r * round); };
   for (std::size_t r = 0; r <= rounds; ++r) {  // round r's tasks and round r - 1's commits
     const std::size_t tasks = r < rounds ? (size(r) + kCellsPerTask - 1) / kCellsPerTask : 0;
@@ -98,8 +100,8 @@ void for_each_cell_parallel(const MeshT& m, F&& f) {
 }
 
 /// compute(std::type_identity<E>{}, e, cell, tag, Slot<E>& slot, Cache& cache) for every cell on the
-/// pool's threads, then commit(std::type_identity<E>{}, e, cell, tag, const Slot<E>& slot) on the calling
-/// thread in for_each_cell's order (see the top); the triangles alone when `groups` says so.
+/// pool's threads, then commit(std::type_identity<E>{}, e, cell, tag, const Slot<E>& slot) by one thread
+/// at a time in for_each_cell's order (see the top); the triangles alone when `groups` says so.
 template <class Elem, template <class> class Slot, class Cache, class MeshT, class Compute, class Commit>
 void for_each_cell_ordered(const MeshT& m, CellGroups groups, Compute&& compute, Commit&& commit) {
   if (groups == CellGroups::all)

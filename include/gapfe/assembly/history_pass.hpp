@@ -17,7 +17,6 @@ void Assembler<M>::history_pass(const Problem<M>& p, const VecX& u, History<Stat
   if (values) Eigen::Map<VecX>(values, nonzeros_).setZero();
   internal.setZero(u.size());
   if (predictor) predictor->setZero(dofs_.free_count);
-  cache_.reset();
   StepContext point_ctx = ctx;  // a residual pass: the laws may skip their tangents
   point_ctx.tangent     = values != nullptr;
   // Each cell's points on any thread, its forces and stiffness added in the cells' order

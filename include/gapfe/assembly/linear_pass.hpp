@@ -12,7 +12,6 @@ template <class M>
 void Assembler<M>::linear_system(const Problem<M>& p, const VecX& external, double* values, VecX& rhs) const {
   Eigen::Map<VecX>(values, nonzeros_).setZero();
   rhs = VecX::Zero(dofs_.free_count);
-  cache_.reset();
   for (std::size_t d = 0; d < dofs_.equation.size(); ++d)
     if (dofs_.equation[d] >= 0) rhs(dofs_.equation[d]) += external(static_cast<Eigen::Index>(d));
   // Each cell's system on any thread, added in the cells' order (assembly/cell_blocks.hpp); the batches

@@ -6,8 +6,8 @@
 //
 // Results never depend on the number of threads. parallel_for(count, f) calls f(task) once for every
 // task in [0, count), on whichever thread is free; its callers write each task's results to a place of
-// their own and add shared sums on the calling thread in task order (assembly/cell_blocks.hpp), so every
-// sum is added in the same order for any n. When tasks throw, the exception of the lowest failing task
+// their own and add shared sums on one thread at a time in task order (assembly/cell_blocks.hpp), so
+// every sum is added in the same order for any n. When tasks throw, the exception of the lowest failing task
 // is rethrown, the one a serial loop would have met first.
 //
 // Why a pool of our own rather than OpenMP or the parallel algorithms: the process keeps OpenMP on one
@@ -31,18 +31,16 @@ namespace gapfe {
 class WorkerPool {
  public:
   explicit WorkerPool(int threads) {
-    for (int t = 1; t < threads; ++t) workers_.emplace_back([this] { work(); });
+    try {
+      for (int t = 1; t < threads; ++t) workers_.emplace_back([this] { work(); });
+    } catch (...) {  // a thread the system would not start: end those that did
+      stop_workers();
+      throw;
+    }
   }
   WorkerPool(const WorkerPool&)            = delete;
   WorkerPool& operator=(const WorkerPool&) = delete;
-  ~WorkerPool() {
-    {
-      std::lock_guard lock(mutex_);
-      stop_ = true;
-    }
-    wake_.notify_all();
-    for (auto& w : workers_) w.join();
-  }
+  ~WorkerPool() { stop_workers(); }
   int threads() const { return static_cast<int>(workers_.size()) + 1; }
 
   /// f(task) for every task in [0, count), the calling thread working too; returns when all are done.
@@ -80,6 +78,14 @@ class WorkerPool {
     std::exception_ptr error;  ///< the lowest failing task's (mutex_)
   };
 
+  void stop_workers() {
+    {
+      std::lock_guard lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    for (auto& w : workers_) w.join();
+  }
   /// Tasks in increasing order until none is left or one has failed: every task below a failing one has
   /// been handed out and runs to its end, so the lowest failure is always seen.
   void take(Job& job) {

@@ -18,6 +18,7 @@
 
 #include "gapfe/core/concepts.hpp"
 #include "gapfe/core/workers.hpp"
+#include "gapfe/solver/threads.hpp"
 
 namespace gapfe {
 
@@ -28,15 +29,18 @@ namespace detail {
 /// writes it. The kernel zeroes each page at its first touch, about 2 s per GB on the machine of
 /// BENCHMARKS.md, a third of the factorization at 1e6 equations when CHOLMOD's own clearing does it on one
 /// thread. With one thread this is malloc. No value changes: CHOLMOD writes every entry it reads.
-inline void* touched_malloc(std::size_t size) {
+inline void* touched_malloc(std::size_t size) noexcept {
   constexpr std::size_t kTouched = std::size_t(64) << 20, kPiece = std::size_t(2) << 20, kPage = 4096;
   void* block = std::malloc(size);
   if (block == nullptr || size < kTouched || worker_threads() < 2) return block;
   auto* bytes = static_cast<volatile char*>(block);
-  parallel_for((size + kPiece - 1) / kPiece, [&](std::size_t piece) {
-    for (std::size_t at = piece * kPiece, end = std::min(size, at + kPiece); at < end; at += kPage)
-      bytes[at] = 0;
-  });
+  try {  // CHOLMOD is C: nothing may leave this function but the block
+    parallel_for((size + kPiece - 1) / kPiece, [&](std::size_t piece) {
+      for (std::size_t at = piece * kPiece, end = std::min(size, at + kPiece); at < end; at += kPage)
+        bytes[at] = 0;
+    });
+  } catch (...) {  // pages not touched now are touched by CHOLMOD's clearing
+  }
   return block;
 }
 
@@ -63,8 +67,6 @@ class CholmodLlt {
     c.postorder          = 1;
     c.supernodal         = CHOLMOD_SUPERNODAL;
     c.print              = 0;  // failures are reported through failure(), not printed by CHOLMOD
-    if (SuiteSparse_config.malloc_func == &std::malloc)
-      SuiteSparse_config.malloc_func = &detail::touched_malloc;
   }
   void analyze(const SpMat& k) {
     relax_supernodes(k.rows());
@@ -78,7 +80,14 @@ class CholmodLlt {
   bool factorize(const SpMat& k) {
     failure_.clear();
     failed_equation_ = -1;
-    llt_.factorize(k);
+    {
+      // OpenBLAS's threads (set_solver_threads) share only the large supernodes of large systems: on the
+      // 1e5-equation tubes two threads factorized no faster, often slower, and left a thread spinning
+      // against gapfe's own after every factorization of a Newton run (BENCHMARKS.md "Every core:
+      // --threads"). So up to kLargeSystem equations the factor is the same on any number of threads.
+      const OneBlasThread small(k.rows() <= kLargeSystem);
+      llt_.factorize(k);
+    }
     if (llt_.info() != Eigen::Success) {
       failed_equation_ = weakest_equation();
       return fail("stiffness is singular or not positive definite (CHOLMOD)");
@@ -92,7 +101,12 @@ class CholmodLlt {
     }
     return true;
   }
-  VecX solve(const VecX& b) const { return llt_.solve(b); }
+  /// On one OpenBLAS thread: a solve's BLAS-2 calls were no faster on two (tube-1e6: 0.42 s on one, 0.45
+  /// s on two), and woke OpenBLAS's threads to spin against gapfe's own.
+  VecX solve(const VecX& b) const {
+    const OneBlasThread one(true);
+    return llt_.solve(b);
+  }
   /// The last analysis' flop count and factor size (cholmod_common fl, lnz) and the values the last
   /// factorization stores (the relaxed supernodes' zeros included).
   FactorStatistics statistics() {

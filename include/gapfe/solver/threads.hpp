@@ -28,6 +28,7 @@ extern "C" {
 void omp_set_max_active_levels(int) __attribute__((weak));
 void omp_set_num_threads(int) __attribute__((weak));
 void openblas_set_num_threads(int) __attribute__((weak));
+int openblas_get_num_threads() __attribute__((weak));
 int openblas_get_parallel() __attribute__((weak));  // 0 sequential, 1 pthreads, 2 OpenMP
 }
 
@@ -58,5 +59,26 @@ inline SolverThreads set_solver_threads(int n) {
   if (openblas_set_num_threads) openblas_set_num_threads(given.threads);
   return given;
 }
+
+/// OpenBLAS on one thread while this lives, when `active` (and back to its count after): for BLAS work
+/// whose blocks are too small to share between threads (CholmodLlt::factorize on small systems, its
+/// solves). Nothing is set when OpenBLAS already runs on one (set_solver_threads with an OpenMP-built
+/// OpenBLAS, whose set call would also set OpenMP's).
+class OneBlasThread {
+ public:
+  explicit OneBlasThread(bool active) {
+    if (!active || !openblas_get_num_threads || !openblas_set_num_threads) return;
+    before_ = openblas_get_num_threads();
+    if (before_ > 1) openblas_set_num_threads(1);
+  }
+  OneBlasThread(const OneBlasThread&)            = delete;
+  OneBlasThread& operator=(const OneBlasThread&) = delete;
+  ~OneBlasThread() {
+    if (before_ > 1) openblas_set_num_threads(before_);
+  }
+
+ private:
+  int before_ = 0;
+};
 
 }  // namespace gapfe
