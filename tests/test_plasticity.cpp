@@ -1083,8 +1083,6 @@ TEST_CASE(
   CHECK(Law::time_error(plain.localize({}, 0.0, 0.0), state(true, 0.0, 0.0), state(true, 2.0, 0.0), dt) == 0);
 }
 
-}  // namespace gapfe::test
-
 TEST_CASE(
     "[threads] a plastic tube on 1 or 3 threads: Newton's iterates, the states and the estimate bit for "
     "bit") {
@@ -1134,3 +1132,5 @@ TEST_CASE(
   CHECK(one.estimate.cell == three.estimate.cell);
   CHECK(one.estimate.error_squared == three.estimate.error_squared);
 }
+
+}  // namespace gapfe::test

@@ -31,9 +31,9 @@ inline constexpr std::size_t kCellsPerTask = 256;
 inline constexpr std::size_t kRoundBytes   = std::size_t(4608) << 10;  ///< 4.5 MiB: 8,192 slots of 576 B
 
 /// [0, count) in tasks of kCellsPerTask: task(begin, end, slots for begin..end) on the pool's threads,
-/// then commit(i, slot i) for every i in increasing order, in rounds of about kRoundBytes of slots. The
-/// commits of a round run as one more task beside the next round's tasks (they write what no task
-/// writes), so one thread adds while the others compute; two rounds' slots are alive (see the top).
+/// then commit(i, slot i) for every i in increasing order, in rounds of about kRoundBytes of slots
+/// (ordered_rounds, core/workers.hpp: one thread adds a round while the others compute the next; two
+/// rounds' slots are alive, see the top).
 template <class Slot, class Task, class Commit>
 void ordered_tasks(std::size_t count, Task& task, Commit& commit) {
   constexpr std::size_t kRound =
@@ -42,32 +42,28 @@ void ordered_tasks(std::size_t count, Task& task, Commit& commit) {
   const std::size_t rounds = round == 0 ? 0 : (count + round - 1) / round;
   std::vector<Slot> slots(std::min<std::size_t>(rounds, 2) * round);
   const auto size = [&](std::size_t r) { return std::min(round, count - r * round); };
-  for (std::size_t r = 0; r <= rounds; ++r) {  // round r's tasks and round r - 1's commits
-    const std::size_t tasks = r < rounds ? (size(r) + kCellsPerTask - 1) / kCellsPerTask : 0;
-    const std::size_t add   = r > 0 ? 1 : 0;
-    parallel_for(add + tasks, [&](std::size_t t) {
-      if (t < add) {
-        const std::size_t first = (r - 1) * round;
-        Slot* s                 = slots.data() + ((r - 1) % 2) * round;
-        for (std::size_t i = 0; i < size(r - 1); ++i) commit(first + i, s[i]);
-        return;
-      }
-      const std::size_t begin = r * round + (t - add) * kCellsPerTask;
-      task(begin, std::min(r * round + size(r), begin + kCellsPerTask),
-           slots.data() + (r % 2) * round + (begin - r * round));
-    });
-  }
+  ordered_rounds(
+      rounds, [&](std::size_t r) { return (size(r) + kCellsPerTask - 1) / kCellsPerTask; },
+      [&](std::size_t r, std::size_t t) {
+        const std::size_t begin = r * round + t * kCellsPerTask;
+        task(begin, std::min(r * round + size(r), begin + kCellsPerTask),
+             slots.data() + (r % 2) * round + t * kCellsPerTask);
+      },
+      [&](std::size_t r) {
+        const Slot* s = slots.data() + (r % 2) * round;
+        for (std::size_t i = 0; i < size(r); ++i) commit(r * round + i, s[i]);
+      });
 }
 
 namespace detail {
 
-/// One group of for_each_cell's (the model's cells, or the triangles) in tasks over [first, first + count).
+/// One group of for_each_cell's (the model's cells, or the triangles) in tasks of kCellsPerTask cells.
 template <class E, class Cache, class Cells, class TagOf, class F>
-void cell_tasks(const Cells& cells, TagOf&& tag_of, std::size_t first, std::size_t count, F& f) {
+void cell_tasks(const Cells& cells, TagOf&& tag_of, F& f) {
+  const std::size_t count = cells.size();
   parallel_for((count + kCellsPerTask - 1) / kCellsPerTask, [&](std::size_t task) {
     Cache cache;
-    const std::size_t begin = first + task * kCellsPerTask,
-                      end   = std::min(first + count, begin + kCellsPerTask);
+    const std::size_t begin = task * kCellsPerTask, end = std::min(count, begin + kCellsPerTask);
     for (std::size_t e = begin; e < end; ++e) f(std::type_identity<E>{}, e, cells[e], tag_of(e), cache);
   });
 }
@@ -93,10 +89,10 @@ void ordered_group(const Cells& cells, TagOf&& tag_of, Compute& compute, Commit&
 template <class Elem, class Cache, class MeshT, class F>
 void for_each_cell_parallel(const MeshT& m, F&& f) {
   detail::cell_tasks<Elem, Cache>(
-      m.cells, [&](std::size_t e) { return m.cell_tag(e); }, 0, m.cells.size(), f);
+      m.cells, [&](std::size_t e) { return m.cell_tag(e); }, f);
   if constexpr (kHasTriangles<Elem>)
     detail::cell_tasks<typename Elem::Degenerate, Cache>(
-        m.triangles, [&](std::size_t e) { return m.triangle_tag(e); }, 0, m.triangles.size(), f);
+        m.triangles, [&](std::size_t e) { return m.triangle_tag(e); }, f);
 }
 
 /// compute(std::type_identity<E>{}, e, cell, tag, Slot<E>& slot, Cache& cache) for every cell on the

@@ -155,4 +155,22 @@ void parallel_for(std::size_t count, F&& f) {
   for (std::size_t t = 0; t < count; ++t) f(t);
 }
 
+/// Rounds 0 .. rounds - 1 of work, pipelined so that results are consumed in order while later ones are
+/// made: round r's tasks(r) tasks, work(r, t), run on the pool together with finish(r - 1) as one more
+/// task, which consumes round r - 1's results in order on one thread (adds them into shared sums, appends
+/// them to a file) while the other threads compute round r. A caller keeps two rounds of results (round r
+/// into the buffer r % 2) and finish must touch nothing work writes.
+template <class Tasks, class Work, class Finish>
+void ordered_rounds(std::size_t rounds, Tasks&& tasks, Work&& work, Finish&& finish) {
+  for (std::size_t r = 0; r <= rounds; ++r) {
+    const std::size_t finishing = r > 0 ? 1 : 0, working = r < rounds ? tasks(r) : 0;
+    parallel_for(finishing + working, [&](std::size_t t) {
+      if (t < finishing)
+        finish(r - 1);
+      else
+        work(r, t - finishing);
+    });
+  }
+}
+
 }  // namespace gapfe

@@ -37,7 +37,7 @@ inline void csv_increment(std::string& s, int step, double inc, double step_time
 /// or returns false for no row. Formatted on the pool's threads (core/workers.hpp) in tasks of
 /// kRowsPerTask rows, each into a text of its own, and appended in order, one round's texts while the next
 /// round is formatted: the same bytes on any number of threads (OutputFile lays rows out from its own count
-/// of bytes, whatever pieces they come in).
+/// of bytes, whatever pieces they come in); ordered_rounds in core/workers.hpp pipelines the rounds.
 template <class Row>
 void write_rows(OutputFile& out, std::size_t count, Row&& row) {
   constexpr std::size_t kRowsPerTask = 8192, kTasksPerRound = 8;  // two rounds of texts of about 1 MB
@@ -47,21 +47,18 @@ void write_rows(OutputFile& out, std::size_t count, Row&& row) {
   const auto tasks = [&](std::size_t r) {
     return (std::min(count - r * kRound, kRound) + kRowsPerTask - 1) / kRowsPerTask;
   };
-  for (std::size_t r = 0; r <= rounds; ++r) {  // round r formatted, round r - 1 written
-    const std::size_t write = r > 0 ? 1 : 0, format = r < rounds ? tasks(r) : 0;
-    parallel_for(write + format, [&](std::size_t t) {
-      if (t < write) {
-        for (std::size_t k = 0; k < tasks(r - 1); ++k) out.append(text[((r - 1) % 2) * kTasksPerRound + k]);
-        return;
-      }
-      std::string& s = text[(r % 2) * kTasksPerRound + (t - write)];
-      s.clear();
-      const std::size_t begin = r * kRound + (t - write) * kRowsPerTask,
-                        end   = std::min(count, begin + kRowsPerTask);
-      for (std::size_t i = begin; i < end; ++i)
-        if (row(s, i)) s += '\n';
-    });
-  }
+  ordered_rounds(
+      rounds, tasks,
+      [&](std::size_t r, std::size_t t) {
+        std::string& s = text[(r % 2) * kTasksPerRound + t];
+        s.clear();
+        const std::size_t begin = r * kRound + t * kRowsPerTask, end = std::min(count, begin + kRowsPerTask);
+        for (std::size_t i = begin; i < end; ++i)
+          if (row(s, i)) s += '\n';
+      },
+      [&](std::size_t r) {
+        for (std::size_t k = 0; k < tasks(r); ++k) out.append(text[(r % 2) * kTasksPerRound + k]);
+      });
 }
 
 }  // namespace gapfe::detail
