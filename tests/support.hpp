@@ -2,9 +2,22 @@
 // Helpers shared by the test translation units: small meshes and closed forms.
 #include <doctest/doctest.h>
 
+#include "gapfe/core/workers.hpp"
 #include "gapfe/gapfe.hpp"
+#include "gapfe/solver/threads.hpp"
 
 namespace gapfe::test {
+
+/// One thread for gapfe's pool and for OpenBLAS when a test that changed them ends, failed or not.
+struct OneThreadAfter {
+  OneThreadAfter()                                 = default;
+  OneThreadAfter(const OneThreadAfter&)            = delete;
+  OneThreadAfter& operator=(const OneThreadAfter&) = delete;
+  ~OneThreadAfter() {
+    set_worker_threads(1);
+    set_solver_threads(1);
+  }
+};
 
 /// Relative difference |a - b| / |b|.
 inline double rel(double a, double b) {

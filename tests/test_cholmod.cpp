@@ -107,6 +107,101 @@ TEST_CASE("[solver] CHOLMOD reports a singular system instead of returning garba
   CHECK_THROWS_WITH_AS(fe.solve(), doctest::Contains("singular"), SolveError);
 }
 
+TEST_CASE("[solver][threads] CHOLMOD split into two halves and their separator: the whole factor's answer") {
+  // The tube of 120 x 60 cells in the mesh's coordinate dissection: its top separator is the grid line
+  // across the longer side, 61 nodes. Factorized whole and split (SplitCholmod, solver/split_cholmod.hpp),
+  // against each other and against Eigen's LDLT, an independent factorization; the split on 1 and 3
+  // threads bit for bit.
+  using M            = Model<Axisym2, Quad4, Isotropic, CholmodLlt>;
+  const Problem<M> p = lame_tube<M>(120, 60);
+  LinearStatic<M> fe(p);
+  fe.solve();
+  const SpMat k = fe.stiffness();
+  const VecX b  = fe.rhs();
+  Assembler<M> assembler(p, {});
+  const std::vector<int> order = fill_reducing_order(assembler, p);
+  const OneThreadAfter restore;
+  const auto solve = [&](Eigen::Index split_from, int threads, CholmodLlt& solver) {
+    set_worker_threads(threads);
+    solver.split_from = split_from;
+    solver.analyze(k, order);
+    REQUIRE(solver.factorize(k));
+    return solver.solve(b);
+  };
+  CholmodLlt whole, split, split3;
+  const VecX x_whole = solve(k.rows() + 1, 1, whole), x_split = solve(0, 1, split);
+  CHECK(whole.split_separator() == 0);
+  const int ns = split.split_separator();
+  CHECK(ns > 100);  // 61 nodes, 2 equations each, fewer where u_z is held
+  CHECK(ns <= 2 * 61);
+  const Eigen::SimplicialLDLT<SpMat, Eigen::Lower> ldlt(k);
+  const VecX x_ldlt = ldlt.solve(b);
+  CHECK((x_split - x_whole).norm() <= 1e-11 * x_whole.norm());
+  CHECK((x_split - x_ldlt).norm() <= 1e-11 * x_ldlt.norm());
+  // Normwise backward error |K x - b| / (|K| |x| + |b|) in the infinity norm: a stable factorization's,
+  // a small multiple of the unit roundoff.
+  const auto backward_error = [&](const VecX& x) {
+    VecX row_sums = VecX::Zero(k.rows());
+    for (int c = 0; c < k.outerSize(); ++c)
+      for (SpMat::InnerIterator it(k, c); it; ++it) {
+        row_sums[it.row()] += std::abs(it.value());
+        if (it.row() != c) row_sums[c] += std::abs(it.value());
+      }
+    const VecX r = k.selfadjointView<Eigen::Lower>() * x - b;
+    return r.lpNorm<Eigen::Infinity>() /
+           (row_sums.maxCoeff() * x.lpNorm<Eigen::Infinity>() + b.lpNorm<Eigen::Infinity>());
+  };
+  MESSAGE("backward error: split ", backward_error(x_split), ", whole ", backward_error(x_whole));
+  CHECK(backward_error(x_split) < 1e-14);
+  // The factor's entries are the whole one's: a half's columns couple to nothing of the other half, and
+  // the separator's block is dense in both. The flops add the separator's dense work (at most 4 n_s^3 / 3).
+  const FactorStatistics sw = whole.statistics(), ss = split.statistics();
+  CHECK(ss.entries == sw.entries);
+  CHECK(ss.flops > sw.flops);
+  CHECK(ss.flops < sw.flops + 4.0 / 3 * ns * ns * ns + 1e6);
+  const VecX x_three = solve(0, 3, split3);
+  CHECK(split3.split_separator() == ns);
+  CHECK(x_three == x_split);
+  // K as two tubes with no stiffness between them: halves without a separator.
+  SpMat two(2 * k.rows(), 2 * k.rows());
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int c = 0; c < k.outerSize(); ++c)
+    for (SpMat::InnerIterator it(k, c); it; ++it)
+      for (const int shift : {0, int(k.rows())})
+        entries.push_back({int(it.row()) + shift, int(it.col()) + shift, it.value()});
+  two.setFromTriplets(entries.begin(), entries.end());
+  std::vector<int> order_two = order;
+  for (const int eq : order) order_two.push_back(eq + int(k.rows()));
+  CholmodLlt apart;
+  apart.split_from = 0;
+  apart.analyze(two, order_two);
+  REQUIRE(apart.factorize(two));
+  CHECK(apart.split_separator() == 0);
+  VecX b_two(2 * k.rows());
+  b_two << b, 2 * b;
+  const VecX x_two = apart.solve(b_two);
+  CHECK((x_two.head(k.rows()) - x_whole).norm() <= 1e-11 * x_whole.norm());
+  CHECK((x_two.tail(k.rows()) - 2 * x_whole).norm() <= 2e-11 * x_whole.norm());
+}
+
+TEST_CASE("[solver] A split CHOLMOD factorization of a singular system: re-done whole, the same report") {
+  using M = Model<Axisym2, Quad4, Isotropic, CholmodLlt>;
+  LinearStatic<M> fe(lame_tube<M>(20, 10, /*held=*/false));
+  CHECK_THROWS_AS(fe.solve(), SolveError);
+  const SpMat k = fe.stiffness();
+  Assembler<M> assembler(fe.problem(), {});
+  const std::vector<int> order = fill_reducing_order(assembler, fe.problem());
+  CholmodLlt whole, split;
+  whole.split_from = k.rows() + 1, split.split_from = 0;
+  whole.analyze(k, order), split.analyze(k, order);
+  CHECK_FALSE(whole.factorize(k));
+  CHECK_FALSE(split.factorize(k));
+  CHECK(split.failure() == whole.failure());
+  CHECK(split.failure().find("singular") != std::string::npos);
+  CHECK(split.failed_equation() == whole.failed_equation());
+  CHECK(split.failed_equation() >= 0);
+}
+
 #ifdef GAPFE_HAS_UMFPACK
 #include "gapfe/solver/eigen_lu.hpp"
 #include "gapfe/solver/umfpack.hpp"

@@ -1748,17 +1748,6 @@ TEST_CASE("solver = petsc and PETSc's options: clear refusals where the run cann
 
 namespace {
 
-/// One thread for gapfe's pool and for OpenBLAS when a test that changed them ends, failed or not.
-struct OneThreadAfter {
-  OneThreadAfter()                                 = default;
-  OneThreadAfter(const OneThreadAfter&)            = delete;
-  OneThreadAfter& operator=(const OneThreadAfter&) = delete;
-  ~OneThreadAfter() {
-    gapfe::set_worker_threads(1);
-    gapfe::set_solver_threads(1);
-  }
-};
-
 /// RFC 4648 base64 of `bytes`, with padding: the reference the VTU writer's encoder is checked against.
 std::string base64(const std::vector<unsigned char>& bytes) {
   static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -1776,7 +1765,7 @@ std::string base64(const std::vector<unsigned char>& bytes) {
 }  // namespace
 
 TEST_CASE("[threads] the files' pieces on 3 threads: the rows, base64 and outline of a serial loop") {
-  const OneThreadAfter restore;
+  const gapfe::test::OneThreadAfter restore;
   // write_rows: three rounds of 8 tasks of 8,192 rows and a few rows more, every seventh row left out;
   // against the same rows appended one by one (OutputFile lays rows out the same whatever the pieces).
   const std::size_t rows = 2 * 65536 + 5;
@@ -1857,7 +1846,7 @@ TEST_CASE("[threads] the files' pieces on 3 threads: the rows, base64 and outlin
 }
 
 TEST_CASE("[threads] gapfe run --threads 3 writes the files of --threads 1, byte for byte") {
-  const OneThreadAfter restore;
+  const gapfe::test::OneThreadAfter restore;
   // A plastic tube on a 60 x 20 grid scene: 1,200 cells, several tasks in every cell loop, 10 steps of
   // return mapping (assembly/cell_blocks.hpp), each written as tables and VTU files on the pool's threads.
   // The solver is Eigen's, which runs on one thread (CHOLMOD's factor on several OpenBLAS threads rounds

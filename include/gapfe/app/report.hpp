@@ -235,7 +235,10 @@ inline void report_throughput(std::ostream& log, const RunResult& r, const std::
     log << "factorization: " << flops << " flops in " << r.factorize << " s";
     if (r.factorize > 0) log << " (" << flops / r.factorize / 1e9 << " GFLOP/s)";
     log << "; " << r.factorizations << " numeric factorization(s), the factor's " << f.entries << " entries ("
-        << f.stored << " stored with the supernodes' zeros: " << f.stored * sizeof(double) / 1e6 << " MB)\n";
+        << f.stored << " stored with the supernodes' zeros: " << f.stored * sizeof(double) / 1e6 << " MB)";
+    if (f.separator > 0)
+      log << "; split in two halves, one thread each, and a separator of " << f.separator << " equations";
+    log << "\n";
   }
   if (!writes) return;
   std::uintmax_t bytes = 0;  // the run's own files (RunFolder::run_file), not a deck or mesh beside them

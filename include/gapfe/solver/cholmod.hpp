@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,8 @@
 
 #include "gapfe/core/concepts.hpp"
 #include "gapfe/core/workers.hpp"
+#include "gapfe/solver/cholmod_factor.hpp"
+#include "gapfe/solver/split_cholmod.hpp"
 #include "gapfe/solver/threads.hpp"
 
 namespace gapfe {
@@ -59,33 +62,52 @@ class CholmodLlt {
   static constexpr const char* kName = "CHOLMOD supernodal LLT";
   /// Reciprocal condition estimates below this mean a singular system.
   double singular_rcond = 1e-14;
+  /// Systems of at least this many equations, analyzed in an order with a top separator (a nested
+  /// dissection's), are factorized as two halves on two threads and the separator (SplitCholmod,
+  /// solver/split_cholmod.hpp), on any number of threads, so that the factor is the same on any. Below,
+  /// the halves are too small to be worth the separator's dense work.
+  Eigen::Index split_from = 40000;
 
-  CholmodLlt() {
-    cholmod_common& c    = llt_.cholmod();
-    c.nmethods           = 1;
-    c.method[0].ordering = CHOLMOD_AMD;
-    c.postorder          = 1;
-    c.supernodal         = CHOLMOD_SUPERNODAL;
-    c.print              = 0;  // failures are reported through failure(), not printed by CHOLMOD
-  }
+  CholmodLlt() = default;
   void analyze(const SpMat& k) {
-    relax_supernodes(k.rows());
+    split_.reset();
+    detail::relax_supernodes(llt_.cholmod(), k.rows());
     llt_.analyzePattern(k);
   }
   /// The symbolic analysis in the caller's elimination order (order[k] = the equation eliminated k-th).
   void analyze(const SpMat& k, const std::vector<int>& order) {
-    relax_supernodes(k.rows());
+    split_.reset();
+    order_.clear();
+    llt_.release();
+    detail::relax_supernodes(llt_.cholmod(), k.rows());
+    if (k.rows() >= split_from) {
+      auto split = std::make_unique<SplitCholmod>();
+      if (split->analyze(k, order)) {
+        split_ = std::move(split);
+        order_ = order;  // for a factorization re-done whole (factorize)
+        return;
+      }
+    }
     llt_.analyze_in(k, order);
   }
   bool factorize(const SpMat& k) {
     failure_.clear();
     failed_equation_ = -1;
+    whole_           = split_ == nullptr;
+    // A split whose halves or separator are not positive definite, or which estimates a tiny rcond, is
+    // re-done whole: that factorization says what is wrong and where (weakest_equation), and stands in for
+    // the split when it succeeds after all (a nearly singular K whose shift c lost too many digits).
+    if (split_ && split_->factorize(k) && split_->rcond() > singular_rcond) return true;
+    if (split_ && !whole_) {
+      whole_ = true;
+      if (llt_.factor() == nullptr) llt_.analyze_in(k, order_);
+    }
     {
       // OpenBLAS's threads (set_solver_threads) share only the large supernodes of large systems: on the
       // 1e5-equation tubes two threads factorized no faster, often slower, and left a thread spinning
       // against gapfe's own after every factorization of a Newton run (BENCHMARKS.md "Every core:
       // --threads"). So up to kLargeSystem equations the factor is the same on any number of threads.
-      const OneBlasThread small(k.rows() <= kLargeSystem);
+      const OneBlasThread small(k.rows() <= detail::kLargeSystem);
       llt_.factorize(k);
     }
     if (llt_.info() != Eigen::Success) {
@@ -104,15 +126,20 @@ class CholmodLlt {
   /// On one OpenBLAS thread: a solve's BLAS-2 calls were no faster on two (tube-1e6: 0.42 s on one, 0.45
   /// s on two), and woke OpenBLAS's threads to spin against gapfe's own.
   VecX solve(const VecX& b) const {
+    if (!whole_) return split_->solve(b);
     const OneBlasThread one(true);
     return llt_.solve(b);
   }
   /// The last analysis' flop count and factor size (cholmod_common fl, lnz) and the values the last
-  /// factorization stores (the relaxed supernodes' zeros included).
+  /// factorization stores (the relaxed supernodes' zeros included); a split's (SplitCholmod::statistics)
+  /// when the last factorization was one.
   FactorStatistics statistics() {
+    if (!whole_) return split_->statistics();
     const cholmod_factor* f = llt_.factor();
     return {llt_.cholmod().fl, llt_.cholmod().lnz, f != nullptr ? static_cast<double>(f->xsize) : 0.0};
   }
+  /// The separator's equations when the factorization is split, else 0.
+  int split_separator() const { return whole_ ? 0 : split_->separator_size(); }
   const std::string& failure() const { return failure_; }
   /// After a failed factorize(): the equation (caller's numbering) where L's pivot broke down (CHOLMOD's
   /// `minor`) or, when every pivot was positive but the condition estimate too small, the one with the
@@ -120,67 +147,28 @@ class CholmodLlt {
   int failed_equation() const { return failed_equation_; }
 
  private:
-  /// See failed_equation(). Supernode s of L is a dense column-major block of pi[s+1] - pi[s] rows whose
-  /// columns super[s]..super[s+1]-1 have their diagonal at px[s] + c (rows + 1), c the column within it
-  /// (CHOLMOD's cholmod_factor layout); Perm maps L's columns to the matrix's.
+  /// See failed_equation(); Perm maps L's columns to the matrix's.
   int weakest_equation() {
     const cholmod_factor* f = llt_.factor();
     if (f == nullptr || f->Perm == nullptr || f->x == nullptr || f->itype != CHOLMOD_INT) return -1;
     const int* perm = static_cast<const int*>(f->Perm);
     if (f->minor < f->n) return perm[f->minor];
     if (!f->is_super) return -1;
-    const int *super = static_cast<const int*>(f->super), *pi = static_cast<const int*>(f->pi),
-              *px   = static_cast<const int*>(f->px);
-    const double* x = static_cast<const double*>(f->x);
     double smallest = INFINITY;
     int worst       = -1;
-    for (std::size_t s = 0; s < f->nsuper; ++s) {
-      const int rows = pi[s + 1] - pi[s];
-      for (int j = super[s]; j < super[s + 1]; ++j)
-        if (const double d = std::abs(x[px[s] + static_cast<std::ptrdiff_t>(j - super[s]) * (rows + 1)]);
-            d < smallest)
-          smallest = d, worst = j;
-    }
+    detail::for_each_factor_column(*f, [&](int j, const int*, const double* x, int) {
+      if (const double d = std::abs(x[0]); d < smallest) smallest = d, worst = j;
+    });
     return worst >= 0 ? perm[worst] : -1;
-  }
-
-  struct Llt : Eigen::CholmodSupernodalLLT<SpMat, Eigen::Lower> {
-    cholmod_factor* factor() { return m_cholmodFactor; }
-    /// Eigen's analyzePattern with CHOLMOD_GIVEN: the same state afterwards, the order ours.
-    void analyze_in(const SpMat& k, const std::vector<int>& order) {
-      if (m_cholmodFactor) cholmod_free_factor(&m_cholmodFactor, &cholmod());
-      cholmod_sparse a = Eigen::viewAsCholmod(k.selfadjointView<Eigen::Lower>());
-      std::vector<int> perm(order);  // cholmod_analyze_p takes a non-const pointer
-      cholmod().method[0].ordering = CHOLMOD_GIVEN;
-      m_cholmodFactor              = cholmod_analyze_p(&a, perm.data(), nullptr, 0, &cholmod());
-      cholmod().method[0].ordering = CHOLMOD_AMD;
-      m_isInitialized              = true;
-      m_info                       = m_cholmodFactor ? Eigen::Success : Eigen::InvalidInput;
-      m_analysisIsOk               = m_cholmodFactor != nullptr;
-      m_factorizationIsOk          = false;
-    }
-  };
-  /// Relaxed amalgamation: CHOLMOD merges a child supernode into its parent when the merged one has at
-  /// most nrelax[0] columns (any zeros), nrelax[1] (a zrelax[0] fraction of zeros), nrelax[2] (zrelax[1])
-  /// or any size (zrelax[2]). Bigger supernodes mean fewer, larger BLAS calls and fewer of CHOLMOD's
-  /// per-supernode passes, paid for with explicit zeros in L. On the tube stiffness with the coordinate
-  /// dissection (one thread, BENCHMARKS.md "Levers, each measured") CHOLMOD's defaults {4, 16, 48} factorize
-  /// 1e4 equations in 13.8 ms and 1e5 in 185 ms; {16, 64, 256} takes 7.7 ms and 127 ms for 1.5x the factor's
-  /// memory, and is the best of the settings tried. Past kLargeSystem equations the factor's memory is what
-  /// limits a run, so the moderate {8, 32, 96} (1.1x memory; 1e6 equations 4.0 s instead of 4.7 s) is used
-  /// there.
-  static constexpr Eigen::Index kLargeSystem = 250000;
-  void relax_supernodes(Eigen::Index equations) {
-    cholmod_common& c = llt_.cholmod();
-    const bool large  = equations > kLargeSystem;
-    c.nrelax[0] = large ? 8 : 16, c.nrelax[1] = large ? 32 : 64, c.nrelax[2] = large ? 96 : 256;
-    c.zrelax[0] = 0.8, c.zrelax[1] = 0.1, c.zrelax[2] = 0.05;  // CHOLMOD's defaults
   }
   bool fail(const std::string& what) {
     failure_ = what;
     return false;
   }
-  Llt llt_;
+  detail::CholmodFactor llt_;
+  std::unique_ptr<SplitCholmod> split_;  ///< the halves and separator, when analyze found a split
+  std::vector<int> order_;               ///< the split's order, for a factorization re-done whole
+  bool whole_ = true;                    ///< the last factorization is llt_'s, not split_'s
   std::string failure_;
   int failed_equation_ = -1;
 };

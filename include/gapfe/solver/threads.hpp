@@ -40,6 +40,17 @@ struct SolverThreads {
   std::string limited;
 };
 
+/// OpenMP regions that this thread starts run on it alone (CHOLMOD's memory-bound copies, see the top).
+/// libgomp keeps these settings per thread, so every thread that calls CHOLMOD makes them: set_solver_threads
+/// for the calling one, SplitCholmod for the pool's workers (two halves' factorizations with OpenMP teams of
+/// four each ran no faster than one after the other on 2 cores).
+inline void openmp_inline_on_this_thread() {
+  if (omp_set_max_active_levels && omp_set_num_threads) {
+    omp_set_max_active_levels(0);
+    omp_set_num_threads(1);
+  }
+}
+
 /// From now on: OpenMP (CHOLMOD) on the calling thread, OpenBLAS on n >= 1 threads, unless OpenBLAS itself
 /// threads with OpenMP: then on one, and `limited` says so.
 inline SolverThreads set_solver_threads(int n) {
@@ -52,10 +63,7 @@ inline SolverThreads set_solver_threads(int n) {
         "1 thread. The pthread build (libopenblas0-pthread, Debian's default) takes --threads";
     given.threads = 1;
   }
-  if (omp_set_max_active_levels && omp_set_num_threads) {
-    omp_set_max_active_levels(0);
-    omp_set_num_threads(1);
-  }
+  openmp_inline_on_this_thread();
   if (openblas_set_num_threads) openblas_set_num_threads(given.threads);
   return given;
 }
