@@ -21,6 +21,23 @@ Problem<M> lame_tube(int nr, int nz, bool held = true) {
   }
   return p;
 }
+
+/// The 120 x 60 cell Lame tube's stiffness, loads and the mesh's coordinate dissection order: its top
+/// separator is the grid line across the longer side, 61 nodes.
+struct TubeSystem {
+  using M = Model<Axisym2, Quad4, Isotropic, CholmodLlt>;
+  SpMat k;
+  VecX b;
+  std::vector<int> order;
+  TubeSystem() {
+    const Problem<M> p = lame_tube<M>(120, 60);
+    LinearStatic<M> fe(p);
+    fe.solve();
+    k = fe.stiffness(), b = fe.rhs();
+    Assembler<M> assembler(p, {});
+    order = fill_reducing_order(assembler, p);
+  }
+};
 }  // namespace
 
 TEST_CASE("[solver] CHOLMOD and Eigen LDLT agree on the Lame tube and reuse the symbolic analysis") {
@@ -108,18 +125,13 @@ TEST_CASE("[solver] CHOLMOD reports a singular system instead of returning garba
 }
 
 TEST_CASE("[solver][threads] CHOLMOD split into two halves and their separator: the whole factor's answer") {
-  // The tube of 120 x 60 cells in the mesh's coordinate dissection: its top separator is the grid line
-  // across the longer side, 61 nodes. Factorized whole and split (SplitCholmod, solver/split_cholmod.hpp),
-  // against each other and against Eigen's LDLT, an independent factorization; the split on 1 and 3
-  // threads bit for bit.
-  using M            = Model<Axisym2, Quad4, Isotropic, CholmodLlt>;
-  const Problem<M> p = lame_tube<M>(120, 60);
-  LinearStatic<M> fe(p);
-  fe.solve();
-  const SpMat k = fe.stiffness();
-  const VecX b  = fe.rhs();
-  Assembler<M> assembler(p, {});
-  const std::vector<int> order = fill_reducing_order(assembler, p);
+  // The tube of 120 x 60 cells (TubeSystem). Factorized whole and split (SplitCholmod,
+  // solver/split_cholmod.hpp), against each other and against Eigen's LDLT, an independent factorization; the
+  // split on 1 and 3 threads bit for bit.
+  const TubeSystem tube;
+  const SpMat& k                = tube.k;
+  const VecX& b                 = tube.b;
+  const std::vector<int>& order = tube.order;
   const OneThreadAfter restore;
   const auto solve = [&](Eigen::Index split_from, int threads, CholmodLlt& solver) {
     set_worker_threads(threads);
@@ -130,7 +142,8 @@ TEST_CASE("[solver][threads] CHOLMOD split into two halves and their separator: 
   };
   CholmodLlt whole, split, split3;
   const VecX x_whole = solve(k.rows() + 1, 1, whole), x_split = solve(0, 1, split);
-  CHECK(whole.split_separator() == 0);
+  CHECK_FALSE(whole.split());
+  REQUIRE(split.split());
   const int ns = split.split_separator();
   CHECK(ns > 100);  // 61 nodes, 2 equations each, fewer where u_z is held
   CHECK(ns <= 2 * 61);
@@ -176,12 +189,64 @@ TEST_CASE("[solver][threads] CHOLMOD split into two halves and their separator: 
   apart.split_from = 0;
   apart.analyze(two, order_two);
   REQUIRE(apart.factorize(two));
+  REQUIRE(apart.split());
   CHECK(apart.split_separator() == 0);
+  SplitCholmod halves;
+  REQUIRE(halves.analyze(two, order_two));
+  CHECK(halves.half_size(0) == k.rows());  // one tube each
+  CHECK(halves.half_size(1) == k.rows());
   VecX b_two(2 * k.rows());
   b_two << b, 2 * b;
   const VecX x_two = apart.solve(b_two);
   CHECK((x_two.head(k.rows()) - x_whole).norm() <= 1e-11 * x_whole.norm());
   CHECK((x_two.tail(k.rows()) - 2 * x_whole).norm() <= 2e-11 * x_whole.norm());
+}
+
+TEST_CASE("[solver] A split CHOLMOD factorization with a stiff separator row, and a small body apart") {
+  // One separator equation scaled by 1e4 (its diagonal by 1e8: a contact penalty's beside steel's): K' = D K
+  // D, x' = D^-1 x. The separator's block C is scaled row by row, so the split keeps the whole
+  // factorization's digits; one C for every row (the largest) would lose about eight.
+  const TubeSystem tube;
+  const SpMat& k                = tube.k;
+  const VecX& b                 = tube.b;
+  const std::vector<int>& order = tube.order;
+  SplitCholmod probe;
+  REQUIRE(probe.analyze(k, order));
+  VecX d                                                        = VecX::Ones(k.rows());
+  d[probe.separator()[std::size_t(probe.separator_size() / 2)]] = 1e4;
+  const SpMat full                                              = k.selfadjointView<Eigen::Lower>();
+  const SpMat dkd                                               = d.asDiagonal() * full * d.asDiagonal();
+  const SpMat lower                                             = dkd.triangularView<Eigen::Lower>();
+  const VecX db                                                 = d.cwiseProduct(b);
+  CholmodLlt whole, split;
+  whole.split_from = k.rows() + 1, split.split_from = 0;
+  whole.analyze(lower, order), split.analyze(lower, order);
+  REQUIRE(whole.factorize(lower));
+  REQUIRE(split.factorize(lower));
+  REQUIRE(split.split());
+  const VecX x_whole = d.cwiseProduct(whole.solve(db)), x_split = d.cwiseProduct(split.solve(db));
+  CHECK((x_split - x_whole).norm() <= 1e-11 * x_whole.norm());
+  // A 4 x 2 cell tube apart, eliminated after the large one: a component of every prefix of the order, yet
+  // the large tube's top separator is found (halves of at least kMinShare each).
+  using M = TubeSystem::M;
+  LinearStatic<M> small_fe(lame_tube<M>(4, 2));
+  small_fe.solve();
+  const SpMat& small = small_fe.stiffness();
+  const int n = int(k.rows()), m = int(small.rows());
+  std::vector<Eigen::Triplet<double>> entries;
+  for (const SpMat* part : {&k, &small})
+    for (int c = 0; c < part->outerSize(); ++c)
+      for (SpMat::InnerIterator it(*part, c); it; ++it)
+        entries.push_back(
+            {int(it.row()) + (part == &k ? 0 : n), int(it.col()) + (part == &k ? 0 : n), it.value()});
+  SpMat both(n + m, n + m);
+  both.setFromTriplets(entries.begin(), entries.end());
+  std::vector<int> order_both = order;
+  for (int i = 0; i < m; ++i) order_both.push_back(n + i);
+  SplitCholmod apart;
+  REQUIRE(apart.analyze(both, order_both));
+  CHECK(apart.separator_size() == probe.separator_size() + m);
+  CHECK(std::min(apart.half_size(0), apart.half_size(1)) >= SplitCholmod::kMinShare * (n + m));
 }
 
 TEST_CASE("[solver] A split CHOLMOD factorization of a singular system: re-done whole, the same report") {
@@ -194,8 +259,10 @@ TEST_CASE("[solver] A split CHOLMOD factorization of a singular system: re-done 
   CholmodLlt whole, split;
   whole.split_from = k.rows() + 1, split.split_from = 0;
   whole.analyze(k, order), split.analyze(k, order);
+  REQUIRE(SplitCholmod().analyze(k, order));  // the split is tried, and fails
   CHECK_FALSE(whole.factorize(k));
   CHECK_FALSE(split.factorize(k));
+  CHECK_FALSE(split.split());
   CHECK(split.failure() == whole.failure());
   CHECK(split.failure().find("singular") != std::string::npos);
   CHECK(split.failed_equation() == whole.failed_equation());

@@ -236,8 +236,9 @@ inline void report_throughput(std::ostream& log, const RunResult& r, const std::
     if (r.factorize > 0) log << " (" << flops / r.factorize / 1e9 << " GFLOP/s)";
     log << "; " << r.factorizations << " numeric factorization(s), the factor's " << f.entries << " entries ("
         << f.stored << " stored with the supernodes' zeros: " << f.stored * sizeof(double) / 1e6 << " MB)";
-    if (f.separator > 0)
-      log << "; split in two halves, one thread each, and a separator of " << f.separator << " equations";
+    if (f.split)
+      log << "; split in two halves (a thread each with --threads 2 or more) and a separator of "
+          << f.separator << " equations";
     log << "\n";
   }
   if (!writes) return;

@@ -97,11 +97,12 @@ concept LinearSolver = std::default_initializable<S> && requires(S s, const SpMa
 
 /// The size of a factorization and the work it took, from a solver that counts them (CHOLMOD): `flops` of
 /// the factor without the explicit zeros a supernodal solver adds (its analysis' count), `entries` of
-/// that factor, `stored` the values actually held (those zeros included). 0: not known. `separator`: the
-/// equations of the separator when the factorization was split in two halves (solver/split_cholmod.hpp).
+/// that factor, `stored` the values actually held (those zeros included). 0: not known. `split`: the
+/// factorization was split in two halves and a separator of `separator` equations (solver/split_cholmod.hpp).
 struct FactorStatistics {
   double flops = 0, entries = 0, stored = 0;
   int separator = 0;
+  bool split    = false;
 };
 
 /// A LinearSolver that can take the elimination order from the caller: analyze(K, order), order[k] =

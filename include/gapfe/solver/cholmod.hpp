@@ -71,12 +71,14 @@ class CholmodLlt {
   CholmodLlt() = default;
   void analyze(const SpMat& k) {
     split_.reset();
+    whole_ = true;
     detail::relax_supernodes(llt_.cholmod(), k.rows());
     llt_.analyzePattern(k);
   }
   /// The symbolic analysis in the caller's elimination order (order[k] = the equation eliminated k-th).
   void analyze(const SpMat& k, const std::vector<int>& order) {
     split_.reset();
+    whole_ = true;
     order_.clear();
     llt_.release();
     detail::relax_supernodes(llt_.cholmod(), k.rows());
@@ -95,19 +97,22 @@ class CholmodLlt {
     failed_equation_ = -1;
     whole_           = split_ == nullptr;
     // A split whose halves or separator are not positive definite, or which estimates a tiny rcond, is
-    // re-done whole: that factorization says what is wrong and where (weakest_equation), and stands in for
-    // the split when it succeeds after all (a nearly singular K whose shift c lost too many digits).
-    if (split_ && split_->factorize(k) && split_->rcond() > singular_rcond) return true;
-    if (split_ && !whole_) {
+    // dropped for the rest of this analysis and the factorization re-done whole: that one says what is
+    // wrong and where (weakest_equation), and stands in for the split when it succeeds after all.
+    if (split_) {
+      if (split_->factorize(k) && split_->rcond() > singular_rcond) return true;
+      split_.reset();  // its factors freed before the whole one is made
       whole_ = true;
-      if (llt_.factor() == nullptr) llt_.analyze_in(k, order_);
+      llt_.analyze_in(k, order_);
+      if (llt_.factor() == nullptr) return fail("CHOLMOD could not analyze the stiffness (out of memory?)");
     }
     {
       // OpenBLAS's threads (set_solver_threads) share only the large supernodes of large systems: on the
       // 1e5-equation tubes two threads factorized no faster, often slower, and left a thread spinning
       // against gapfe's own after every factorization of a Newton run (BENCHMARKS.md "Every core:
-      // --threads"). So up to kLargeSystem equations the factor is the same on any number of threads.
-      const OneBlasThread small(k.rows() <= detail::kLargeSystem);
+      // --threads"). So up to kLargeSystem equations the factor is the same on any number of threads, and
+      // so is one that stands in for a dropped split (order_ kept), as the split's was.
+      const OneBlasThread small(k.rows() <= detail::kLargeSystem || !order_.empty());
       llt_.factorize(k);
     }
     if (llt_.info() != Eigen::Success) {
@@ -126,7 +131,7 @@ class CholmodLlt {
   /// On one OpenBLAS thread: a solve's BLAS-2 calls were no faster on two (tube-1e6: 0.42 s on one, 0.45
   /// s on two), and woke OpenBLAS's threads to spin against gapfe's own.
   VecX solve(const VecX& b) const {
-    if (!whole_) return split_->solve(b);
+    if (split_ && !whole_) return split_->solve(b);
     const OneBlasThread one(true);
     return llt_.solve(b);
   }
@@ -134,12 +139,13 @@ class CholmodLlt {
   /// factorization stores (the relaxed supernodes' zeros included); a split's (SplitCholmod::statistics)
   /// when the last factorization was one.
   FactorStatistics statistics() {
-    if (!whole_) return split_->statistics();
+    if (split_ && !whole_) return split_->statistics();
     const cholmod_factor* f = llt_.factor();
     return {llt_.cholmod().fl, llt_.cholmod().lnz, f != nullptr ? static_cast<double>(f->xsize) : 0.0};
   }
-  /// The separator's equations when the factorization is split, else 0.
-  int split_separator() const { return whole_ ? 0 : split_->separator_size(); }
+  /// Whether the last factorization was split (SplitCholmod), and its separator's equations.
+  bool split() const { return split_ && !whole_; }
+  int split_separator() const { return split() ? split_->separator_size() : 0; }
   const std::string& failure() const { return failure_; }
   /// After a failed factorize(): the equation (caller's numbering) where L's pivot broke down (CHOLMOD's
   /// `minor`) or, when every pivot was positive but the condition estimate too small, the one with the
@@ -168,7 +174,7 @@ class CholmodLlt {
   detail::CholmodFactor llt_;
   std::unique_ptr<SplitCholmod> split_;  ///< the halves and separator, when analyze found a split
   std::vector<int> order_;               ///< the split's order, for a factorization re-done whole
-  bool whole_ = true;                    ///< the last factorization is llt_'s, not split_'s
+  bool whole_ = true;                    ///< the last factorization (or analysis) is llt_'s, not split_'s
   std::string failure_;
   int failed_equation_ = -1;
 };

@@ -66,9 +66,9 @@ struct CholmodFactor : Eigen::CholmodSupernodalLLT<SpMat, Eigen::Lower> {
     m_analysisIsOk               = m_cholmodFactor != nullptr;
     m_factorizationIsOk          = false;
   }
-  /// The analysis of k in its own order, which must be a postorder of its elimination tree (no ordering,
-  /// no postordering): L's columns are k's, and CHOLMOD factorizes k's lower triangle in place of a
-  /// permuted copy (cholmod_factorize_p's natural ordering).
+  /// The analysis of k in its own order (no ordering, no postordering; a postorder of k's elimination tree
+  /// gives the largest supernodes): L's columns are k's, and CHOLMOD factorizes k's lower triangle where it
+  /// lies instead of a permuted copy (cholmod_factorize_p's natural ordering).
   void analyze_natural(const SpMat& k) {
     release();
     cholmod_sparse a             = Eigen::viewAsCholmod(k.selfadjointView<Eigen::Lower>());
@@ -121,7 +121,7 @@ inline bool cholesky_in_place(Eigen::MatrixXd& a) {
 }
 
 /// L L^T of a lower-triangular l (its upper part ignored), reversed: its entry (a, b), a >= b, at (n-1-a,
-/// n-1-b) of the upper triangle returned. LAPACK's dlauum forms U U^T of an upper U in place, a third of a
+/// n-1-b) of the upper triangle returned. LAPACK's dlauum forms U U^T of an upper U in place, a sixth of a
 /// general product's flops; here U = J l J, J the reversal, and J U U^T J = l l^T.
 inline Eigen::MatrixXd reversed_lower_times_transpose(const Eigen::MatrixXd& l) {
   const int n       = static_cast<int>(l.rows());

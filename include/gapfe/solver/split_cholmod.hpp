@@ -7,12 +7,12 @@
 //
 //   K = [K11 0 K1s; 0 K22 K2s; Ks1 Ks2 Kss].
 //
-// CHOLMOD factorizes each half as M_i = [Kii Kis; Ksi c I], c a bound of Kss's largest eigenvalue (the
-// largest row sum of |Kss|, Gershgorin, times 1.25). M_i is positive definite whenever K is: Kss - S_1 - S_2
-// is, S_i = Ksi Kii^-1 Kis, so S_i < Kss <= c I. The last block Lam_i of M_i's factor (the separator's
-// columns) has Lam_i Lam_i^T = c I - S_i, so the separator's Schur complement is
+// CHOLMOD factorizes each half as M_i = [Kii Kis; Ksi C], C = diag(c_q) a bound of Kss scaled like its
+// diagonal (shifts(): Kss <= C). M_i is positive definite whenever K is: Kss - S_1 - S_2 is, S_i = Ksi Kii^-1
+// Kis, so S_i < Kss <= C. The last block Lam_i of M_i's factor (the separator's columns) has Lam_i Lam_i^T =
+// C - S_i, so the separator's Schur complement is
 //
-//   S = Kss - S_1 - S_2 = Kss - 2 c I + Lam_1 Lam_1^T + Lam_2 Lam_2^T,
+//   S = Kss - S_1 - S_2 = Kss - 2 C + Lam_1 Lam_1^T + Lam_2 Lam_2^T,
 //
 // factorized dense (LAPACK). A solve: y_i = L_i^-1 [b_i; 0] on each half, whose separator part w_i gives
 // Ksi Kii^-1 b_i = -Lam_i w_i; x_s = S^-1 (b_s - both of those); then x_i = Kii^-1 (b_i - Kis x_s), one back
@@ -21,25 +21,26 @@
 // What it costs beyond one factorization of K: the separator's dense block three times (once in each half,
 // where it is used only through Lam_i, and S) and two products Lam Lam^T, each about n_s^3 / 3 flops: 4e9
 // of 5.6e10 at 1e6 equations (n_s = 1,414 on the tube). The rounding is not one factorization's (S is a
-// sum of terms of size c), at the level of a factorization's backward error, and it does not depend on
-// the number of threads: each half is factorized on one thread, with OpenBLAS on one (solver/threads.hpp),
-// and the sums are added in one order.
+// sum of terms of size C), at the level of its backward error row by row (C scales with each row), and it
+// does not depend on the number of threads: each half is factorized on one thread, with OpenBLAS on one
+// (solver/threads.hpp), and the sums are added in one order.
 //
 // Memory: M_i's rows are put in a postorder of K's elimination tree (top_split) with the separator last,
 // and CHOLMOD analyzes them in that order (no ordering of its own, no postorder), so it factorizes M_i's
 // lower triangle where it lies instead of the two transposed copies a permuted analysis makes. The two M_i
-// (values, rows and each value's place in K) thus cost about what those copies did; S and the two Lam add
-// 3 x 8 n_s^2 bytes (48 MB at n_s = 1,414).
+// (values, rows and each value's place in K) are kept between factorizations and cost about what those
+// copies did during one; S and the two Lam add 3 x 8 n_s^2 bytes (48 MB at n_s = 1,414), and the two
+// products another 2 x 8 n_s^2 while S is formed.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <memory>
 #include <numeric>
-#include <stdexcept>
 #include <utility>
 #include <vector>
 
 #include "gapfe/core/concepts.hpp"
+#include "gapfe/core/error.hpp"
 #include "gapfe/core/workers.hpp"
 #include "gapfe/solver/cholmod_factor.hpp"
 #include "gapfe/solver/threads.hpp"
@@ -93,9 +94,10 @@ class SplitCholmod {
   /// factor or S is not positive definite (the caller re-does it whole to say where).
   bool factorize(const SpMat& k) {
     const OneBlasThread one(true);
-    const int ns   = separator_size();
-    const double c = shift(k);
-    std::array<Eigen::MatrixXd, 2> products;  // reversed: Lam Lam^T's (a, b) at (ns-1-a, ns-1-b)
+    const int ns                = separator_size();
+    const std::vector<double> c = shifts(k);
+    if (c.size() != std::size_t(ns)) return false;  // a separator pivot not positive: K is not definite
+    std::array<Eigen::MatrixXd, 2> products;        // reversed: Lam Lam^T's (a, b) at (ns-1-a, ns-1-b)
     std::array<bool, 2> ok{false, false};
     parallel_for(2, [&](std::size_t h) {
       openmp_inline_on_this_thread();
@@ -106,7 +108,7 @@ class SplitCholmod {
     schur_.setZero(ns, ns);
     const double* v = k.valuePtr();
     for (const Entry& e : separator_entries_) schur_(e.row, e.col) = v[e.value];
-    schur_.diagonal().array() -= 2 * c;
+    for (int q = 0; q < ns; ++q) schur_(q, q) -= 2 * c[std::size_t(q)];
     for (int h = 0; h < 2; ++h)
       for (int b = 0; b < ns; ++b)
         for (int a = b; a < ns; ++a) {
@@ -169,7 +171,7 @@ class SplitCholmod {
   /// S and both Lam included.
   FactorStatistics statistics() {
     const double ns = separator_size(), dense = ns * ns * ns / 3, block = ns * (ns + 1) / 2;
-    FactorStatistics s{3 * dense, block, 3 * ns * ns, separator_size()};
+    FactorStatistics s{3 * dense, block, 3 * ns * ns, separator_size(), true};
     for (Half& h : half_) {
       s.flops += h.llt.cholmod().fl;
       s.entries += h.llt.cholmod().lnz - h.tail_entries;
@@ -179,14 +181,17 @@ class SplitCholmod {
   }
   int separator_size() const { return static_cast<int>(separator_.size()); }
   int half_size(int h) const { return half_[std::size_t(h)].own; }
+  const std::vector<int>& separator() const { return separator_; }  ///< K's equations, in elimination order
 
-  /// A split only where it pays: a separator of at most kMaxSeparator equations (S and the two Lam are
-  /// dense: 3 x 8 n_s^2 bytes, 216 MB at the limit), halves of at least kMinShare of the rest each.
+  /// A split only where it pays: a separator of at most kMaxSeparator equations (S, the two Lam and the
+  /// two products are dense: 5 x 8 n_s^2 bytes, 360 MB at the limit), halves of at least kMinShare of the
+  /// rest each.
   static constexpr int kMaxSeparator = 3000;
   static constexpr double kMinShare  = 0.2;
 
  private:
-  static constexpr int kShift = -1;  ///< M's separator block's diagonal: no value of K's but c
+  /// M's separator block is C = diag(c_q): its value q is coded -1 - q where a value of K's has its index.
+  static constexpr int shift_code(int q) { return -1 - q; }
   struct Entry {
     int value, row, col;  ///< Kss's entry: its index in K's values, its place in S's lower triangle
   };
@@ -195,7 +200,7 @@ class SplitCholmod {
     std::vector<int> equations;  ///< M's rows in K's numbering: the half's own, then the separator's
     int own = 0;                 ///< how many are the half's own
     SpMat m;                     ///< M's lower triangle
-    std::vector<int> source;     ///< per value of m: its index in K's values, or kShift
+    std::vector<int> source;     ///< per value of m: its index in K's values, or shift_code(q)
     detail::CholmodFactor llt;
     std::vector<int> tail_of;  ///< the separator equation of L's column own + q
     Eigen::MatrixXd tail;      ///< Lam: L's separator block, in L's column order (lower)
@@ -203,12 +208,13 @@ class SplitCholmod {
 
     bool analyze(const SpMat& k, const std::vector<signed char>& part, const std::vector<int>& local, int h,
                  int ns);
-    bool factorize(const SpMat& k, double c, int ns) {
+    bool factorize(const SpMat& k, const std::vector<double>& c, int ns) {
       const double* v = k.valuePtr();
       double* m_value = m.valuePtr();
-      for (std::size_t p = 0; p < source.size(); ++p) m_value[p] = source[p] >= 0 ? v[source[p]] : c;
+      for (std::size_t p = 0; p < source.size(); ++p)
+        m_value[p] = source[p] >= 0 ? v[source[p]] : c[std::size_t(-source[p] - 1)];
       llt.factorize(m);
-      if (llt.info() != Eigen::Success) return false;
+      if (llt.info() != Eigen::Success || !llt.factor()->is_super) return false;
       tail.setZero(ns, ns);
       detail::for_each_factor_column(*llt.factor(), [&](int j, const int* rows, const double* x, int count) {
         if (j < own) return;
@@ -221,22 +227,32 @@ class SplitCholmod {
     void substitute(VecX& v, int system) {
       cholmod_dense in   = Eigen::viewAsCholmod(v);
       cholmod_dense* out = cholmod_solve(system, llt.factor(), &in, &llt.cholmod());
-      if (out == nullptr) throw std::runtime_error("CHOLMOD could not solve with a half's factor");
+      if (out == nullptr) throw SolveError("CHOLMOD could not solve with a half's factor (out of memory?)");
       std::copy_n(static_cast<const double*>(out->x), v.size(), v.data());
       cholmod_free_dense(&out, &llt.cholmod());
     }
   };
 
-  /// c of the top: 1.25 x the largest row sum of |Kss|, 1 when Kss is zero.
-  double shift(const SpMat& k) const {
-    std::vector<double> sum(separator_.size(), 0.0);
+  /// C = diag(c_q) of the top, scaled like Kss: c_q = 1.25 rho d_q, d = Kss's diagonal and rho the largest
+  /// row sum of |D^-1/2 Kss D^-1/2| (Gershgorin), so Kss <= rho D < C. Scaled so that S's rounding, about
+  /// eps sqrt(c_q c_l) in entry (q, l), is the whole factorization's whatever the rows' scales (a contact
+  /// penalty's 1e8 beside a steel's 1). Empty when a diagonal entry is not positive (K is not definite).
+  std::vector<double> shifts(const SpMat& k) const {
+    const std::size_t ns = separator_.size();
+    std::vector<double> d(ns, 0.0), sum(ns, 0.0);
     const double* v = k.valuePtr();
+    for (const Entry& e : separator_entries_)
+      if (e.row == e.col) d[std::size_t(e.row)] = v[e.value];
+    for (const double x : d)
+      if (!(x > 0) || !std::isfinite(x)) return {};
     for (const Entry& e : separator_entries_) {
-      sum[std::size_t(e.row)] += std::abs(v[e.value]);
-      if (e.row != e.col) sum[std::size_t(e.col)] += std::abs(v[e.value]);
+      const double scaled = std::abs(v[e.value]) / std::sqrt(d[std::size_t(e.row)] * d[std::size_t(e.col)]);
+      sum[std::size_t(e.row)] += scaled;
+      if (e.row != e.col) sum[std::size_t(e.col)] += scaled;
     }
-    const double largest = sum.empty() ? 0.0 : *std::max_element(sum.begin(), sum.end());
-    return largest > 0 ? 1.25 * largest : 1.0;
+    const double rho = sum.empty() ? 1.0 : *std::max_element(sum.begin(), sum.end());
+    for (double& x : d) x *= 1.25 * rho;
+    return d;
   }
 
   std::array<Half, 2> half_;
@@ -271,7 +287,7 @@ inline bool SplitCholmod::Half::analyze(const SpMat& k, const std::vector<signed
   m.resize(n, n);
   m.resizeNonZeros(start.back());
   std::copy(start.begin(), start.end(), m.outerIndexPtr());
-  source.assign(std::size_t(start.back()), kShift);
+  source.assign(std::size_t(start.back()), 0);
   std::vector<int> fill(start.begin(), start.end() - 1);
   int* rows = m.innerIndexPtr();
   each([&](int row, int col, int p) {
@@ -280,7 +296,7 @@ inline bool SplitCholmod::Half::analyze(const SpMat& k, const std::vector<signed
   });
   for (int q = 0; q < ns; ++q) {
     rows[fill[std::size_t(own + q)]]                  = own + q;
-    source[std::size_t(fill[std::size_t(own + q)]++)] = kShift;
+    source[std::size_t(fill[std::size_t(own + q)]++)] = shift_code(q);
   }
   std::vector<std::pair<int, int>> column;
   for (int c = 0; c < own; ++c) {  // rows in order: K's column order is not M's

@@ -7,9 +7,9 @@
 // waits for both (solver/split_cholmod.hpp).
 //
 // Found without the tree: the chain starts at the largest t for which the equations eliminated before
-// position t are not connected (K's graph restricted to them has two or more components); a union-find over
-// the order gives every t's count in one pass. The components are then dealt to two halves, the largest
-// first to the half with fewer equations (a nested dissection gives two).
+// position t are not connected (K's graph restricted to them has two or more components, none too large to
+// make two even halves); a union-find over the order follows every t's components in one pass. They are then
+// dealt to two halves, the largest first to the half with fewer equations (a nested dissection gives two).
 #include <algorithm>
 #include <array>
 #include <numeric>
@@ -19,8 +19,9 @@
 
 namespace gapfe {
 
-/// The order's last equations (the separator) and the others in two halves with no entry of K between
-/// them; every list in elimination order. Empty halves when the order has no such split.
+/// The order's last equations (the separator, in the order's sequence) and the others in two halves with no
+/// entry of K between them, each in a postorder of the elimination tree. Empty halves when the order has no
+/// such split.
 struct TopSplit {
   std::array<std::vector<int>, 2> halves;
   std::vector<int> separator;
@@ -123,15 +124,25 @@ inline TopSplit top_split(const SpMat& lower, const std::vector<int>& order, int
   for (int k = 0; k < n; ++k) position[std::size_t(order[std::size_t(k)])] = k;
   const detail::EarlierNeighbours near(lower, position);
   detail::Components parts(static_cast<std::size_t>(n));
-  // pieces[t] = components of the first t positions' graph; the chain starts at the largest t with two.
-  int pieces = 0, start = -1;
-  for (int j = 0; j < n; ++j) {
-    if (pieces >= 2) start = j;
-    ++pieces;
-    for (int k = near.start[std::size_t(j)]; k < near.start[std::size_t(j) + 1]; ++k)
-      if (parts.join(near.earlier[std::size_t(k)], j)) --pieces;
+  // The split starts at the largest t at which no component of the first t positions' graph holds more
+  // than 1 - 2 min_share of them: dealt out largest first, they then make halves of at least min_share
+  // each (greedy's halves differ by at most the largest). A nested dissection's is its top separator; a small
+  // body apart from the rest, a component through every t, does not hide it.
+  std::vector<int> grown(static_cast<std::size_t>(n), 1);  // a component's size, at its root
+  int largest = 0, start = -1;
+  for (int j = 0; j <= n; ++j) {
+    if (j >= 2 && largest <= (1 - 2 * min_share) * j) start = j;
+    if (j == n) break;
+    largest = std::max(largest, 1);
+    for (int k = near.start[std::size_t(j)]; k < near.start[std::size_t(j) + 1]; ++k) {
+      const int a = parts.find(near.earlier[std::size_t(k)]), b = parts.find(j);
+      if (a == b) continue;
+      parts.join(a, b);  // the smaller index becomes the root
+      const int root           = std::min(a, b);
+      grown[std::size_t(root)] = grown[std::size_t(a)] + grown[std::size_t(b)];
+      largest                  = std::max(largest, grown[std::size_t(root)]);
+    }
   }
-  if (pieces >= 2) start = n;  // K itself falls apart: no separator needed
   if (start < 0 || n - start > max_separator) return split;
   // The components of positions [0, start), sized, then dealt out (see the top).
   parts = detail::Components(static_cast<std::size_t>(start));
