@@ -70,8 +70,9 @@ inline SolverThreads set_solver_threads(int n) {
 
 /// OpenBLAS on one thread while this lives, when `active` (and back to its count after): for BLAS work
 /// whose blocks are too small to share between threads (CholmodLlt::factorize on small systems, its
-/// solves), and for SplitCholmod's halves, whose factor is then the same on any number of threads. Nothing is set when OpenBLAS already runs on one (set_solver_threads with an OpenMP-built
-/// OpenBLAS, whose set call would also set OpenMP's).
+/// solves), and for SplitCholmod's halves, whose factor is then the same on any number of threads. Nothing is
+/// set when OpenBLAS already runs on one (set_solver_threads with an OpenMP-built OpenBLAS, whose set call
+/// would also set OpenMP's).
 class OneBlasThread {
  public:
   explicit OneBlasThread(bool active) {
