@@ -587,35 +587,42 @@ TEST_CASE(
   // p_L = (2 / sqrt 3) 400 ln 2 = 320.15 of the perfectly plastic tube (docs/theory.md V6; Mises at nu = 0.3
   // is within ~1% of it). Steps 1-10 (to 300) must be accepted; step 11 (330) has no equilibrium: the
   // cut-back halves it down to 1/64 and then gives up past load factor 10 + k / 64, p < p_L.
+  // With two threads each increment's files are written while the next computes (app/run_output_impl.hpp):
+  // the failing step's work then meets a write under way, which must still end whole.
+  const gapfe::test::OneThreadAfter restore;
   const fs::path deck =
       edited_example("plastic_tube.deck", "   42    1      20.0", "   42    1      30.0", "past_the_limit");
-  const fs::path out = scratch("past_the_limit");
-  std::ostringstream o, e;
-  const int code = gapfe::app::command({"run", deck.string(), "--out", out.string(), "--quiet"}, o, e);
-  CAPTURE(e.str());
-  CHECK(code == gapfe::app::Exit::solve);
-  CHECK(e.str().find("load step 11 fails even when cut to 1/64, past load factor 10") != std::string::npos);
-  CHECK(e.str().find("limit (collapse) load") != std::string::npos);
-  // The accepted increments: all 10 whole steps, then pieces of step 11 below the limit.
-  const auto nodes = read_csv(out / "nodes.csv");
-  std::map<double, int> rows_per_increment;
-  for (const auto& row : nodes) ++rows_per_increment[row.at("inc")];
-  REQUIRE(rows_per_increment.size() > 10);
-  for (const auto& [inc, rows] : rows_per_increment) CHECK(rows == 82);  // 41 x 2 nodes, no torn increment
-  const double last = rows_per_increment.rbegin()->first;
-  CHECK(last >= 10);
-  CHECK(last < 11);
-  CHECK(20.0 * 1.5 * last <= 320.15 * 1.01);  // the pressure reached stays below the limit load
-  // The ParaView collection is closed and names only files that exist.
-  const std::string collection = read_text(out / "result.pvd");
-  CHECK(collection.rfind("</VTKFile>") != std::string::npos);
-  int listed = 0;
-  for (std::size_t at = collection.find("file=\""); at != std::string::npos;
-       at             = collection.find("file=\"", at + 1), ++listed) {
-    const std::size_t begin = at + 6, end = collection.find('"', begin);
-    CHECK(fs::exists(out / collection.substr(begin, end - begin)));
+  for (const char* threads : {"1", "2"}) {
+    CAPTURE(threads);
+    const fs::path out = scratch(std::string("past_the_limit_") + threads);
+    std::ostringstream o, e;
+    const int code = gapfe::app::command(
+        {"run", deck.string(), "--out", out.string(), "--quiet", "--threads", threads}, o, e);
+    CAPTURE(e.str());
+    CHECK(code == gapfe::app::Exit::solve);
+    CHECK(e.str().find("load step 11 fails even when cut to 1/64, past load factor 10") != std::string::npos);
+    CHECK(e.str().find("limit (collapse) load") != std::string::npos);
+    // The accepted increments: all 10 whole steps, then pieces of step 11 below the limit.
+    const auto nodes = read_csv(out / "nodes.csv");
+    std::map<double, int> rows_per_increment;
+    for (const auto& row : nodes) ++rows_per_increment[row.at("inc")];
+    REQUIRE(rows_per_increment.size() > 10);
+    for (const auto& [inc, rows] : rows_per_increment) CHECK(rows == 82);  // 41 x 2 nodes, no torn increment
+    const double last = rows_per_increment.rbegin()->first;
+    CHECK(last >= 10);
+    CHECK(last < 11);
+    CHECK(20.0 * 1.5 * last <= 320.15 * 1.01);  // the pressure reached stays below the limit load
+    // The ParaView collection is closed and names only files that exist.
+    const std::string collection = read_text(out / "result.pvd");
+    CHECK(collection.rfind("</VTKFile>") != std::string::npos);
+    int listed = 0;
+    for (std::size_t at = collection.find("file=\""); at != std::string::npos;
+         at             = collection.find("file=\"", at + 1), ++listed) {
+      const std::size_t begin = at + 6, end = collection.find('"', begin);
+      CHECK(fs::exists(out / collection.substr(begin, end - begin)));
+    }
+    CHECK(listed == static_cast<int>(rows_per_increment.size()));
   }
-  CHECK(listed == static_cast<int>(rows_per_increment.size()));
 }
 
 TEST_CASE(
@@ -1843,6 +1850,49 @@ TEST_CASE("[threads] the files' pieces on 3 threads: the rows, base64 and outlin
   const auto outline = gapfe::detail::outline_sides(material.size(), sides_of, material);
   CHECK(outline == sorted);
   CHECK(outline.size() == static_cast<std::size_t>(2 * (ni + nj) + nj));  // the boundary and the interface
+}
+
+TEST_CASE(
+    "[threads][files] an increment's files written beside the next one's work: a failure to write them is "
+    "thrown, and the increments before it stay") {
+  // RunFiles (app/run_output.hpp) on the plastic tube's scene (15 load steps), its first two increments with
+  // made-up values (the last increment, load factor 15, would be written by the caller's thread). A folder
+  // planted where step_0002.vtu goes makes its write fail (output_file.hpp: the rename onto a folder). With
+  // one thread the second write() throws; with two it returns at once, the files written on a thread of
+  // their own, and finish() throws what that thread met. Either way both increments' table rows were
+  // written (the tables come before the VTU file) and step_0001.vtu is whole.
+  const gapfe::test::OneThreadAfter restore;
+  const Deck tube = read_deck(read_input((kExamples / "plastic_tube.deck").string(), "deck"));
+  const SceneModel model{tube, build_scene(tube), {}, {}};
+  REQUIRE(model.description.steps() == 15);
+  const app::Plan plan = app::make_plan(model.description, model.scene);
+  const int nodes      = model.scene.grid.node_count();
+  Solution solution;
+  solution.displacement.setConstant(nodes, 3, 1e-3);
+  solution.reaction.setZero(nodes, 3);
+  const std::vector<PointValues> values(model.scene.mesh.cells.size());
+  for (const int threads : {1, 2}) {
+    CAPTURE(threads);
+    set_worker_threads(threads);
+    const fs::path out = scratch("beside_" + std::to_string(threads));
+    fs::create_directories(out / "step_0002.vtu");
+    std::ofstream(out / "step_0002.vtu" / "keep") << "x";
+    std::ostringstream err;
+    const app::RunRequest request{model.description, model.scene, plan, out.string(), err, false, {}, {}};
+    app::RunResult result;
+    app::RunFiles files(request);
+    files.write(1, 1.0, solution, values, {}, {});
+    if (threads == 1) {
+      CHECK_THROWS_WITH_AS(files.write(2, 2.0, solution, values, {}, {}), doctest::Contains("step_0002.vtu"),
+                           FileError);
+    } else {
+      CHECK_NOTHROW(files.write(2, 2.0, solution, values, {}, {}));
+      CHECK_THROWS_WITH_AS(files.finish("beside", result), doctest::Contains("step_0002.vtu"), FileError);
+    }
+    const auto rows = read_csv(out / "nodes.csv");
+    CHECK(rows.size() == 2 * static_cast<std::size_t>(nodes));
+    CHECK(read_text(out / "step_0001.vtu").rfind("</VTKFile>") != std::string::npos);
+  }
 }
 
 TEST_CASE("[threads] gapfe run --threads 3 writes the files of --threads 1, byte for byte") {

@@ -80,7 +80,8 @@ inline constexpr OptionSpec kOptions[] = {
      "relative error of at most TOL (e.g. 1e-3); the files are the last run's"},
     {"--time-limit", "SECONDS", "run", "with --accuracy: the time it may take in all (default 3600)"},
     {"--threads", "N", "run",
-     "threads for the cells' passes, the files and, from 40,000 equations, CHOLMOD's factorization in two "
+     "threads for the cells' passes, the files (with N >= 2 each increment's are written while the next "
+     "computes) and, from 40,000 equations, CHOLMOD's factorization in two "
      "halves (the same results on any N); OpenBLAS gets N only for a factorization of more than 250,000 "
      "equations that has no split, whose rounding changes with N (default 1)"},
     {"--overwrite", nullptr, "run",

@@ -53,15 +53,21 @@ class RunFiles {
   RunFiles(const RunFiles&)            = delete;
   RunFiles& operator=(const RunFiles&) = delete;
   explicit operator bool() const { return files_ != nullptr; }
-  /// One increment (StepFiles::write).
-  void write(int step, double inc, const Solution& solution, const std::vector<PointValues>& values,
+  /// One increment (StepFiles::write). With two threads or more (core/workers.hpp) its files are written on
+  /// a thread of their own while the run goes on to the next increment, one increment at a time: this call
+  /// first waits for the last one's files, and a failure to write them is thrown here or by finish().
+  void write(int step, double inc, const Solution& solution, std::vector<PointValues> values,
              std::vector<VtuField> extra_cells, const IncrementSummary& summary);
-  /// The end of the run (StepFiles::finish): the held increment, deformed.svg and the pictures, recorded in
-  /// `times` (RunResult::pictures, pictures_skipped).
+  /// The end of the run (StepFiles::finish, after the last increment's files): the held increment,
+  /// deformed.svg and the pictures, recorded in `times` (RunResult::pictures, pictures_skipped,
+  /// files_seconds).
   void finish(const std::string& title, RunResult& times);
 
  private:
+  class Writer;
   std::unique_ptr<StepFiles> files_;
+  std::unique_ptr<Writer> writer_;  ///< the thread writing an increment's files, with two threads or more
+  double seconds_ = 0;              ///< spent writing on the run's own thread
 };
 
 /// The log's progress line.
@@ -154,11 +160,11 @@ void write_increment(const RunRequest& r, RunResult& times, RunFiles& files, int
   if (const Subdomain* part = fe.problem().subdomain.get()) {
     const Solution whole = gather_solution(*part, fe.solution());
     auto values          = gather_cells(*part, centroids, Recovered::stress);
-    if (files) files.write(step, inc, whole, values, std::move(extra_cells), summary);
+    if (files) files.write(step, inc, whole, std::move(values), std::move(extra_cells), summary);
   } else {
     if (r.read_quantities)
       times.quantities = read_quantities(r.scene, fe.solution(), centroids, peak, r.plan.plastic);
-    if (files) files.write(step, inc, fe.solution(), centroids, std::move(extra_cells), summary);
+    if (files) files.write(step, inc, fe.solution(), std::move(centroids), std::move(extra_cells), summary);
   }
   times.write += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   progress_line(r, step);

@@ -16,7 +16,11 @@ struct RunResult {
   /// `recovery`: the centroid stresses the files and the checks read, and the error estimate from the same
   /// pass when it runs (post/error_estimate.hpp).
   double assemble = 0, factorize = 0, solve = 0, write = 0, recovery = 0;
-  FactorStatistics factor;  ///< the last factorization's size and work (when the solver counts them)
+  /// The seconds the files took to write, whichever thread wrote them (RunFiles::write); `write` is the time
+  /// the run waited for them.
+  double files_seconds = 0;
+  bool files_beside    = false;  ///< increments' files were written beside the next increment's work
+  FactorStatistics factor;       ///< the last factorization's size and work (when the solver counts them)
   /// The recovery estimate of the discretization error (post/error_estimate.hpp): per load step (index
   /// step - 1) the largest relative energy-norm error of its accepted increments; the last increment's, with
   /// the deck element (0-based) that holds its largest share and that element's corners' mean (r, z).

@@ -42,6 +42,10 @@ class WorkerPool {
   WorkerPool& operator=(const WorkerPool&) = delete;
   ~WorkerPool() { stop_workers(); }
   int threads() const { return static_cast<int>(workers_.size()) + 1; }
+  /// Loops started on the calling thread run on it alone from now on. For a thread of a program's own
+  /// beside the pool's loops (the run's file writer, app/run_output_impl.hpp): run() hands out one loop at a
+  /// time, and that thread's loops would otherwise meet another thread's.
+  static void run_loops_here() { inside_ = true; }
 
   /// f(task) for every task in [0, count), the calling thread working too; returns when all are done.
   template <class F>

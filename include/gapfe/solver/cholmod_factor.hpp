@@ -32,11 +32,13 @@ inline constexpr Eigen::Index kLargeSystem = 250000;
 /// per-supernode passes, paid for with explicit zeros in L. On the tube stiffness with the coordinate
 /// dissection (one thread, BENCHMARKS.md "Levers, each measured") CHOLMOD's defaults {4, 16, 48} factorize
 /// 1e4 equations in 13.8 ms and 1e5 in 185 ms; {16, 64, 256} takes 7.7 ms and 127 ms for 1.5x the factor's
-/// memory, and is the best of the settings tried. Past kLargeSystem equations the moderate {8, 32, 96}
-/// (1.1x memory; 1e6 equations 4.0 s instead of 4.7 s) is used. `equations`: the whole system's.
+/// memory, and is the best of the settings tried. Past kLargeSystem equations the factor's memory is the
+/// run's peak, so CHOLMOD's defaults are kept there: at 1e6 equations, split in halves (split_cholmod.hpp),
+/// they store 1.49e8 values against {8, 32, 96}'s 1.63e8 (110 MB less) in about the same time.
+/// `equations`: the whole system's.
 inline void relax_supernodes(cholmod_common& c, Eigen::Index equations) {
   const bool large = equations > kLargeSystem;
-  c.nrelax[0] = large ? 8 : 16, c.nrelax[1] = large ? 32 : 64, c.nrelax[2] = large ? 96 : 256;
+  c.nrelax[0] = large ? 4 : 16, c.nrelax[1] = large ? 16 : 64, c.nrelax[2] = large ? 48 : 256;
   c.zrelax[0] = 0.8, c.zrelax[1] = 0.1, c.zrelax[2] = 0.05;  // CHOLMOD's defaults
 }
 
