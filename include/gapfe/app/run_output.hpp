@@ -187,10 +187,15 @@ struct FinishFiles {
     files.finish(r.model.title, times);
     times.write += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
+  /// A run that failed: its own error is the one the command reports, so a failure to write the files of
+  /// the increments it accepted (with two threads or more, one written beside the failing work) is said here.
   ~FinishFiles() {
     if (done) return;
     try {
       now();
+    } catch (const std::exception& e) {
+      r.err << "gapfe: the files of the increments before the failure are incomplete: "
+            << detail::visible_text(e.what(), /*lines=*/true) << "\n";
     } catch (...) {
     }
   }

@@ -90,6 +90,7 @@ RunFiles::~RunFiles() = default;
 
 void RunFiles::write(int step, double inc, const Solution& solution, std::vector<PointValues> values,
                      std::vector<VtuField> extra_cells, const IncrementSummary& summary) {
+  if (!files_) return;  // a process that writes no files (RunRequest::writes)
   if (writer_->beside(inc)) {
     // The solution is the driver's, which the next increment changes: the writer gets a copy.
     writer_->start(
@@ -104,13 +105,26 @@ void RunFiles::write(int step, double inc, const Solution& solution, std::vector
 }
 
 void RunFiles::finish(const std::string& title, RunResult& times) {
-  writer_->wait();
+  if (!files_) return;
+  // A failure of the last increment written beside is thrown after the files are closed and the pictures
+  // drawn, as it is with one thread, where write() threw it and the run's end still came here.
+  std::exception_ptr writing;
+  try {
+    writer_->wait();
+  } catch (...) {
+    writing = std::current_exception();
+  }
   const auto begin = std::chrono::steady_clock::now();
-  files_->finish(title);
+  try {
+    files_->finish(title);
+  } catch (...) {
+    if (!writing) throw;
+  }
   seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   times.pictures = files_->pictures_written(), times.pictures_skipped = files_->pictures_skipped();
   times.files_seconds = seconds_ + writer_->seconds();
   times.files_beside  = writer_->used();
+  if (writing) std::rethrow_exception(writing);
 }
 
 }  // namespace gapfe::app

@@ -71,6 +71,8 @@ class Assembler {
     on_every_part(subdomain_.get(), [&] {
       check_model(p, links_);
       dofs_ = DofMap<kNd>::build(p.mesh, p.conditions);
+      if (!subdomain_)
+        check_held<kNd, Elem>(p.mesh, dofs_.equation, links_);  // a part's body may be held by another
     });
     // A partitioned problem: every part holds every link (the ends of gap pairs are on every part), and the
     // part that owns a link's first node assembles it, so that the parts' sum counts it once.
