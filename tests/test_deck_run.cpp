@@ -1885,10 +1885,16 @@ TEST_CASE(
     if (threads == 1) {
       CHECK_THROWS_WITH_AS(files.write(2, 2.0, solution, values, {}, {}), doctest::Contains("step_0002.vtu"),
                            FileError);
+      CHECK_NOTHROW(files.finish("beside", result));
+      CHECK_FALSE(files.writer_failed());
     } else {
       CHECK_NOTHROW(files.write(2, 2.0, solution, values, {}, {}));
       CHECK_THROWS_WITH_AS(files.finish("beside", result), doctest::Contains("step_0002.vtu"), FileError);
+      CHECK(files.writer_failed());
     }
+    // The run's end came either way: the collection closed, the picture drawn.
+    CHECK(read_text(out / "result.pvd").rfind("</VTKFile>") != std::string::npos);
+    CHECK(fs::exists(out / "deformed.svg"));
     const auto rows = read_csv(out / "nodes.csv");
     CHECK(rows.size() == 2 * static_cast<std::size_t>(nodes));
     CHECK(read_text(out / "step_0001.vtu").rfind("</VTKFile>") != std::string::npos);

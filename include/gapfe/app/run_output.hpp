@@ -62,12 +62,15 @@ class RunFiles {
   /// deformed.svg and the pictures, recorded in `times` (RunResult::pictures, pictures_skipped,
   /// files_seconds).
   void finish(const std::string& title, RunResult& times);
+  /// Whether finish() threw the failure of an increment written beside the run's work.
+  bool writer_failed() const { return writer_failed_; }
 
  private:
   class Writer;
   std::unique_ptr<StepFiles> files_;
   std::unique_ptr<Writer> writer_;  ///< the thread writing an increment's files, with two threads or more
-  double seconds_ = 0;              ///< spent writing on the run's own thread
+  double seconds_     = 0;          ///< spent writing on the run's own thread
+  bool writer_failed_ = false;
 };
 
 /// The log's progress line.
@@ -187,15 +190,19 @@ struct FinishFiles {
     files.finish(r.model.title, times);
     times.write += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
-  /// A run that failed: its own error is the one the command reports, so a failure to write the files of
-  /// the increments it accepted (with two threads or more, one written beside the failing work) is said here.
+  /// A run that failed: its own error is the one the command reports, so the failure of an increment's
+  /// files written beside the failing work (RunFiles::writer_failed) is said here.
   ~FinishFiles() {
     if (done) return;
     try {
       now();
     } catch (const std::exception& e) {
-      r.err << "gapfe: the files of the increments before the failure are incomplete: "
-            << detail::visible_text(e.what(), /*lines=*/true) << "\n";
+      if (!files.writer_failed()) return;
+      try {
+        r.err << "gapfe: the files of the increments before the failure are incomplete: "
+              << detail::visible_text(e.what(), /*lines=*/true) << "\n";
+      } catch (...) {  // nothing may leave a destructor
+      }
     } catch (...) {
     }
   }

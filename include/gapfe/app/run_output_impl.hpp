@@ -124,6 +124,7 @@ void RunFiles::finish(const std::string& title, RunResult& times) {
   times.pictures = files_->pictures_written(), times.pictures_skipped = files_->pictures_skipped();
   times.files_seconds = seconds_ + writer_->seconds();
   times.files_beside  = writer_->used();
+  writer_failed_      = writing != nullptr;
   if (writing) std::rethrow_exception(writing);
 }
 
