@@ -87,26 +87,24 @@ void check_held(const MeshT& m, const std::vector<int>& equation, const Connecti
     a = root(a), b = root(b);
     if (a != b) parent[std::size_t(std::max(a, b))] = std::min(a, b);
   };
+  std::vector<char> in_cell(nn, 0);  // the first node of a cell: its body has a cell
   for_each_cell<Elem>(m, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t,
                                                        const std::array<int, NPC>& cell, const CellTag&) {
+    in_cell[std::size_t(cell[0])] = 1;
     for (const int n : cell) join(cell[0], n);
   });
   for (const auto& l : links) join(l[0], l[1]);
   // Per root: 1 has a cell, 2 held along z, 4 held about the axis; and its node count.
   std::vector<int> flags(nn, 0), count(nn, 0);
-  for_each_cell<Elem>(
-      m, [&]<class E, std::size_t NPC>(std::type_identity<E>, std::size_t, const std::array<int, NPC>& cell,
-                                       const CellTag&) { flags[std::size_t(root(cell[0]))] |= 1; });
   for (std::size_t n = 0; n < nn; ++n) {
     const auto r = std::size_t(root(int(n)));
     ++count[r];
+    if (in_cell[n]) flags[r] |= 1;
     if (equation[n * DofsPerNode + 1] < 0) flags[r] |= 2;
     if (DofsPerNode == 3 && equation[n * DofsPerNode + 2] < 0) flags[r] |= 4;
   }
   const std::string remedy =
-      ": check that the constraints remove every rigid-body motion (axial translation; in 3-DOF also "
-      "rotation "
-      "about the axis): prescribe that component at one of its nodes at least";
+      std::string(": ") + kRigidBodyHint + ": prescribe that component at one of its nodes at least";
   for (std::size_t n = 0; n < nn; ++n) {
     if (!(flags[n] & 1)) continue;  // not a root, or a node in no cell (the factorization's to refuse)
     const std::string body = "nothing holds the body of node " + std::to_string(n + 1) + " (" +

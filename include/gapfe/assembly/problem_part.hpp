@@ -124,8 +124,10 @@ Problem<M> problem_part(const Problem<M>& whole, Mesh<M::Element::kNodes> piece,
                         std::shared_ptr<const Subdomain> subdomain, const Connectivity<2>& links = {}) {
   check_model(whole, links);
   check_loads(whole);
-  DofMap<M::kDofsPerNode>::build(whole.mesh,
-                                 whole.conditions);  // radii and cards, as a whole run checks them
+  // Radii and cards, and the bodies nothing holds, as a whole run checks them: every part sees the whole
+  // model, so every part refuses it with the same message.
+  check_held<M::kDofsPerNode, typename M::Element>(
+      whole.mesh, DofMap<M::kDofsPerNode>::build(whole.mesh, whole.conditions).equation, links);
   const PartLayout& layout = subdomain->layout();
   if (static_cast<int>(piece.nodes.size()) != layout.local_nodes() ||
       static_cast<int>(layout.local_node.size()) != whole.mesh.node_count())

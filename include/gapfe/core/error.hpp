@@ -29,6 +29,12 @@ struct FileError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// What a singular stiffness most often means, as the factorization (solver/system.hpp) and the model's
+/// check for bodies nothing holds (assembly/problem_check.hpp) say it.
+inline constexpr const char* kRigidBodyHint =
+    "check that the constraints remove every rigid-body motion (axial translation; in 3-DOF also rotation "
+    "about the axis)";
+
 namespace detail {
 
 /// A number as error messages print it (%g: 6 significant digits).

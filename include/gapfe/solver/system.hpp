@@ -105,12 +105,10 @@ class System {
       // The hint for a stiffness that cannot be factorized, unless the solver says the failure is its own
       // (LinearSolver, core/concepts.hpp: PETSc refusing its options).
       const std::string failure = solver_->failure();
-      throw SolveError(
-          failure + where +
-          (failure.rfind("the solver failed", 0) == 0
-               ? std::string()
-               : ": check that the constraints remove every rigid-body motion (axial translation; in "
-                 "3-DOF also rotation about the axis) and that no element is degenerate"));
+      throw SolveError(failure + where +
+                       (failure.rfind("the solver failed", 0) == 0
+                            ? std::string()
+                            : std::string(": ") + kRigidBodyHint + " and that no element is degenerate"));
     }
     if constexpr (requires { solver_->statistics(); }) statistics_ = solver_->statistics();
     if (skip_unchanged_ && !distributed_)
