@@ -449,4 +449,23 @@ TEST_CASE("[petsc] an error on one part is every part's error, with its message 
   CHECK(kind == 2);
   CHECK(what == "return map failed on part " + std::to_string(ranks() - 1));
   CHECK_NOTHROW(on_every_part(&domain, [] {}));
+  // A file only rank 0 writes, and memory one part runs out of: the same on every part.
+  CHECK_THROWS_WITH_AS(on_every_part(&domain,
+                                     [] {
+                                       if (rank() == 0) throw FileError("cannot write out/step_0002.vtu");
+                                     }),
+                       "cannot write out/step_0002.vtu", FileError);
+  CHECK_THROWS_AS(on_every_part(&domain,
+                                [] {
+                                  if (rank() == ranks() - 1) throw std::bad_alloc();
+                                }),
+                  std::bad_alloc);
+  // Two parts fail differently: every part throws the lowest failing part's error.
+  if (ranks() > 1)
+    CHECK_THROWS_WITH_AS(on_every_part(&domain,
+                                       [] {
+                                         if (rank() == 1) throw InputError("card on part 1");
+                                         if (rank() == ranks() - 1) throw FileError("file on the last part");
+                                       }),
+                         "card on part 1", InputError);
 }

@@ -149,6 +149,23 @@ inline void list_files(const Args& a, const Plan& p, const ModelDescription& d, 
   if (!r.pictures_skipped.empty()) log << "pictures not drawn: " << r.pictures_skipped << "\n";
 }
 
+/// Hands the program, while a run writes its folder, what to record there should the program end the launch
+/// from outside this rank's work (Process::on_ended); withdraws it when the run is over.
+struct EndedRecord {
+  const Process& process;
+  const bool active;
+  EndedRecord(const Process& p, bool writes, const std::string& dir, const std::string& what)
+      : process(p), active(writes && p.on_ended) {
+    if (active)
+      process.on_ended([dir, what](const std::string& why) { RunFolder::record_stopped(dir, what, why); });
+  }
+  ~EndedRecord() {
+    if (active) process.on_ended({});
+  }
+  EndedRecord(const EndedRecord&)            = delete;
+  EndedRecord& operator=(const EndedRecord&) = delete;
+};
+
 /// `gapfe run`, after the plan was explained: the process checks, the partition, the run folder, the run,
 /// the report and the record of the folder's run.
 inline int run_command(const Args& a, const SceneModel& model, const Plan& plan, std::ostream& log,
@@ -201,12 +218,15 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
                            part ? &*part : nullptr,
                            rank == 0,
                            refines,
-                           &recovery};
+                           &recovery,
+                           process.failing};
   // Rank 0 of a launch writes the files; a run's folder holds one run (run_folder.hpp). Made ready only
   // now, after every check of the request: a run refused before it starts leaves the last run's files.
   const std::string run_what = "gapfe run " + a.deck;
   const bool writes          = launch_rank == 0;
   if (writes) RunFolder::prepare(a.out, a.overwrite, run_what);
+  // Ended from outside (another rank failed alone), the manifest says "stopped" and why, not "running".
+  const EndedRecord ended(process, writes, a.out, run_what);
   const auto t0 = Clock::now();
   try {
     const RunResult result = run(request);
@@ -354,26 +374,25 @@ int command(const std::vector<std::string>& args, std::ostream& out_stream, std:
   }
   // Messages quote the input (names, paths, titles): shown with detail::visible_text, never raw.
   const std::string input_name = detail::visible_text(is_standard_input(a.deck) ? "standard input" : a.deck);
-  const auto say               = [&](const std::string& head, const char* what) {
-    err << "gapfe: " << head << detail::visible_text(what, /*lines=*/true) << "\n";
+  // The message, printed where this rank speaks, and handed to the process (Process::failed) with the code.
+  const auto fail = [&](Exit code, const std::string& head, const char* what) {
+    const std::string line = "gapfe: " + head + detail::visible_text(what, /*lines=*/true);
+    err << line << "\n";
+    if (process.failed) process.failed(code, line);
+    return code;
   };
   try {
     return a.command == "plot" ? plot(a, out, err) : command_steps::execute(a, out, err, process);
   } catch (const InputError& e) {
-    say("error in " + input_name + ": ", e.what());
-    return input;
+    return fail(input, "error in " + input_name + ": ", e.what());
   } catch (const SolveError& e) {
-    say("cannot solve " + input_name + ": ", e.what());
-    return solve;
+    return fail(solve, "cannot solve " + input_name + ": ", e.what());
   } catch (const FileError& e) {
-    say("", e.what());
-    return system;
+    return fail(system, "", e.what());
   } catch (const std::bad_alloc&) {
-    say("out of memory while processing " + input_name, "");
-    return system;
+    return fail(system, "out of memory while processing " + input_name, "");
   } catch (const std::exception& e) {
-    say("", e.what());
-    return system;
+    return fail(system, "", e.what());
   }
 }
 

@@ -92,7 +92,7 @@ inline LevelRun run_level(ModelDescription& d, const Scene& s, int level, const 
   std::ostringstream quiet;
   RecoveryWeights recovery;
   recovery.several = d.steps() > 1;  // every step estimates: fit the patches once, at the first
-  const RunRequest r{d, s, plan, dir, quiet, false, pictures, units, nullptr, files, true, &recovery};
+  const RunRequest r{d, s, plan, dir, quiet, false, pictures, units, nullptr, files, true, &recovery, {}};
   RunResult run_result = app::run(r);
   LevelRun out{level, s.mesh.node_count(),
                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),

@@ -89,7 +89,8 @@ void run_plastic(const RunRequest& r, RunResult& times) {
         times.stalled += rep.stalled;
         ++times.increments;
         note_relaxation(times, r.model, step, inc, fe.states(), fe.problem().subdomain.get());
-        record.write(step, inc, rep);
+        // Rank 0 writes the table; a failure there is every rank's (core/subdomain.hpp).
+        on_every_part(fe.problem().subdomain.get(), [&] { record.write(step, inc, rep); });
         last_step = step;
         write_increment(r, times, files, step, inc, fe, {}, {rep.iterations, rep.plastic_points, 0, 0});
       },
@@ -156,9 +157,12 @@ void run_contact(const RunRequest& r, RunResult& times) {
           times.time_error       = std::max(times.time_error, c.fe().report().time_error);
         }
         // The pairs in the whole mesh's numbering (a part's are renumbered; their states are every part's).
-        write_increment(
-            r, times, files, step, inc, c.fe(),
-            gaps ? gaps->write(step, inc, r.scene.gaps.pairs, c.states()) : std::vector<VtuField>{}, summary);
+        // Rank 0 writes the table; a failure there is every rank's (core/subdomain.hpp).
+        std::vector<VtuField> pair_fields;
+        on_every_part(c.fe().problem().subdomain.get(), [&] {
+          if (gaps) pair_fields = gaps->write(step, inc, r.scene.gaps.pairs, c.states());
+        });
+        write_increment(r, times, files, step, inc, c.fe(), std::move(pair_fields), summary);
         if (r.read_quantities) add_contact_quantities(times.quantities, c.states(), F::kFriction);
       },
       r.part, make_run_solver<typename M::LinearSolver>(r.plan.solver));

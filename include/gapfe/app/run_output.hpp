@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <ostream>
 #include <string>
@@ -39,6 +40,8 @@ struct RunRequest {
   /// The error estimate's patch fit, kept across the run's increments (post/recovery_weights.hpp; the mesh
   /// of a run stays as it is); nullptr: each increment's estimate fits its own.
   RecoveryWeights* recovery = nullptr;
+  /// Called when the run fails, before its files are closed (Process::failing); may be empty.
+  std::function<void()> failing = {};
 };
 
 /// The result files of a run (output/step_files.hpp): on the process that writes them (every process of a
@@ -163,7 +166,10 @@ void write_increment(const RunRequest& r, RunResult& times, RunFiles& files, int
   if (const Subdomain* part = fe.problem().subdomain.get()) {
     const Solution whole = gather_solution(*part, fe.solution());
     auto values          = gather_cells(*part, centroids, Recovered::stress);
-    if (files) files.write(step, inc, whole, std::move(values), std::move(extra_cells), summary);
+    // Rank 0 writes; a failure there is every rank's (core/subdomain.hpp), so that all unwind together.
+    on_every_part(part, [&] {
+      if (files) files.write(step, inc, whole, std::move(values), std::move(extra_cells), summary);
+    });
   } else {
     if (r.read_quantities)
       times.quantities = read_quantities(r.scene, fe.solution(), centroids, peak, r.plan.plastic);
@@ -195,6 +201,7 @@ struct FinishFiles {
   ~FinishFiles() {
     if (done) return;
     try {
+      if (r.failing) r.failing();
       now();
     } catch (const std::exception& e) {
       if (!files.writer_failed()) return;

@@ -122,12 +122,14 @@ void set_part_loads(Problem<M>& part, const std::vector<Vec2>& whole_nodes,
 template <class M>
 Problem<M> problem_part(const Problem<M>& whole, Mesh<M::Element::kNodes> piece,
                         std::shared_ptr<const Subdomain> subdomain, const Connectivity<2>& links = {}) {
-  check_model(whole, links);
-  check_loads(whole);
-  // Radii and cards, and the bodies nothing holds, as a whole run checks them: every part sees the whole
-  // model, so every part refuses it with the same message.
-  check_held<M::kDofsPerNode, typename M::Element>(
-      whole.mesh, DofMap<M::kDofsPerNode>::build(whole.mesh, whole.conditions).equation, links);
+  // The checks of a whole run, and the bodies nothing holds: every part sees the whole model and would
+  // refuse it alike; agreed all the same, so that the parts throw together (core/subdomain.hpp).
+  on_every_part(subdomain.get(), [&] {
+    check_model(whole, links);
+    check_loads(whole);
+    check_held<M::kDofsPerNode, typename M::Element>(
+        whole.mesh, DofMap<M::kDofsPerNode>::build(whole.mesh, whole.conditions).equation, links);
+  });
   const PartLayout& layout = subdomain->layout();
   if (static_cast<int>(piece.nodes.size()) != layout.local_nodes() ||
       static_cast<int>(layout.local_node.size()) != whole.mesh.node_count())

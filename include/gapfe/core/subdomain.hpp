@@ -15,6 +15,7 @@
 // contribution (a partial sum); sum_shared() adds the parts' contributions so that every part holds the
 // total there. Every collective must be called by every part, in the same order: the drivers keep their
 // decisions (convergence, contact status) on totals, which are the same on every part.
+#include <new>
 #include <string>
 #include <utility>
 #include <vector>
@@ -74,18 +75,18 @@ class Subdomain {
   PartLayout layout_;
 };
 
-/// Runs `work` here; when it throws an InputError or a SolveError on any part of a partitioned problem, every
-/// part throws that error (the lowest failing part's, with its message): for a check or an element pass that
-/// can fail on one part alone (a point's return map, a card at a node only one part holds), which would
-/// otherwise leave the other parts waiting in their next collective call. Collective; without a subdomain,
-/// `work` simply runs.
+/// Runs `work` here; when it throws an InputError, a SolveError, a FileError or std::bad_alloc on any part of
+/// a partitioned problem, every part throws that error (the lowest failing part's, with its message): for a
+/// check, an element pass or a write that can fail on one part alone (a point's return map, a card at a node
+/// only one part holds, the files rank 0 writes), which would otherwise leave the other parts waiting in
+/// their next collective call. Collective; without a subdomain, `work` simply runs.
 template <class Work>
 void on_every_part(const Subdomain* part, Work&& work) {
   if (!part) {
     work();
     return;
   }
-  int kind = 0;  // 0 none, 1 InputError, 2 SolveError
+  int kind = 0;  // 0 none, 1 InputError, 2 SolveError, 3 FileError, 4 std::bad_alloc
   std::string what;
   try {
     work();
@@ -93,6 +94,10 @@ void on_every_part(const Subdomain* part, Work&& work) {
     kind = 1, what = e.what();
   } catch (const SolveError& e) {
     kind = 2, what = e.what();
+  } catch (const FileError& e) {
+    kind = 3, what = e.what();
+  } catch (const std::bad_alloc&) {
+    kind = 4;
   }
   // The lowest failing part: the smallest part number among those that failed (max of -part).
   const double first =
@@ -103,8 +108,16 @@ void on_every_part(const Subdomain* part, Work&& work) {
   kinds[static_cast<std::size_t>(part->part())] = kind;
   part->sum(kinds.data(), static_cast<int>(kinds.size()));
   what = part->broadcast(what, from);
-  if (kinds[static_cast<std::size_t>(from)] == 1) throw InputError(what);
-  throw SolveError(what);
+  switch (static_cast<int>(kinds[static_cast<std::size_t>(from)])) {
+    case 1:
+      throw InputError(what);
+    case 3:
+      throw FileError(what);
+    case 4:
+      throw std::bad_alloc();
+    default:
+      throw SolveError(what);
+  }
 }
 
 }  // namespace gapfe

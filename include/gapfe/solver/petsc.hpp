@@ -38,6 +38,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <exception>
 #include <limits>
 #include <numeric>
 #include <petscksp.h>
@@ -79,6 +80,12 @@ class PetscSolver {
   ~PetscSolver() {
     PetscBool finalized = PETSC_TRUE;
     if (PetscFinalized(&finalized) != 0 || finalized) return;
+    // Unwinding an error on several ranks: the others may not be unwinding with this one (an error of this
+    // rank alone), and destroying the KSP is collective (MUMPS ends its instance over the communicator), so
+    // this rank would wait here for ever instead of reaching the program, which ends the launch
+    // (docs/cluster.md "When a rank fails"). The objects are left to the process's end.
+    int ranks = 1;
+    if (std::uncaught_exceptions() > 0 && MPI_Comm_size(comm_, &ranks) == MPI_SUCCESS && ranks > 1) return;
     KSPDestroy(&ksp_), MatDestroy(&a_), VecDestroy(&x_), VecDestroy(&b_), VecDestroy(&local_);
     VecScatterDestroy(&scatter_);
   }

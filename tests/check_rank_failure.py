@@ -1,0 +1,122 @@
+#!/usr/bin/env python3
+"""A launch of several ranks where one rank fails alone ends promptly, with that rank's message:
+
+    python3 tests/check_rank_failure.py GAPFE MPIEXEC WORK
+
+The ranks of a partitioned run fail together on what they all see (a bad deck, a step Newton cannot take);
+these are the failures only one rank meets (docs/cluster.md "When a rank fails"). Without a word between
+the ranks, the others would wait for the failed one in their next collective call: before the listening
+thread, two minutes, then an abort that did not say why. On 2 ranks:
+
+  * rank 1 cannot read its deck (an MPMD launch gives it a missing file): rank 0, which read the deck and
+    started, ends the launch and prints rank 1's message;
+  * rank 0 cannot read its deck: it prints its own message and the launch ends;
+  * rank 0's output folder is taken away in the middle of a run (replaced by a file): rank 0 cannot write
+    the next increment, which every rank then fails with (the writes are agreed);
+  * failures every rank meets before MPI starts (no rank can read the deck, a bad option, several ranks
+    without solver = petsc) still print one line.
+
+Each must end within LIMIT seconds of the failure (the listener's grace is 0.5 s; the limit allows a busy
+machine and MPI's start-up), with the exit status of the failure (3: a file), and the one line gapfe
+prints for it must appear once (mpirun adds its own lines about the abort). Exit status 0 when all pass."""
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+sys.dont_write_bytecode = True
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "bench"))
+import deckgen  # noqa: E402
+
+LIMIT = 20.0  # seconds from the failure to the launch's end
+
+
+def gapfe_lines(text):
+    return [line for line in text.splitlines() if line.startswith("gapfe")]
+
+
+def check(name, done, seconds, expected_code, needles):
+    """The launch's outcome against what it should be; a list of failures."""
+    lines = gapfe_lines(done.stderr)
+    print(f"{name}: exit {done.returncode} after {seconds:.1f} s; gapfe said: {lines}")
+    failures = []
+    if done.returncode != expected_code:
+        failures.append(f"{name}: exit status {done.returncode}, expected {expected_code}")
+    if seconds > LIMIT:
+        failures.append(f"{name}: ended {seconds:.1f} s after the failure, more than {LIMIT} s")
+    if len(lines) != 1 or not all(n in lines[0] for n in needles):
+        failures.append(f"{name}: expected one gapfe line naming {needles}, got {lines}")
+    return failures
+
+
+def main():
+    gapfe, mpiexec, work = sys.argv[1:4]
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+               OMPI_MCA_rmaps_base_oversubscribe="1", OMPI_MCA_mpi_yield_when_idle="1")
+    deck = os.path.join(work, "plastic.deck")  # about 10 s on 2 ranks: room to fail in the middle
+    with open(deck, "w") as f:
+        f.write(deckgen.plastic_tube_deck(ni=61, steps=40))
+    missing = os.path.join(work, "missing.deck")
+    run = ["run", "--solver", "petsc", "--plot", "none", "--quiet"]
+    failures = []
+
+    # One rank's deck cannot be read (MPMD: each rank its own command line).
+    for bad in (1, 0):
+        decks = [deck, deck]
+        decks[bad] = missing
+        cmd = [mpiexec]
+        for rank in (0, 1):
+            cmd += (["-np", "1", gapfe, run[0], decks[rank], "--out", os.path.join(work, f"out_{bad}")] + run[1:] +
+                    ([":"] if rank == 0 else []))
+        start = time.monotonic()
+        done = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=300)
+        failures += check(f"rank {bad} cannot read its deck", done, time.monotonic() - start, 3,
+                          ["gapfe: rank 1: ", "missing.deck"] if bad == 1 else ["gapfe: cannot", "missing.deck"])
+
+    # Failures every rank meets before MPI starts stay one line: a deck no rank can read, a bad option, a
+    # launch of several ranks without solver = petsc.
+    for name, args, code, needles in [
+            ("no rank can read its deck", ["run", missing, "--out", os.path.join(work, "out_all")] + run[1:], 3,
+             ["gapfe: cannot", "missing.deck"]),
+            ("a bad option on every rank", ["run", deck, "--out", os.path.join(work, "out_all"), "--bogus"], 64,
+             ["gapfe: ", "--bogus"]),
+            ("several ranks without PETSc", ["run", deck, "--out", os.path.join(work, "out_all"), "--quiet"], 1,
+             ["gapfe: ", "petsc"])]:
+        start = time.monotonic()
+        done = subprocess.run([mpiexec, "-np", "2", gapfe] + args, env=env, capture_output=True, text=True,
+                              timeout=300)
+        failures += check(name, done, time.monotonic() - start, code, needles)
+
+    # Rank 0's output folder replaced by a file in the middle of the run.
+    out = os.path.join(work, "out_mid")
+    cmd = [mpiexec, "-np", "2", gapfe, run[0], deck, "--out", out] + run[1:]
+    launch = subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    while not os.path.exists(os.path.join(out, "step_0002.vtu")) and launch.poll() is None:
+        if time.monotonic() > deadline:
+            launch.kill()
+            break
+        time.sleep(0.02)
+    if launch.poll() is not None:
+        failures.append(f"the run ended (exit {launch.returncode}) before its folder could be taken away")
+    else:
+        os.rename(out, out + ".taken")
+        with open(out, "w") as f:
+            f.write("not a folder\n")
+        start = time.monotonic()
+        stdout, stderr = launch.communicate(timeout=300)
+        done = subprocess.CompletedProcess(cmd, launch.returncode, stdout, stderr)
+        failures += check("the output folder taken away", done, time.monotonic() - start, 3, ["out_mid"])
+
+    for f in failures:
+        print("FAIL", f)
+    print("every launch ended with its failed rank's message" if not failures else f"{len(failures)} failure(s)")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
