@@ -21,10 +21,16 @@ int main(int argc, char** argv) {
   program::keep_freed_memory();
   std::vector<std::string> args(argv + 1, argv + argc);
   gapfe::app::Process process;
-  process.progress    = isatty(STDERR_FILENO) != 0;
-  process.large_model = [argv] { program::use_huge_pages(argv); };
+  process.progress = isatty(STDERR_FILENO) != 0;
 #ifdef GAPFE_HAS_PETSC
-  program::Launch launch(argv[0], gapfe::app::launcher_ranks().second);
+  // A launch of several processes starts MPI before it reads the deck (app/launch.hpp), and a process
+  // cannot re-execute itself once MPI has started: it takes its huge pages at the start instead.
+  const int launch_size = gapfe::app::launcher_ranks().second;
+  if (launch_size > 1) program::use_huge_pages(argv);
+  program::Launch launch(argv[0], launch_size, !program::switched_off("GAPFE_RANK_LISTENER"));
+  process.large_model = [&launch, argv] {
+    if (!launch.mpi_up()) program::use_huge_pages(argv);
+  };
   process.start_mpi = [&](const std::vector<std::string>& options) { return launch.start(options); };
   process.failing   = [&] { launch.failing(); };
   process.failed    = [&](int code, const std::string& line) { launch.failed(code, line); };
@@ -35,6 +41,7 @@ int main(int argc, char** argv) {
   std::cout.flush();
   return launch.finish(code);
 #else
+  process.large_model = [argv] { program::use_huge_pages(argv); };
   return gapfe::app::command(args, std::cout, std::cerr, process);
 #endif
 }

@@ -9,9 +9,12 @@
 // would wait in their next collective call for ever. So a rank that fails sends its exit code and its
 // one-line message to every other rank, and a thread of each rank listens for them: a rank that has neither
 // failed nor finished kGrace after such a notice is waiting for the failed one, and ends the launch
-// (MPI_Abort with the failed rank's exit code), rank 0 printing the lowest failed rank's message first.
-// Where MPI cannot give a listening thread (MPI_THREAD_MULTIPLE), a failed rank waits for the others at
-// most kBackstop and then aborts the launch, as before the listener.
+// (MPI_Abort with the failed rank's exit code), rank 0 printing the lowest failed rank's message first and
+// recording it in the run's folder; the other ranks give rank 0 the time to. Where MPI cannot give a
+// listening thread (MPI_THREAD_MULTIPLE), or GAPFE_RANK_LISTENER=0 turns it off (Open MPI's older
+// InfiniBand transport does not run under MPI_THREAD_MULTIPLE), a failed rank waits for the others at most
+// kBackstop and then aborts the launch. The command starts MPI before a run reads its deck
+// (app/launch.hpp, start_launch), so that a rank that cannot read it is heard.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -36,25 +39,39 @@ class Launch {
   /// How long a notice may stand before a rank that has not failed ends the launch. Ranks that fail alike
   /// (the usual case) fail within the same collective call; this covers the time a rank needs to get from
   /// there to its own notice.
-  static constexpr auto kGrace    = std::chrono::milliseconds(500);
-  static constexpr auto kBackstop = std::chrono::minutes(2);
+  static constexpr auto kGrace = std::chrono::milliseconds(500);
+  /// A rank other than 0 waits longer when the failure is not rank 0's, so that rank 0, which speaks and
+  /// writes, ends the launch when it is waiting too.
+  static constexpr auto kGraceNotZero = std::chrono::milliseconds(2000);
+  static constexpr auto kBackstop     = std::chrono::minutes(2);
 
   // -skip_petscrc: PETSc's options come from the command line and PETSC_OPTIONS only, never from a
   // petscrc in the working or home folder (running in someone else's case folder would adopt its
   // options: a solver, or -log_view :FILE writing over FILE); -options_file FILE still names one.
-  Launch(const char* program, int launch_size)
-      : words_{program, "-skip_petscrc"}, launch_size_(launch_size) {}
+  /// `launch_size`: the processes of this launch (app::launcher_ranks); `listen`: whether a launch of
+  /// several may have its listening thread.
+  Launch(const char* program, int launch_size, bool listen)
+      : words_{program, "-skip_petscrc"}, listen_(listen && launch_size > 1) {}
   Launch(const Launch&)            = delete;
   Launch& operator=(const Launch&) = delete;
 
   /// Starts MPI (with a listening thread where it can) and PETSc, once; this rank and the number of ranks.
+  /// A second call is the partitioned run's (app/launch.hpp, partition()): from there on the ranks meet in
+  /// collective calls, so a rank that goes on running after another failed is one that waits.
   std::pair<int, int> start(const std::vector<std::string>& options) {
-    if (started_) return {rank_, size_};
+    if (started_) {
+      collective_ = true;
+      return {rank_, size_};
+    }
+    if (mpi_up_)
+      throw std::runtime_error("PETSc did not start");  // a second try after PetscInitialize failed
     int argc     = 0;
     char** argv  = nullptr;
     int provided = MPI_THREAD_SINGLE;
-    if (MPI_Init_thread(&argc, &argv, MPI_THREAD_MULTIPLE, &provided) != MPI_SUCCESS)
+    if (MPI_Init_thread(&argc, &argv, listen_ ? MPI_THREAD_MULTIPLE : MPI_THREAD_SINGLE, &provided) !=
+        MPI_SUCCESS)
       throw std::runtime_error("MPI_Init_thread failed");
+    mpi_up_ = true;
     words_.insert(words_.end(), options.begin(), options.end());
     for (auto& w : words_) pointers_.push_back(w.data());
     pointers_.push_back(nullptr);
@@ -67,10 +84,13 @@ class Launch {
     MPI_Comm_dup(MPI_COMM_WORLD, &notices_);  // and the failures'
     MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
     MPI_Comm_size(MPI_COMM_WORLD, &size_);
-    if (provided >= MPI_THREAD_MULTIPLE && size_ > 1) listener_ = std::thread([this] { listen(); });
-    if (failure_) notify();  // a failure before MPI started (finish())
+    if (listen_ && provided >= MPI_THREAD_MULTIPLE && size_ > 1)
+      listener_ = std::thread([this] { listen(); });
     return {rank_, size_};
   }
+
+  /// Whether MPI has started (a process may no longer re-execute itself).
+  bool mpi_up() const { return mpi_up_; }
 
   /// This rank's run has failed and is closing its files: it is no longer one that waits for the others.
   void failing() { state_ = kFailed; }
@@ -88,20 +108,15 @@ class Launch {
     if (started_) notify();
   }
 
-  /// The worst exit code of all ranks, then PETSc and MPI end. A launch of several ranks where this one
-  /// failed before MPI started (the deck, the command line) starts MPI here, so that the others hear of it.
+  /// The worst exit code of all ranks, then PETSc and MPI end. Rank 0 says why when another rank failed
+  /// and it did not (the failed rank's line, which only rank 0 prints).
   int finish(int code) {
-    if (!started_ && code != 0 && launch_size_ > 1) {
-      if (!failure_) failure_ = Notice{code, std::string()};
-      try {
-        start({});
-      } catch (const std::exception&) {  // MPI will not start: the launcher ends the others
-        return code;
-      }
+    state_ = code != 0 ? kFailed : kDone;
+    if (!started_) {
+      if (mpi_up_) MPI_Abort(MPI_COMM_WORLD, code != 0 ? code : 1);  // PETSc did not start: nothing agrees
+      return code;
     }
-    if (!started_) return code;
     if (code != 0 && !failure_) failed(code, std::string());
-    if (code == 0 && state_ == kRunning) state_ = kDone;
     int worst           = code;
     MPI_Request request = MPI_REQUEST_NULL;
     MPI_Iallreduce(&code, &worst, 1, MPI_INT, MPI_MAX, codes_, &request);
@@ -109,7 +124,7 @@ class Launch {
     for (int done = 0;;) {
       MPI_Test(&request, &done, MPI_STATUS_IGNORE);
       if (done) break;
-      if (code != 0 && !listener_.joinable() && std::chrono::steady_clock::now() > deadline) {
+      if (code != 0 && std::chrono::steady_clock::now() > deadline) {
         std::fprintf(
             stderr, "gapfe: rank %d failed and the other ranks did not finish: aborting the launch\n", rank_);
         MPI_Abort(MPI_COMM_WORLD, code);
@@ -117,6 +132,8 @@ class Launch {
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
     end_listening();
+    if (rank_ == 0 && worst != 0 && !failure_ && heard_from_ >= 0)
+      std::fprintf(stderr, "gapfe: %s\n", heard_line().c_str());
     MPI_Comm_free(&codes_);
     MPI_Comm_free(&notices_);
     PetscFinalize();
@@ -166,7 +183,9 @@ class Launch {
         MPI_Irecv(in.data(), kNoticeBytes, MPI_CHAR, MPI_ANY_SOURCE, kTag, notices_, &request);
         continue;
       }
-      if (since && state_ == kRunning && std::chrono::steady_clock::now() - *since > kGrace) end_launch();
+      const auto grace = rank_ == 0 || heard_from_ == 0 ? kGrace : kGraceNotZero;
+      if (since && state_ == kRunning && collective_ && std::chrono::steady_clock::now() - *since > grace)
+        end_launch();
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
     MPI_Cancel(&request);
@@ -189,14 +208,11 @@ class Launch {
   }
 
   /// Rank 0 says why (the lowest failed rank's line, naming that rank) and records it in the run's
-  /// folder, then every rank ends.
+  /// folder, then every rank ends. Rank 0 did not end the launch in time when another rank gets here and
+  /// the failure is not rank 0's (rank 0 busy, writing): the lowest rank that did not fail says it then.
   [[noreturn]] void end_launch() {
-    std::string line       = heard_.line;
-    const std::string head = "gapfe: ";
-    if (line.rfind(head, 0) == 0) line.erase(0, head.size());
-    if (line.empty()) line = "failed (exit status " + std::to_string(heard_.code) + ")";
-    line = "rank " + std::to_string(heard_from_) + ": " + line;
-    if (rank_ == 0) {
+    const std::string line = heard_line();
+    if (rank_ == 0 || (heard_from_ != 0 && rank_ == (heard_from_ == 1 ? 2 : 1))) {
       std::fprintf(stderr, "gapfe: %s\n", line.c_str());
       std::fflush(stderr);
     }
@@ -206,6 +222,15 @@ class Launch {
     }
     MPI_Abort(MPI_COMM_WORLD, heard_.code != 0 ? heard_.code : 1);
     std::abort();  // not reached: MPI_Abort does not return
+  }
+
+  /// The lowest failed rank's line, naming the rank: "rank 1: cannot open the deck ...".
+  std::string heard_line() const {
+    std::string line       = heard_.line;
+    const std::string head = "gapfe: ";
+    if (line.rfind(head, 0) == 0) line.erase(0, head.size());
+    if (line.empty()) line = "failed (exit status " + std::to_string(heard_.code) + ")";
+    return "rank " + std::to_string(heard_from_) + ": " + line;
   }
 
   /// Every rank is in finish(): stops the listener and receives the notices still on their way, so that no
@@ -220,21 +245,21 @@ class Launch {
       for (int to = 0; to < size_; ++to) sent[static_cast<std::size_t>(to)] = to != rank_;
     MPI_Allreduce(sent.data(), coming.data(), size_, MPI_INT, MPI_SUM, notices_);
     std::vector<char> in(kNoticeBytes);
-    for (int k = received_; k < coming[static_cast<std::size_t>(rank_)]; ++k) {
+    while (received_ < coming[static_cast<std::size_t>(rank_)]) {
       MPI_Status status;
       MPI_Recv(in.data(), kNoticeBytes, MPI_CHAR, MPI_ANY_SOURCE, kTag, notices_, &status);
+      keep(in, status);
     }
     MPI_Waitall(static_cast<int>(sends_.size()), sends_.data(), MPI_STATUSES_IGNORE);
   }
 
   std::vector<std::string> words_;
   std::vector<char*> pointers_;
-  int launch_size_ = 1;
-  bool started_ = false, notified_ = false;
+  bool listen_ = false, mpi_up_ = false, started_ = false, notified_ = false;
   int rank_ = 0, size_ = 1;
   MPI_Comm codes_ = MPI_COMM_NULL, notices_ = MPI_COMM_NULL;
   std::atomic<int> state_{kRunning};
-  std::atomic<bool> stop_{false};
+  std::atomic<bool> stop_{false}, collective_{false};
   std::thread listener_;
   std::optional<Notice> failure_;  // this rank's
   std::vector<char> buffer_;       // its notice, while it is sent

@@ -6,6 +6,7 @@
 //   GAPFE_OPENMP_INLINE=0  OpenMP parallel regions get their teams again (openmp_teams, GOMP_parallel below)
 //   GAPFE_KEEP_MEMORY=0    malloc keeps glibc's default thresholds (keep_freed_memory)
 //   GAPFE_HUGE_PAGES=0     no re-execution with huge pages for large models (use_huge_pages)
+//   GAPFE_RANK_LISTENER=0  an MPI launch without its listening thread (mpi_launch.hpp)
 //
 // Only the program defines OpenMP symbols; the library never does. Included once, by main.cpp.
 #include <cstdlib>

@@ -34,8 +34,8 @@ struct Process {
   bool progress = false;              ///< draw a step counter on the error stream (a terminal)
   std::function<void()> large_model;  ///< called for large models (kLargeModel); may not return
   StartMpi start_mpi;                 ///< starts MPI and PETSc for solver = petsc
-  /// A run on this rank has failed and is closing its files (rank 0 of a partitioned run, which writes
-  /// them): it no longer waits for the other ranks (docs/cluster.md "When a rank fails").
+  /// A run on this rank has failed and is closing its files (rank 0 of a partitioned run writes them): it
+  /// no longer waits for the other ranks (docs/cluster.md "When a rank fails").
   std::function<void()> failing;
   /// The command has failed with this exit code and this one-line message, which rank 0 prints: called
   /// on every rank of a launch, so that a rank that failed alone can say why.

@@ -18,6 +18,7 @@
 #include "gapfe/app/command_line.hpp"
 #include "gapfe/app/error_bars.hpp"
 #include "gapfe/app/explain.hpp"
+#include "gapfe/app/launch.hpp"
 #include "gapfe/app/pictures.hpp"
 #include "gapfe/app/plan.hpp"
 #include "gapfe/app/plot_command.hpp"
@@ -36,12 +37,8 @@
 #include "gapfe/input/scene_file.hpp"
 #endif
 #include "gapfe/core/workers.hpp"
-#include "gapfe/mesh/cell_partition.hpp"
 #include "gapfe/solver/threads.hpp"
 #include "gapfe/version.hpp"
-#ifdef GAPFE_HAS_PETSC
-#include "gapfe/solver/petsc_subdomain.hpp"
-#endif
 
 namespace gapfe::app {
 
@@ -79,58 +76,6 @@ inline bool combines(const Plan& p, const ModelDescription& d, const Scene& s) {
   }
 }
 
-/// The process checks of a run: a launch of several processes needs solver = petsc, PETSc's options too,
-/// and solver = petsc a program that starts MPI.
-inline void check_process(const Args& a, const Plan& p, int launch_size, const StartMpi& start_mpi) {
-  check_solver_built(p.solver);
-  if (p.solver != SolverChoice::petsc) {
-    if (launch_size > 1)
-      throw InputError(
-          "gapfe run started as " + std::to_string(launch_size) +
-          " processes (mpirun) with solver = " + std::string(name_of(p.solver)) +
-          ", which solves on one process (each would write the same files): give --solver petsc");
-    if (!a.petsc_options.empty())
-      throw InputError("the PETSc option " + a.petsc_options.front() +
-                       " needs solver = petsc (--solver petsc)");
-  } else if (!start_mpi) {
-    throw InputError(
-        "solver = petsc: MPI and PETSc are started by the program, and this one does not (the gapfe "
-        "command does)");
-  }
-}
-
-/// A partitioned run: MPI and PETSc start here (the deck was read and checked on every process, so bad
-/// input fails alike everywhere before any collective call); this process keeps its part of the scene,
-/// and the log lists every rank's share. Returns this process's rank.
-inline int partition(const Args& a, const Scene& s, const StartMpi& start_mpi, std::optional<ScenePart>& part,
-                     std::ostream& log) {
-#ifdef GAPFE_HAS_PETSC
-  const auto [rank, ranks] = start_mpi(a.petsc_options);
-  auto piece = mesh_part(s.mesh, partition_cells(s.mesh, ranks), ranks, rank, pair_nodes(s.gaps.pairs));
-  std::vector<double> counts(3 * static_cast<std::size_t>(ranks), 0.0);  // cells, owned nodes, ghosts
-  counts[static_cast<std::size_t>(3 * rank)] =
-      static_cast<double>(piece.mesh.cells.size() + piece.mesh.triangles.size());
-  counts[static_cast<std::size_t>(3 * rank + 1)] = piece.layout.owned_nodes;
-  counts[static_cast<std::size_t>(3 * rank + 2)] = static_cast<double>(piece.layout.ghost_part.size());
-  auto pairs                                     = part_pairs(piece.layout, s.gaps.pairs);
-  auto domain = std::make_shared<const PetscSubdomain>(std::move(piece.layout));
-  domain->sum(counts.data(), static_cast<int>(counts.size()));
-  log << "partition: " << ranks
-      << " rank(s), recursive coordinate bisection of the cells; cells / nodes owned / "
-      << "ghost nodes per rank:";
-  for (int k = 0; k < ranks; ++k)
-    log << (k ? "," : "") << " " << static_cast<long long>(counts[static_cast<std::size_t>(3 * k)]) << " / "
-        << static_cast<long long>(counts[static_cast<std::size_t>(3 * k + 1)]) << " / "
-        << static_cast<long long>(counts[static_cast<std::size_t>(3 * k + 2)]);
-  log << "\n";
-  part.emplace(ScenePart{std::move(piece.mesh), std::move(pairs), std::move(domain)});
-  return rank;
-#else
-  (void)a, (void)s, (void)start_mpi, (void)part, (void)log;
-  throw InputError("solver = petsc: this gapfe was built without PETSc");
-#endif
-}
-
 /// The files a run wrote, in the log (the pictures rasterized with --png), and the load-displacement curve
 /// of history.csv for a run of several steps.
 inline void list_files(const Args& a, const Plan& p, const ModelDescription& d, const RunResult& r,
@@ -148,23 +93,6 @@ inline void list_files(const Args& a, const Plan& p, const ModelDescription& d, 
     log << "wrote " << picture << (a.png && rasterize(picture) ? " and its .png" : "") << "\n";
   if (!r.pictures_skipped.empty()) log << "pictures not drawn: " << r.pictures_skipped << "\n";
 }
-
-/// Hands the program, while a run writes its folder, what to record there should the program end the launch
-/// from outside this rank's work (Process::on_ended); withdraws it when the run is over.
-struct EndedRecord {
-  const Process& process;
-  const bool active;
-  EndedRecord(const Process& p, bool writes, const std::string& dir, const std::string& what)
-      : process(p), active(writes && p.on_ended) {
-    if (active)
-      process.on_ended([dir, what](const std::string& why) { RunFolder::record_stopped(dir, what, why); });
-  }
-  ~EndedRecord() {
-    if (active) process.on_ended({});
-  }
-  EndedRecord(const EndedRecord&)            = delete;
-  EndedRecord& operator=(const EndedRecord&) = delete;
-};
 
 /// `gapfe run`, after the plan was explained: the process checks, the partition, the run folder, the run,
 /// the report and the record of the folder's run.
@@ -382,6 +310,7 @@ int command(const std::vector<std::string>& args, std::ostream& out_stream, std:
     return code;
   };
   try {
+    start_launch(a, process);
     return a.command == "plot" ? plot(a, out, err) : command_steps::execute(a, out, err, process);
   } catch (const InputError& e) {
     return fail(input, "error in " + input_name + ": ", e.what());

@@ -172,7 +172,8 @@ inline std::string help_text(const std::string& command) {
          "cannot be read or written, or memory ran out; 64 a bad command line\n"
          "environment (docs/process.md): GAPFE_OPENMP_INLINE=0 gives OpenMP regions their teams, "
          "GAPFE_KEEP_MEMORY=0 leaves malloc's thresholds alone, GAPFE_HUGE_PAGES=0 skips the re-execution "
-         "with huge pages for large models\n";
+         "with huge pages for large models, GAPFE_RANK_LISTENER=0 runs an MPI launch without the thread that "
+         "ends it when one rank fails alone (docs/cluster.md)\n";
     return s;
   }
   for (const CommandSpec& c : kCommands)
