@@ -20,7 +20,7 @@ thread, two minutes, then an abort that did not say why. On 2 ranks unless said:
 Each must end within LIMIT seconds (the listener's grace is 0.5 s, 2 s on ranks other than 0; the limit
 allows a busy machine and MPI's start-up), with the exit status of the failure (3: a file), and the one line
 gapfe prints for it must appear once (mpirun adds its own lines about the abort). A launch that does not end
-is killed with its processes and counts as a failure. Exit status 0 when all pass."""
+is killed with its processes and counts as a failure. Exit status 0 when all pass (tests/checks.py)."""
 import os
 import shutil
 import signal
@@ -32,6 +32,7 @@ sys.dont_write_bytecode = True
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "bench"))
 import deckgen  # noqa: E402
+from checks import check, finish  # noqa: E402
 
 LIMIT = 8.0  # seconds for the launch, MPI's start included (the listener's grace is 0.5-2 s)
 
@@ -57,18 +58,14 @@ def gapfe_lines(text):
     return [line for line in text.splitlines() if line.startswith("gapfe")]
 
 
-def check(name, done, seconds, expected_code, needles):
-    """The launch's outcome against what it should be; a list of failures."""
+def check_launch(name, done, seconds, expected_code, needles):
+    """The launch's outcome against what it should be (tests/checks.py's tally)."""
     lines = gapfe_lines(done.stderr)
     print(f"{name}: exit {done.returncode} after {seconds:.1f} s; gapfe said: {lines}")
-    failures = []
-    if done.returncode != expected_code:
-        failures.append(f"{name}: exit status {done.returncode}, expected {expected_code}")
-    if seconds > LIMIT:
-        failures.append(f"{name}: ended {seconds:.1f} s after the failure, more than {LIMIT} s")
-    if len(lines) != 1 or not all(n in lines[0] for n in needles):
-        failures.append(f"{name}: expected one gapfe line naming {needles}, got {lines}")
-    return failures
+    check(done.returncode == expected_code, f"{name}: exit status {done.returncode}, expected {expected_code}")
+    check(seconds <= LIMIT, f"{name}: ended {seconds:.1f} s after the failure, more than {LIMIT} s")
+    check(len(lines) == 1 and all(n in lines[0] for n in needles),
+          f"{name}: expected one gapfe line naming {needles}, got {lines}")
 
 
 def main():
@@ -84,7 +81,6 @@ def main():
         f.write(deckgen.plastic_tube_deck(ni=61, steps=200))
     missing = os.path.join(work, "missing.deck")
     run = ["run", "--solver", "petsc", "--plot", "none", "--quiet"]
-    failures = []
 
     # One rank's deck cannot be read (MPMD: each rank its own command line).
     for bad, ranks in ((1, 2), (0, 2), (1, 3)):
@@ -96,7 +92,7 @@ def main():
                     ([":"] if rank < ranks - 1 else []))
         start = time.monotonic()
         done = ended(launch(cmd, env), cmd, 120)
-        failures += check(f"rank {bad} of {ranks} cannot read its deck", done, time.monotonic() - start, 3,
+        check_launch(f"rank {bad} of {ranks} cannot read its deck", done, time.monotonic() - start, 3,
                           ["gapfe: rank 1: ", "missing.deck"] if bad == 1 else ["gapfe: cannot", "missing.deck"])
 
     # Failures every rank meets stay one line: a deck no rank can read (with and without the listening
@@ -112,7 +108,7 @@ def main():
         start = time.monotonic()
         cmd = [mpiexec, "-np", "2", gapfe] + args
         done = ended(launch(cmd, dict(env, **more)), cmd, 120)
-        failures += check(name, done, time.monotonic() - start, code, needles)
+        check_launch(name, done, time.monotonic() - start, code, needles)
 
     # Rank 0's output folder replaced by a file in the middle of the run.
     out = os.path.join(work, "out_mid")
@@ -125,20 +121,17 @@ def main():
         time.sleep(0.02)
     if running.poll() is not None or time.monotonic() > deadline:
         done = ended(running, cmd, 1)
-        failures.append(f"the run ended (exit {done.returncode}) before its folder could be taken away")
+        check(False, f"the run ended (exit {done.returncode}) before its folder could be taken away")
     else:
         os.rename(out, out + ".taken")
         with open(out, "w") as f:
             f.write("not a folder\n")
         start = time.monotonic()
         done = ended(running, cmd, 120)
-        failures += check("the output folder taken away", done, time.monotonic() - start, 3, ["out_mid"])
+        check_launch("the output folder taken away", done, time.monotonic() - start, 3, ["out_mid"])
 
-    for f in failures:
-        print("FAIL", f)
-    print("every launch ended with its failed rank's message" if not failures else f"{len(failures)} failure(s)")
-    return 1 if failures else 0
+    finish("rank failures: ")
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    main()
