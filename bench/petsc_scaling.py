@@ -6,10 +6,12 @@
 
 What a user runs is timed: the whole `gapfe run` command, each rank under GNU time (wall seconds and peak
 resident memory, %M), reading the deck, meshing, partitioning, assembling, factorizing or iterating,
-solving, gathering to rank 0 and writing every file. Problems: bench/deckgen.py's Lame tube (a = 100,
+solving and writing every file (each rank its own part, docs/cluster.md "Output"). Problems: bench/deckgen.py's Lame tube (a = 100,
 b = 200 mm, plane strain, bore pressure 100 MPa as BC-card ring forces), legacy element, `$ fields = wide`:
   1e6   708 x 707 grid    999,696 equations
   4e6  1415 x 1414 grid  4,001,620 equations
+With --gathered, every run of several ranks also with `--set output_parts=gathered` (rank 0 gathers every
+result and writes the whole mesh's files, as before the ranks wrote their own parts).
 Solvers (PETSc's options on the command line):
   direct     the default: -ksp_type preonly -pc_type cholesky -pc_factor_mat_solver_type mumps
   iterative  -ksp_type cg -pc_type gamg (with the axisymmetric near-null space; rtol 1e-10 on the true
@@ -17,12 +19,13 @@ Solvers (PETSc's options on the command line):
 and, for reference in the same session, the serial CHOLMOD run of the same deck (one process, no MPI).
 The runs are interleaved (each round runs every configuration once) and the table gives medians over the
 rounds, with rank 0's phases from the command's log (setup includes partitioning and PETSc's analysis).
-Accuracy: every run's bore u_r against Lame's (the log's nodes.csv row of node 1).
+Accuracy: every run's bore u_r against Lame's (node 1's row of nodes.csv, or of the part's nodes_pK.csv).
 
 --write FILE replaces the text between `<!-- petsc_scaling: begin -->` and `<!-- petsc_scaling: end -->`.
 Exit status 0, or 2 when a run fails (its log is named)."""
 import argparse
 import datetime
+import glob
 import os
 import platform
 import re
@@ -74,10 +77,18 @@ def phases(text):
 
 
 def bore_displacement(out_dir):
-    with open(os.path.join(out_dir, "nodes.csv")) as f:
-        header = f.readline().strip().split(",")
-        row = f.readline().strip().split(",")
-    return float(row[header.index("u_r")])
+    """Node 1's u_r, from nodes.csv or from the part's nodes_pK.csv that holds it (a run of several ranks)."""
+    for path in [os.path.join(out_dir, "nodes.csv")] + sorted(glob.glob(os.path.join(out_dir, "nodes_p*.csv"))):
+        if not os.path.exists(path):
+            continue
+        with open(path) as f:
+            header = f.readline().strip().split(",")
+            node, u_r = header.index("node"), header.index("u_r")
+            for line in f:
+                row = line.split(",")
+                if row[node] == "1":
+                    return float(row[u_r])
+    raise SystemExit(f"petsc_scaling: no table in {out_dir} holds node 1")
 
 
 def main():
@@ -88,6 +99,9 @@ def main():
     ap.add_argument("--solvers", default="direct,iterative")
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--serial", action="store_true", help="also the serial CHOLMOD run, for reference")
+    ap.add_argument("--gathered", action="store_true",
+                    help="also every run of several ranks with output_parts = gathered (rank 0 gathers and "
+                         "writes the whole mesh's files), against the default pieces")
     ap.add_argument("--work", default=None)
     ap.add_argument("--write", default=None)
     args = ap.parse_args()
@@ -108,11 +122,15 @@ def main():
             for n in map(int, args.ranks.split(",")):
                 prefix = ["mpirun", "--oversubscribe", "-np", str(n)]
                 configs.append((size, solver, n, prefix, ["--solver", "petsc"] + SOLVERS[solver], deck))
+                if args.gathered and n > 1:
+                    configs.append((size, solver + ", gathered", n, prefix,
+                                    ["--solver", "petsc", "--set", "output_parts=gathered"] + SOLVERS[solver], deck))
     results = {}
     for rnd in range(args.repeats):
         for size, solver, n, prefix, suffix, deck in configs:
-            out = os.path.join(work, f"out_{size}_{solver}_{n}")
-            log = os.path.join(work, f"log_{size}_{solver}_{n}_{rnd}.txt")
+            label = solver.replace(", ", "_")
+            out = os.path.join(work, f"out_{size}_{label}_{n}")
+            log = os.path.join(work, f"log_{size}_{label}_{n}_{rnd}.txt")
             times = log + ".time"
             cmd = prefix + ["/usr/bin/time", "-a", "-o", times, "-f", "TIME %e %M", gapfe, "run", deck, "--out",
                             out, "--plot", "none"] + suffix

@@ -287,6 +287,13 @@ def output_folders():
     (out / "result.pvd").write_text('<?xml version="1.0"?>\n<VTKFile type="Collection"><Collection>'
                                    '<DataSet timestep="1" file="../precious.txt"/></Collection></VTKFile>\n')
     refused(["plot", out], 3, "result.pvd lists '../precious.txt'")
+    # A partitioned run's parallel file: its pieces are held to the same rule.
+    (out / "result.pvd").write_text('<?xml version="1.0"?>\n<VTKFile type="Collection"><Collection>'
+                                   '<DataSet timestep="1" file="step_0001.pvtu"/></Collection></VTKFile>\n')
+    (out / "step_0001.pvtu").write_text('<?xml version="1.0"?>\n<VTKFile type="PUnstructuredGrid">'
+                                       '<PUnstructuredGrid><Piece Source="../precious.txt"/></PUnstructuredGrid>'
+                                       '</VTKFile>\n')
+    refused(["plot", out], 3, "step_0001.pvtu lists '../precious.txt'")
 
 
 # ---- control characters and bytes that are not UTF-8 in a title

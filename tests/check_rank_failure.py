@@ -12,8 +12,11 @@ thread, two minutes, then an abort that did not say why. On 2 ranks unless said:
     went on to the partitioned run, ends the launch and prints rank 1's message; on 3 ranks too, where rank
     2 leaves the ending to rank 0;
   * rank 0 cannot read its deck: it prints its own message and the launch ends;
-  * rank 0's output folder is taken away in the middle of a run (replaced by a file): rank 0 cannot write
-    the next increment, which every rank then fails with (the writes are agreed);
+  * rank 1 is given an output folder that is not there: it cannot open its part's files, and every rank
+    fails with its message;
+  * the output folder is taken away in the middle of a run (replaced by a file): no rank can write its part
+    of the next increment (each writes its own, docs/cluster.md "Output"), and every rank fails with the
+    lowest one's message (the writes are agreed);
   * failures every rank meets (no rank can read the deck, with and without the listening thread; a bad
     option; several ranks without solver = petsc) still print one line and end normally.
 
@@ -95,6 +98,15 @@ def main():
         check_launch(f"rank {bad} of {ranks} cannot read its deck", done, time.monotonic() - start, 3,
                           ["gapfe: rank 1: ", "missing.deck"] if bad == 1 else ["gapfe: cannot", "missing.deck"])
 
+    # Rank 1 is given a folder that is not there (as on a node that does not share rank 0's): it cannot open
+    # its part's files, and every rank fails with its message (opening them is agreed).
+    cmd = [mpiexec, "-np", "1", gapfe, run[0], deck, "--out", os.path.join(work, "out_shared")] + run[1:] + \
+          [":", "-np", "1", gapfe, run[0], deck, "--out", os.path.join(work, "nowhere", "out")] + run[1:]
+    start = time.monotonic()
+    done = ended(launch(cmd, env), cmd, 120)
+    check_launch("rank 1's folder is not there", done, time.monotonic() - start, 3,
+                 ["gapfe: ", "nowhere/out/nodes_p1.csv"])
+
     # Failures every rank meets stay one line: a deck no rank can read (with and without the listening
     # thread), a bad option, a launch of several ranks without solver = petsc.
     out_all = os.path.join(work, "out_all")
@@ -110,12 +122,12 @@ def main():
         done = ended(launch(cmd, dict(env, **more)), cmd, 120)
         check_launch(name, done, time.monotonic() - start, code, needles)
 
-    # Rank 0's output folder replaced by a file in the middle of the run.
+    # The output folder replaced by a file in the middle of the run.
     out = os.path.join(work, "out_mid")
     cmd = [mpiexec, "-np", "2", gapfe, run[0], deck, "--out", out] + run[1:]
     running = launch(cmd, env)
     deadline = time.monotonic() + 120
-    while not os.path.exists(os.path.join(out, "step_0002.vtu")) and running.poll() is None:
+    while not os.path.exists(os.path.join(out, "step_0002.pvtu")) and running.poll() is None:
         if time.monotonic() > deadline:
             break
         time.sleep(0.02)

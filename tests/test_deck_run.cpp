@@ -1634,6 +1634,39 @@ TEST_CASE("[vtu] read_vtu reads back a run's files: every array equals the table
   CHECK(detail::nice_ticks(1.0, 1.0 + 2.2e-16, 6).size() <= 14);
 }
 
+TEST_CASE(
+    "[vtu] a partitioned run's .pvtu: its pieces in order, joined into one mesh; its files are a run's") {
+  const std::string pvtu =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" version=\"0.1\">\n<PUnstructuredGrid "
+      "GhostLevel=\"0\">\n<Piece Source=\"step_0002_p0.vtu\"/>\n<Piece Source=\"step_0002_p1.vtu\"/>\n"
+      "</PUnstructuredGrid>\n</VTKFile>\n";
+  CHECK(read_pvtu(pvtu, "s.pvtu") == std::vector<std::string>{"step_0002_p0.vtu", "step_0002_p1.vtu"});
+  CHECK_THROWS_WITH_AS(read_pvtu("<VTKFile type=\"PUnstructuredGrid\"></VTKFile>", "s.pvtu"),
+                       doctest::Contains("s.pvtu: no Piece"), InputError);
+  CHECK_THROWS_WITH_AS(read_pvtu("<VTKFile type=\"PUnstructuredGrid\"><Piece/>", "s.pvtu"),
+                       doctest::Contains("s.pvtu: a Piece without a Source"), InputError);
+  // Two triangles sharing an edge, one per piece: the shared nodes twice, the second piece's cell renumbered.
+  VtuData a, b;
+  a.points = {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)}, a.cells = {{0, 1, 2}};
+  b.points = {Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)}, b.cells = {{0, 1, 2}};
+  a.point_data = {{"node", 1, {1, 2, 3}, true}}, b.point_data = {{"node", 1, {2, 4, 3}, true}};
+  a.cell_data = {{"element", 1, {1}, true}}, b.cell_data = {{"element", 1, {2}, true}};
+  const VtuData whole = join_pieces({a, b}, "s.pvtu");
+  CHECK(whole.points.size() == 6);
+  CHECK(whole.cells == std::vector<std::vector<int>>{{0, 1, 2}, {3, 4, 5}});
+  CHECK(whole.point("node")->values == std::vector<double>{1, 2, 3, 2, 4, 3});
+  CHECK(whole.cell("element")->values == std::vector<double>{1, 2});
+  b.cell_data[0].name = "material";
+  CHECK_THROWS_WITH_AS(join_pieces({a, b}, "s.pvtu"),
+                       doctest::Contains("s.pvtu: piece 2 has other cell arrays than the first"), InputError);
+  // The parts' files are a run's (the next run into the folder removes them); names like them are not.
+  for (const char* name :
+       {"step_0001.pvtu", "step_0001_p3.vtu", "nodes_p0.csv", "elements_p12.csv", "reactions_p7.csv"})
+    CHECK_MESSAGE(RunFolder::run_file(name), name);
+  for (const char* name : {"nodes_p.csv", "nodes_px.csv", "nodes_p1.csv.bak", "my.pvtu", "elements_p1a.csv"})
+    CHECK_MESSAGE(!RunFolder::run_file(name), name);
+}
+
 TEST_CASE("[cli] --help on every command, --version, suggestions for misspelt commands and options") {
   for (const char* command : {"run", "mesh", "info", "plot"}) {
     CAPTURE(command);

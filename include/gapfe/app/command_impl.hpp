@@ -77,15 +77,27 @@ inline bool combines(const Plan& p, const ModelDescription& d, const Scene& s) {
 }
 
 /// The files a run wrote, in the log (the pictures rasterized with --png), and the load-displacement curve
-/// of history.csv for a run of several steps.
+/// of history.csv for a run of several steps. `parts`: a partitioned run's processes when each writes its
+/// own part (output/step_files.hpp), else 0.
 inline void list_files(const Args& a, const Plan& p, const ModelDescription& d, const RunResult& r,
-                       std::ostream& log) {
+                       std::ostream& log, int parts = 0) {
   const bool tables = d.options.output_csv != Increments::none,
              fields = d.options.output_vtu != Increments::none;
-  log << "wrote " << a.out << "/" << (tables ? "nodes.csv, elements.csv, reactions.csv, " : "")
-      << (p.gaps ? "gaps.csv, " : "") << (p.plastic && !p.gaps ? "plasticity.csv, " : "")
-      << (a.estimate || a.accuracy > 0 ? "estimates.csv, " : "") << (fields ? "result.pvd, " : "")
-      << "deformed.svg\n";
+  std::vector<std::string> names;
+  if (tables && parts > 0)
+    names.push_back("nodes_pK.csv, elements_pK.csv, reactions_pK.csv (K = 0 to " + std::to_string(parts - 1) +
+                    ", a part each)");
+  else if (tables)
+    names.push_back("nodes.csv, elements.csv, reactions.csv");
+  if (p.gaps) names.push_back("gaps.csv");
+  if (p.plastic && !p.gaps) names.push_back("plasticity.csv");
+  if (a.estimate || a.accuracy > 0) names.push_back("estimates.csv");
+  if (fields)
+    names.push_back(parts > 0 ? "result.pvd (step_NNNN.pvtu of the pieces step_NNNN_pK.vtu)" : "result.pvd");
+  if (r.pictures_skipped.rfind("deformed.svg", 0) != 0) names.push_back("deformed.svg");  // StepFiles::finish
+  log << "wrote " << a.out << "/";
+  for (std::size_t k = 0; k < names.size(); ++k) log << (k > 0 ? ", " : "") << names[k];
+  log << "\n";
   std::vector<std::string> pictures = r.pictures;
   if (d.steps() > 1 && !pictures.empty())  // the load-displacement curve of history.csv
     pictures.push_back(draw_curve(a.out, "u_max", "load_factor", d.title));
@@ -152,7 +164,10 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
   // now, after every check of the request: a run refused before it starts leaves the last run's files.
   const std::string run_what = "gapfe run " + a.deck;
   const bool writes          = launch_rank == 0;
-  if (writes) RunFolder::prepare(a.out, a.overwrite, run_what);
+  // Every rank of a partitioned run waits for it (and fails with it): the ranks then write their parts there.
+  on_every_part(part ? part->subdomain.get() : nullptr, [&] {
+    if (writes) RunFolder::prepare(a.out, a.overwrite, run_what);
+  });
   // Ended from outside (another rank failed alone), the manifest says "stopped" and why, not "running".
   const EndedRecord ended(process, writes, a.out, run_what);
   const auto t0 = Clock::now();
@@ -195,7 +210,9 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
           path_dependent(plan) ? solve_finer_steps(d, s, plan, request.units, log) : std::vector<LevelRun>{};
       report_error_bars(log, a.out, levels, steps);
     }
-    list_files(a, plan, d, result, log);
+    list_files(
+        a, plan, d, result, log,
+        part && part->subdomain->parts() > 1 && !d.options.output_gathered ? part->subdomain->parts() : 0);
   } catch (const std::exception& e) {  // the manifest says the files stop short, and why
     if (writes) RunFolder::record_stopped(a.out, run_what, e.what());
     throw;

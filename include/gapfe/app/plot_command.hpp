@@ -41,9 +41,10 @@ inline int plot(const Args& a, std::ostream& out, std::ostream& err) {
     std::string file = datasets.back().second;
     if (a.step > 0) {
       char name[32];
-      std::snprintf(name, sizeof name, "step_%04d.vtu", a.step);
-      const auto it =
-          std::find_if(datasets.begin(), datasets.end(), [&](const auto& d) { return d.second == name; });
+      std::snprintf(name, sizeof name, "step_%04d", a.step);
+      const auto it = std::find_if(datasets.begin(), datasets.end(), [&](const auto& d) {
+        return d.second == name + std::string(".vtu") || d.second == name + std::string(".pvtu");
+      });
       if (it == datasets.end()) {
         std::string steps;
         for (const auto& d : datasets)
@@ -53,10 +54,24 @@ inline int plot(const Args& a, std::ostream& out, std::ostream& err) {
       }
       file = it->second;
     }
-    if (file.find('/') != std::string::npos || !RunFolder::run_file(file))
-      throw FileError(pvd + " lists '" + file + "', which is not a file a run writes beside it");
-    const VtuData data     = read_vtu(read_input(dir + "/" + file, "VTU file"), dir + "/" + file);
-    const std::string stem = file.substr(0, file.size() - 4);
+    const auto listed = [&](const std::string& name, const std::string& by) {
+      if (name.find('/') != std::string::npos || !RunFolder::run_file(name))
+        throw FileError(by + " lists '" + name + "', which is not a file a run writes beside it");
+      return dir + "/" + name;
+    };
+    const std::string source = listed(file, pvd);
+    VtuData data;
+    if (file.size() > 5 && file.substr(file.size() - 5) == ".pvtu") {  // a partitioned run's pieces, joined
+      std::vector<VtuData> pieces;
+      for (const std::string& piece : read_pvtu(read_input(source, "VTU file"), source)) {
+        const std::string at = listed(piece, source);
+        pieces.push_back(read_vtu(read_input(at, "VTU file"), at));
+      }
+      data = join_pieces(std::move(pieces), source);
+    } else {
+      data = read_vtu(read_input(source, "VTU file"), source);
+    }
+    const std::string stem = file.substr(0, file.rfind('.'));
     for (const std::string& field : a.plots.value_or(std::vector<std::string>{"mises"})) {
       const std::string path = dir + "/plot_" + field + (a.step > 0 ? "_" + stem : std::string()) + ".svg";
       write_field_svg(path, data, plot_field(data, field, units),

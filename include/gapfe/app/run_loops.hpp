@@ -69,7 +69,10 @@ template <class M>
 void run_plastic(const RunRequest& r, RunResult& times) {
   RunFiles files(r);
   FinishFiles finish{r, times, files};
-  PlasticityFile record(r.writes ? &r.dir : nullptr, r.model.step_time());  // plasticity.csv
+  PlasticityFile record(nullptr, r.model.step_time());  // plasticity.csv, on rank 0; opening it is agreed
+  on_every_part(r.part ? r.part->subdomain.get() : nullptr, [&] {
+    if (r.writes) record = PlasticityFile(&r.dir, r.model.step_time());
+  });
   int last_step = 0;
   run_scene_plastic<M>(
       r.model, r.scene,
@@ -95,7 +98,7 @@ void run_plastic(const RunRequest& r, RunResult& times) {
         write_increment(r, times, files, step, inc, fe, {}, {rep.iterations, rep.plastic_points, 0, 0});
       },
       r.part, make_run_solver<typename M::LinearSolver>(r.plan.solver));
-  record.close();
+  on_every_part(r.part ? r.part->subdomain.get() : nullptr, [&] { record.close(); });  // rank 0's, agreed
   finish.now();
 }
 
@@ -127,7 +130,9 @@ void run_contact(const RunRequest& r, RunResult& times) {
   RunFiles files(r);
   FinishFiles finish{r, times, files};
   std::optional<GapFile> gaps;
-  if (r.writes) gaps.emplace(r.dir, r.scene, F::kFriction, r.model.step_time());
+  on_every_part(r.part ? r.part->subdomain.get() : nullptr, [&] {  // gaps.csv on rank 0, agreed
+    if (r.writes) gaps.emplace(r.dir, F::kFriction, r.model.step_time());
+  });
   std::vector<char> outline;  // friction: the nodes on the mesh's outline, for the cone warning's cause
   if constexpr (F::kFriction) {
     outline.assign(static_cast<std::size_t>(r.scene.grid.node_count()), 0);
@@ -158,15 +163,18 @@ void run_contact(const RunRequest& r, RunResult& times) {
         }
         // The pairs in the whole mesh's numbering (a part's are renumbered; their states are every part's).
         // Rank 0 writes the table; a failure there is every rank's (core/subdomain.hpp).
-        std::vector<VtuField> pair_fields;
         on_every_part(c.fe().problem().subdomain.get(), [&] {
-          if (gaps) pair_fields = gaps->write(step, inc, r.scene.gaps.pairs, c.states());
+          if (gaps) gaps->write(step, inc, r.scene.gaps.pairs, c.states());
         });
+        std::vector<VtuField> pair_fields;
+        if (files) pair_fields = gap_fields(r.scene, r.scene.gaps.pairs, c.states());
         write_increment(r, times, files, step, inc, c.fe(), std::move(pair_fields), summary);
         if (r.read_quantities) add_contact_quantities(times.quantities, c.states(), F::kFriction);
       },
       r.part, make_run_solver<typename M::LinearSolver>(r.plan.solver));
-  if (gaps) gaps->close();
+  on_every_part(r.part ? r.part->subdomain.get() : nullptr, [&] {  // rank 0's, agreed
+    if (gaps) gaps->close();
+  });
   finish.now();
 }
 

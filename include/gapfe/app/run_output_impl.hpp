@@ -78,15 +78,41 @@ class RunFiles::Writer {
 };
 
 RunFiles::RunFiles(const RunRequest& r) {
-  if (!r.writes) return;
-  writer_ = std::make_unique<Writer>(r.model.steps());
-  files_  = std::make_unique<StepFiles>(r.dir, r.scene, r.model.step_time(), r.model.options.output_csv,
-                                       r.model.options.output_vtu);
-  files_->draw_fields(r.pictures, r.units);
-  files_->keep_history(r.model.steps(), {r.plan.key.friction != FrictionChoice::none,
-                                         r.plan.key.kinematics == VariantChoice::saga});
+  // One process writes a serial run's files: a partition of one part has no pieces to speak of.
+  const bool parts = r.part && r.part->subdomain->parts() > 1 && !r.model.options.output_gathered;
+  // Collective in a partitioned run: a rank that cannot open its files (a folder the others do not share)
+  // fails every rank with its message.
+  on_every_part(r.part ? r.part->subdomain.get() : nullptr, [&] {
+    if (!r.writes && !parts) return;
+    if (parts) {
+      rows_.emplace(part_rows(r.scene, r.part->subdomain->layout()));
+      if (r.model.steps() > 1) cards_.emplace(card_nodes(r.scene));
+    }
+    writer_ = std::make_unique<Writer>(r.model.steps());
+    files_  = std::make_unique<StepFiles>(r.dir, r.scene, r.model.step_time(), r.model.options.output_csv,
+                                         r.model.options.output_vtu, rows());
+    if (!r.writes) return;  // a part other than rank 0: its own tables and pieces only
+    files_->draw_fields(r.pictures, r.units);
+    files_->keep_history(r.model.steps(), {r.plan.key.friction != FrictionChoice::none,
+                                           r.plan.key.kinematics == VariantChoice::saga});
+  });
 }
 RunFiles::~RunFiles() = default;
+
+std::vector<double> RunFiles::node_figures(const Solution& part) const {
+  return cards_ ? history_node_figures(*cards_, part, rows()) : std::vector<double>{};
+}
+
+bool RunFiles::draws() const {
+  return files_ && files_->draws();
+}
+
+void RunFiles::keep_last(const Solution& whole, const std::vector<PointValues>& values,
+                         const std::vector<VtuField>& extra_cells) {
+  if (!files_) return;
+  writer_->wait();  // the increment before writes on the writer's thread, and keeps nothing of its own
+  files_->keep_last(whole, values, extra_cells);
+}
 
 void RunFiles::write(int step, double inc, const Solution& solution, std::vector<PointValues> values,
                      std::vector<VtuField> extra_cells, const IncrementSummary& summary) {

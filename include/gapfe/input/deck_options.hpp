@@ -64,6 +64,11 @@ struct ModelOptions {
   /// record, and deformed.svg (the last increment) are always written.
   Increments output_csv = Increments::all;
   Increments output_vtu = Increments::all;
+  /// output_parts = pieces (the default) | gathered: how a partitioned run (solver = petsc on several
+  /// processes) writes the tables and VTU files: each process its own part (nodes_pK.csv, ...,
+  /// step_NNNN_pK.vtu with a step_NNNN.pvtu; output/step_files.hpp), or rank 0 the whole mesh's, as one
+  /// process would, after gathering every result (memory and time on rank 0 that grow with the model).
+  bool output_gathered = false;
   /// error_estimate = energy (the default: the recovery estimate of the energy-norm error at every accepted
   /// increment, post/error_estimate.hpp, docs/accuracy.md) | none (no estimate: a run timed against a code
   /// that makes none).
@@ -158,6 +163,8 @@ struct ModelOptions {
       output_csv = choice(Increments{});
     } else if (key == "output_vtu") {
       output_vtu = choice(Increments{});
+    } else if (key == "output_parts") {
+      output_gathered = one_of({"pieces", "gathered"}) == "gathered";
     } else if (key == "error_estimate") {
       error_estimate = one_of({"energy", "none"}) == "energy";
     } else if (key == "newton_tolerance") {
@@ -182,10 +189,11 @@ struct ModelOptions {
         throw InputError("option newton_iterations = '" + value + "': expected a whole number 1 to 10000");
       newton_iterations = static_cast<int>(n);
     } else {
-      throw InputError("unknown option '" + key +
-                       "' (known: format, element, solver, bc_loads, contact, friction, slip, gap_penalty, "
-                       "events, gap_direction, plasticity, output, output_csv, output_vtu, error_estimate, "
-                       "newton_tolerance, newton_iterations, load_pieces, time_tolerance, fields, units)");
+      throw InputError(
+          "unknown option '" + key +
+          "' (known: format, element, solver, bc_loads, contact, friction, slip, gap_penalty, "
+          "events, gap_direction, plasticity, output, output_csv, output_vtu, output_parts, error_estimate, "
+          "newton_tolerance, newton_iterations, load_pieces, time_tolerance, fields, units)");
     }
   }
 };

@@ -1,7 +1,8 @@
 #pragma once
 // Reading back what output/vtu_writer.hpp writes, for `gapfe plot` (the pictures of a finished run): a VTK
 // XML UnstructuredGrid (.vtu) with inline arrays, `binary` (base64 of a UInt32 or UInt64 byte count and the
-// little-endian values, uncompressed) or `ascii`, and a ParaView collection (.pvd). Not a general VTK reader:
+// little-endian values, uncompressed) or `ascii`, a ParaView collection (.pvd), and a partitioned run's
+// parallel file (.pvtu), whose pieces are joined into one mesh. Not a general VTK reader:
 // appended data and compressed arrays are refused by name. tests/check_output.py reads the same files with
 // meshio (a reader independent of this one) and compares them with the CSV tables.
 #include <charconv>
@@ -247,6 +248,54 @@ inline std::vector<std::pair<double, std::string>> read_pvd(std::string_view tex
     at = close;
   }
   return out;
+}
+
+/// A parallel file's (.pvtu) pieces: the Source of each Piece, in order.
+inline std::vector<std::string> read_pvtu(std::string_view text, const std::string& name) {
+  if (text.find("<VTKFile") == std::string_view::npos ||
+      text.find("PUnstructuredGrid") == std::string_view::npos)
+    throw InputError(name + ": not a VTK XML PUnstructuredGrid file");
+  std::vector<std::string> pieces;
+  for (std::size_t at = 0; (at = text.find("<Piece", at)) != std::string_view::npos;) {
+    const auto close = text.find('>', at);
+    if (close == std::string_view::npos) throw InputError(name + ": a Piece tag is not closed");
+    const std::string source = detail::xml_attribute(text.substr(at, close - at), "Source");
+    if (source.empty()) throw InputError(name + ": a Piece without a Source");
+    pieces.push_back(source);
+    at = close;
+  }
+  if (pieces.empty()) throw InputError(name + ": no Piece");
+  return pieces;
+}
+
+/// The pieces of a parallel file as one mesh: their points one after another (a node the pieces share is in
+/// each), their cells on those points, and each array joined. The pieces must hold the same arrays
+/// (InputError naming `name` otherwise).
+inline VtuData join_pieces(std::vector<VtuData> pieces, const std::string& name) {
+  VtuData whole;
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    VtuData& p        = pieces[k];
+    const auto offset = static_cast<int>(whole.points.size());
+    const auto join   = [&](std::vector<VtuField>& into, std::vector<VtuField>& from, const char* kind) {
+      if (k == 0) return void(into = std::move(from));
+      bool same = into.size() == from.size();
+      for (std::size_t f = 0; same && f < from.size(); ++f)
+        same = into[f].name == from[f].name && into[f].components == from[f].components;
+      if (!same)
+        throw InputError(name + ": piece " + std::to_string(k + 1) + " has other " + kind +
+                           " arrays than the first");
+      for (std::size_t f = 0; f < from.size(); ++f)
+        into[f].values.insert(into[f].values.end(), from[f].values.begin(), from[f].values.end());
+    };
+    join(whole.point_data, p.point_data, "point");
+    join(whole.cell_data, p.cell_data, "cell");
+    whole.points.insert(whole.points.end(), p.points.begin(), p.points.end());
+    for (std::vector<int>& cell : p.cells) {
+      for (int& n : cell) n += offset;
+      whole.cells.push_back(std::move(cell));
+    }
+  }
+  return whole;
 }
 
 }  // namespace gapfe

@@ -19,7 +19,7 @@ inline constexpr std::size_t kSvgCellLimit = 20000;
 /// deformed.svg: the last increment's deformed mesh over the undeformed outline, displacements
 /// magnified to 5% of the section (a 1-2-5 factor, printed); gap elements coloured by their state.
 /// Meshes of more than kSvgCellLimit cells: the deformed outline over the undeformed one. `gap_state`: the
-/// GapFile cell array of the increment (empty without gaps).
+/// gap_fields cell array of the increment (empty without gaps).
 inline void write_deformed_svg(const std::string& dir, const Scene& scene,
                                const Eigen::Matrix<double, Eigen::Dynamic, 3>& displacement,
                                const std::vector<double>& gap_state, const std::string& title) {

@@ -37,6 +37,7 @@
 #include "gapfe/output/card_reactions.hpp"
 #include "gapfe/output/csv_rows.hpp"
 #include "gapfe/output/output_file.hpp"
+#include "gapfe/output/part_rows.hpp"
 #include "gapfe/output/vtu_writer.hpp"
 #include "gapfe/problem/results.hpp"
 
@@ -52,7 +53,34 @@ struct HistoryColumns {
 struct IncrementSummary {
   int iterations = 1, plastic_points = 0, closed = 0, slipping = 0;
   double cone_ratio = 0;  ///< ConeExcess::ratio of a run with friction
+  /// A partitioned run's history_node_figures, summed (and u_max the largest) over the parts; empty: the
+  /// row takes them from the solution, which holds every node.
+  std::vector<double> node_figures = {};
 };
+
+/// The figures of history.csv's row that come from the nodes: each card's reaction in each component it
+/// prescribes (the R_* columns, in order), then u_max. A part's (`rows`): its owned nodes' shares, whose sum
+/// over the parts (and, for u_max, largest) is the whole's.
+inline std::vector<double> history_node_figures(const std::vector<CardNodes>& cards, const Solution& s,
+                                                const PartRows* rows = nullptr) {
+  std::vector<double> figures;
+  for (const CardNodes& c : cards)
+    for (int comp = 0; comp < 3; ++comp) {
+      if (!((c.code >> comp) & 1)) continue;
+      if (!rows) {
+        figures.push_back(card_reaction(s, c, comp));
+        continue;
+      }
+      double total = 0;
+      for (const int n : c.nodes)
+        if (const int local = rows->local(n); local >= 0 && local < rows->owned_nodes())
+          total += s.reaction(local, comp);
+      figures.push_back(total);
+    }
+  const Eigen::Index nodes = rows ? rows->owned_nodes() : s.displacement.rows();
+  figures.push_back(nodes > 0 ? s.displacement.topRows(nodes).rowwise().norm().maxCoeff() : 0.0);
+  return figures;
+}
 
 class HistoryFile {
  public:
@@ -82,11 +110,12 @@ class HistoryFile {
       detail::append_number(row, v);
       row += ',';
     }
-    for (const CardNodes& c : cards_)
-      for (int comp = 0; comp < 3; ++comp)
-        if ((c.code >> comp) & 1) detail::append_number(row, card_reaction(s, c, comp)), row += ',';
-    const double u_max = s.displacement.rows() > 0 ? s.displacement.rowwise().norm().maxCoeff() : 0.0;
-    detail::append_number(row, u_max);
+    const std::vector<double> figures =
+        summary.node_figures.empty() ? history_node_figures(cards_, s) : summary.node_figures;
+    for (std::size_t k = 0; k < figures.size(); ++k) {
+      detail::append_number(row, figures[k]);
+      if (k + 1 < figures.size()) row += ',';
+    }
     for (const int v : {summary.closed, summary.slipping}) {
       row += ',';
       detail::append_number(row, static_cast<long long>(v));

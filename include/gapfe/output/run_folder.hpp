@@ -1,7 +1,8 @@
 #pragma once
 // One run per output folder. A run's files are a fixed family of names (run_file: the tables, gaps.csv,
-// history.csv, plasticity.csv, estimates.csv, result.pvd and step_*.vtu, deformed.svg, the pictures plot_*
-// and curve_*, and the temporaries of output/output_file.hpp), and a run starts by writing a manifest,
+// history.csv, plasticity.csv, estimates.csv, result.pvd and step_*.vtu, a partitioned run's step_*.pvtu
+// and tables of its parts (nodes_pK.csv, elements_pK.csv, reactions_pK.csv), deformed.svg, the pictures
+// plot_* and curve_*, and the temporaries of output/output_file.hpp), and a run starts by writing a manifest,
 // gapfe-run.txt, which says the folder is a run's and how the run went (running; complete; stopped, and why:
 // a run killed leaves "running"). Before a run writes anything:
 //   - a folder with a manifest held the last run: every file of the family is removed (a link is removed,
@@ -40,7 +41,12 @@ struct RunFolder {
           std::string_view("result.pvd"), std::string_view("deformed.svg"), std::string_view("estimates.csv"),
           kManifest})
       if (name == fixed) return true;
-    return (starts("step_") && ends(".vtu")) ||
+    for (const std::string_view table : {"nodes_p", "elements_p", "reactions_p"})  // a part's (K: digits)
+      if (starts(table) && ends(".csv") && name.size() > table.size() + 4 &&
+          std::all_of(name.begin() + static_cast<std::ptrdiff_t>(table.size()), name.end() - 4,
+                      [](char c) { return c >= '0' && c <= '9'; }))
+        return true;
+    return (starts("step_") && (ends(".vtu") || ends(".pvtu"))) ||
            ((starts("plot_") || starts("curve_")) && (ends(".svg") || ends(".png"))) ||
            (starts(".") && name.size() > 13 && name.substr(name.size() - 13, 7) == ".gapfe-");
   }
@@ -48,6 +54,15 @@ struct RunFolder {
   /// Make `dir` ready for a run described by `what` (see the top): FileError when it cannot be, or when it
   /// holds another program's results and `overwrite` is false.
   static void prepare(const std::string& dir, bool overwrite, const std::string& what) {
+    try {
+      make_ready(dir, overwrite, what);
+    } catch (const std::filesystem::filesystem_error& e) {  // a check the folder's permissions refuse
+      throw FileError("cannot make the output folder '" + dir + "' ready: " + e.code().message());
+    }
+  }
+
+ private:
+  static void make_ready(const std::string& dir, bool overwrite, const std::string& what) {
     namespace fs = std::filesystem;
     std::error_code ec;
     fs::create_directories(dir, ec);
@@ -75,6 +90,7 @@ struct RunFolder {
     record(dir, what, "running");
   }
 
+ public:
   /// The run's outcome in the manifest: "complete", or "stopped: why" (a run killed leaves "running").
   static void record(const std::string& dir, const std::string& what, const std::string& status) {
     detail::write_file_atomically((std::filesystem::path(dir) / kManifest).string(),

@@ -14,6 +14,11 @@
 //  StepFiles::draw_fields)
 //  * history.csv   one row per increment of a run of several steps (output/history_file.hpp)
 //  * mesh.svg, mesh_nodes.csv, mesh_elements.csv, mesh.vtu (gapfe mesh: the grid with its numbers)
+// A partitioned run writes these per process instead (output/part_rows.hpp; docs/cluster.md "Output"):
+//  * nodes_pK.csv, elements_pK.csv, reactions_pK.csv: part K's rows, the same columns
+//  * step_NNNN_pK.vtu: part K's piece; step_NNNN.pvtu lists the pieces, result.pvd the .pvtu files
+// and part 0 alone the files of the whole run (history.csv, gaps.csv, plasticity.csv, deformed.svg and the
+// pictures, which meshes of more than kSvgCellLimit cells do without).
 // One header line per CSV, one block of rows per completed step, steps from 1; `inc` is the number
 // of load increments applied so far and t = inc x the time a load step lasts (card 0's delta t in a
 // rate-dependent deck, else 1: t = inc); result.pvd's timesteps are t. Node and element numbers are the
@@ -31,6 +36,7 @@
 #include "gapfe/output/grid_arrays.hpp"
 #include "gapfe/output/history_file.hpp"
 #include "gapfe/output/mesh_files.hpp"
+#include "gapfe/output/part_rows.hpp"
 #include "gapfe/output/result_tables.hpp"
 #include "gapfe/output/vtu_series.hpp"
 #include "gapfe/problem/results.hpp"
@@ -44,36 +50,53 @@ class StepFiles {
  public:
   /// `step_time`: how long a load step lasts (ModelDescription::step_time()), for the t column. `tables`
   /// (nodes.csv, elements.csv, reactions.csv) and `fields` (the VTU files, result.pvd): every increment, the
-  /// last one (write() keeps it, finish() writes it) or none.
+  /// last one (write() keeps it, finish() writes it) or none. `rows`: a partitioned run's part (its own
+  /// tables and VTU pieces; the pictures only on part 0, from keep_last), nullptr for the whole mesh's.
   StepFiles(std::string dir, const Scene& scene, double step_time = 1.0, Increments tables = Increments::all,
-            Increments fields = Increments::all)
+            Increments fields = Increments::all, const PartRows* rows = nullptr)
       : dir_(std::move(dir)),
         scene_(scene),
         step_time_(step_time),
         tables_kind_(tables),
-        fields_kind_(fields) {
-    if (tables != Increments::none) tables_.emplace(dir_, scene_, step_time_);
-    if (fields != Increments::none) fields_.emplace(dir_, scene_, step_time_);
+        fields_kind_(fields),
+        rows_(rows) {
+    if (tables != Increments::none) tables_.emplace(dir_, scene_, step_time_, rows_);
+    if (fields != Increments::none) fields_.emplace(dir_, scene_, step_time_, rows_);
   }
 
   /// One increment: the nodal solution and the centroid values (one per cell, cells then triangles, as
-  /// a driver's centroid_values() gives them); `extra_cells` are more VTU cell arrays (GapFile's).
+  /// a driver's centroid_values() gives them); `extra_cells` are more VTU cell arrays (gap_fields'). A
+  /// part's are its own (vtu_arrays).
   void write(int step, double inc, const Solution& solution, const std::vector<PointValues>& values,
              std::vector<VtuField> extra_cells = {}, const IncrementSummary& summary = {}) {
     if (history_) history_->write(step, inc, solution, summary);
-    last_displacement_ = solution.displacement;  // deformed.svg's
-    for (const auto& f : extra_cells)
-      if (f.name == "gap_state") last_gap_state_ = f.values;
+    if (!rows_) keep_last(solution, values, extra_cells, /*arrays=*/false);
     const bool tables = tables_kind_ == Increments::all, fields = fields_kind_ == Increments::all;
     if (tables_kind_ == Increments::last || fields_kind_ == Increments::last)
       held_ = Held{step, inc, solution, values, fields ? std::vector<VtuField>{} : extra_cells};
     if (tables) tables_->write(step, inc, solution, values);
-    const bool picture = !pictures_.empty() && scene_.grid.cells.size() <= kSvgCellLimit;
+    const bool picture = !rows_ && draws_fields();
     if (!fields && !picture) return;
-    VtuData arrays = vtu_arrays(scene_, solution, values, std::move(extra_cells));
+    VtuData arrays = vtu_arrays(scene_, solution, values, std::move(extra_cells), rows_);
     if (fields) fields_->write(step, inc, arrays);
     if (picture) last_arrays_ = std::move(arrays);
   }
+
+  /// What finish() draws deformed.svg and the pictures from: the increment's whole solution, centroid values
+  /// and cell arrays (a partitioned run's part 0 is given them gathered, on meshes it draws: draws()).
+  /// `arrays`: the pictures' arrays too (write() makes them for a whole run).
+  void keep_last(const Solution& whole, const std::vector<PointValues>& values,
+                 const std::vector<VtuField>& extra_cells, bool arrays = true) {
+    last_displacement_ = whole.displacement;  // deformed.svg's
+    for (const auto& f : extra_cells)
+      if (f.name == "gap_state") last_gap_state_ = f.values;
+    if (arrays && draws_fields()) last_arrays_ = vtu_arrays(scene_, whole, values, extra_cells);
+  }
+  /// Whether finish() draws the pictures of fields (some asked for, a mesh small enough to draw).
+  bool draws_fields() const { return !pictures_.empty() && scene_.grid.cells.size() <= kSvgCellLimit; }
+  /// Whether a partitioned run gathers the whole mesh's results for deformed.svg and the pictures: it draws
+  /// those of meshes of at most kSvgCellLimit cells, whose gather costs little, and no others.
+  bool draws() const { return scene_.grid.cells.size() <= kSvgCellLimit; }
 
   /// history.csv (output/history_file.hpp) for a run of `steps` load steps, when there is more than one, with
   /// the optional `columns`.
@@ -100,13 +123,22 @@ class StepFiles {
       held_.reset();
       if (tables_kind_ == Increments::last) tables_->write(h.step, h.inc, h.solution, h.values);
       if (fields_kind_ == Increments::last)
-        fields_->write(h.step, h.inc, vtu_arrays(scene_, h.solution, h.values, std::move(h.extra_cells)));
+        fields_->write(h.step, h.inc,
+                       vtu_arrays(scene_, h.solution, h.values, std::move(h.extra_cells), rows_));
     }
     if (tables_) tables_->close();
     if (fields_) fields_->close();
     if (history_) history_->close();
-    write_deformed_svg(dir_, scene_, last_displacement_, last_gap_state_, title);
     pictures_written_.clear(), pictures_skipped_.clear();
+    if (rows_ && rows_->part != 0) return;  // part 0 draws
+    if (rows_ && !draws()) {
+      pictures_skipped_ = "deformed.svg" + std::string(pictures_.empty() ? "" : " and the fields") + ": " +
+                          std::to_string(scene_.grid.cells.size()) +
+                          " cells in a partitioned run, more than " + std::to_string(kSvgCellLimit) +
+                          " (gapfe plot draws the fields from the VTU pieces)";
+      return;
+    }
+    write_deformed_svg(dir_, scene_, last_displacement_, last_gap_state_, title);
     if (pictures_.empty()) return;
     if (scene_.grid.cells.size() > kSvgCellLimit) {
       pictures_skipped_ = std::to_string(scene_.grid.cells.size()) + " cells, more than " +
@@ -134,6 +166,7 @@ class StepFiles {
   const Scene& scene_;
   double step_time_ = 1.0;
   Increments tables_kind_, fields_kind_;
+  const PartRows* rows_ = nullptr;  ///< a partitioned run's part; nullptr: the whole mesh
   std::optional<ResultTables> tables_;
   std::optional<VtuSeries> fields_;
   struct Held {

@@ -1,7 +1,10 @@
 #pragma once
 // The VTU files of a run and their collection result.pvd, for ParaView: one step_NNNN.vtu per completed
 // step (step_NNNN_split_K.vtu at the points where a contact policy, load_pieces or a cut split it),
-// result.pvd's timesteps t.
+// result.pvd's timesteps t. A partitioned run (output/part_rows.hpp) writes a piece per process,
+// step_NNNN_pK.vtu (K the part), and its part 0 the parallel file step_NNNN.pvtu that lists the pieces;
+// result.pvd then lists the .pvtu files. The pieces carry the point array `node`, each point's deck node
+// number, since their points are the parts' own (a node on the parts' boundary is in each of its pieces).
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -16,22 +19,31 @@
 namespace gapfe {
 
 /// The increment's VTU arrays: displacement and reaction per node; stress, eqps and `extra_cells` per cell
-/// (not the mesh: the files encode theirs once, the pictures take it at the end).
+/// (not the mesh: the files encode theirs once, the pictures take it at the end). A part's (`rows`): its
+/// local nodes (the ghosts' rows holding their owners' values) and its cells, in its order, as `values`
+/// and `extra_cells` hold them, with the point array `node`.
 inline VtuData vtu_arrays(const Scene& scene, const Solution& solution,
-                          const std::vector<PointValues>& values, std::vector<VtuField> extra_cells) {
-  const IJGrid& g = scene.grid;
-  const auto& u   = solution.displacement;
+                          const std::vector<PointValues>& values, std::vector<VtuField> extra_cells,
+                          const PartRows* rows = nullptr) {
+  const IJGrid& g         = scene.grid;
+  const auto& u           = solution.displacement;
+  const int nodes         = rows ? rows->local_nodes() : g.node_count();
+  const std::size_t cells = rows ? rows->element.size() : g.cells.size();
   VtuData d;
   std::vector<VtuField>& point = d.point_data;
   point                        = {{"displacement", 3, {}}, {"reaction", 3, {}}};
-  point[0].values.reserve(3 * static_cast<std::size_t>(g.node_count()));
-  point[1].values.reserve(3 * static_cast<std::size_t>(g.node_count()));
-  for (int n = 0; n < g.node_count(); ++n)
+  point[0].values.reserve(3 * static_cast<std::size_t>(nodes));
+  point[1].values.reserve(3 * static_cast<std::size_t>(nodes));
+  for (int n = 0; n < nodes; ++n)
     for (int c = 0; c < 3; ++c)
       point[0].values.push_back(u(n, c)), point[1].values.push_back(solution.reaction(n, c));
-  std::vector<double> stress(6 * g.cells.size()), eqps(g.cells.size());
-  for (std::size_t e = 0; e < g.cells.size(); ++e) {
-    const PointValues& v = element_value(scene, values, e);
+  if (rows) {
+    point.push_back({"node", 1, std::vector<double>(static_cast<std::size_t>(nodes)), true});
+    for (int n = 0; n < nodes; ++n) point.back().values[static_cast<std::size_t>(n)] = rows->node(n) + 1;
+  }
+  std::vector<double> stress(6 * cells), eqps(cells);
+  for (std::size_t e = 0; e < cells; ++e) {
+    const PointValues& v = rows ? values[e] : element_value(scene, values, e);
     for (int k = 0; k < 6; ++k) stress[6 * e + k] = v.stress(k);
     eqps[e] = v.eqps;
   }
@@ -42,31 +54,47 @@ inline VtuData vtu_arrays(const Scene& scene, const Solution& solution,
 
 class VtuSeries {
  public:
-  VtuSeries(std::string dir, const Scene& scene, double step_time)
-      : dir_(std::move(dir)), scene_(scene), step_time_(step_time) {}
+  /// `rows`: a partitioned run's part (its piece of each increment; part 0 also writes the .pvtu files and
+  /// result.pvd), nullptr for the whole mesh's files.
+  VtuSeries(std::string dir, const Scene& scene, double step_time, const PartRows* rows = nullptr)
+      : dir_(std::move(dir)), scene_(scene), step_time_(step_time), rows_(rows) {}
 
-  /// A VTU file of the increment. The mesh and the element ids are the same in every file: from the second
-  /// file on they are encoded once and copied.
+  /// A VTU file of the increment (a piece, and on part 0 the .pvtu, for a part). The mesh and the element
+  /// ids are the same in every file: from the second file on they are encoded once and copied.
   void write(int step, double inc, const VtuData& arrays) {
     const IJGrid& g = scene_.grid;
-    char name[48];
+    char stem[40];
     split_ = step == last_step_ ? split_ + 1 : 0, last_step_ = step;
     if (inc < step - 1e-12)  // a split point of a contact step; the step's own file comes last
-      std::snprintf(name, sizeof name, "step_%04d_split_%d.vtu", step, split_ + 1);
+      std::snprintf(stem, sizeof stem, "step_%04d_split_%d", step, split_ + 1);
     else
-      std::snprintf(name, sizeof name, "step_%04d.vtu", step);
+      std::snprintf(stem, sizeof stem, "step_%04d", step);
+    const std::string file =
+        rows_ ? std::string(stem) + "_p" + std::to_string(rows_->part) + ".vtu" : std::string(stem) + ".vtu";
     const std::vector<VtuField>&point = arrays.point_data, &cell = arrays.cell_data;
     if (vtu_mesh_) {
-      write_vtu(dir_ + "/" + name, *vtu_mesh_, point, cell, vtu_ids_);
+      write_vtu(dir_ + "/" + file, *vtu_mesh_, point, cell, vtu_ids_);
     } else {
-      VtuMesh mesh(g.nodes, detail::grid_cells(g));
+      VtuMesh mesh(detail::grid_points(g, rows_), detail::grid_cells(g, rows_));
       std::string ids;
-      for (const VtuField& f : detail::element_ids(scene_)) detail::append_array(ids, f);
-      write_vtu(dir_ + "/" + name, mesh, point, cell, ids);
+      for (const VtuField& f : detail::element_ids(scene_, rows_)) detail::append_array(ids, f);
+      write_vtu(dir_ + "/" + file, mesh, point, cell, ids);
       if (++fields_written_ == 2) vtu_mesh_.emplace(std::move(mesh)), vtu_ids_ = std::move(ids);
     }
+    if (rows_ && rows_->part != 0) return;
+    std::string listed = file;
+    if (rows_) {  // part 0: the increment's parallel file, which lists every part's piece
+      std::vector<std::string> pieces;
+      for (int k = 0; k < rows_->parts; ++k)
+        pieces.push_back(std::string(stem) + "_p" + std::to_string(k) + ".vtu");
+      std::vector<VtuField> cells = cell;
+      for (VtuField& f : detail::element_ids(scene_, rows_, /*declared_only=*/true))
+        cells.push_back(std::move(f));
+      listed = std::string(stem) + ".pvtu";
+      write_pvtu(dir_ + "/" + listed, pieces, point, cells);
+    }
     if (!pvd_) pvd_.emplace(dir_ + "/result.pvd");
-    pvd_->add(inc * step_time_, name);
+    pvd_->add(inc * step_time_, listed);
   }
   void close() {
     if (pvd_) pvd_->close();
@@ -75,8 +103,9 @@ class VtuSeries {
  private:
   std::string dir_;
   const Scene& scene_;
-  double step_time_   = 1.0;
-  int fields_written_ = 0;
+  double step_time_     = 1.0;
+  const PartRows* rows_ = nullptr;  ///< a partitioned run's part; nullptr: the whole mesh
+  int fields_written_   = 0;
   std::optional<VtuMesh> vtu_mesh_;  ///< the VTU files' mesh, from the second file on
   std::string vtu_ids_;              ///< and their element ids
   std::optional<PvdFile> pvd_;       ///< result.pvd, from the first VTU file on

@@ -153,6 +153,28 @@ inline void write_vtu(const std::string& path, const VtuMesh& mesh, const std::v
   });
 }
 
+/// The parallel file (.pvtu) of a partitioned run's increment, for ParaView: the arrays every piece holds
+/// (their names, types and components; `point_data` and `cell_data` as one piece's, their values unused) and
+/// the pieces, `pieces` (file names relative to the .pvtu's folder). The pieces share no cells; their shared
+/// nodes appear in each.
+inline void write_pvtu(const std::string& path, const std::vector<std::string>& pieces,
+                       const std::vector<VtuField>& point_data, const std::vector<VtuField>& cell_data) {
+  const auto declare = [](std::string& s, const VtuField& f) {
+    s += std::string("<PDataArray type=\"") + (f.integer ? "Int32" : "Float64") + "\" Name=\"" + f.name +
+         "\" NumberOfComponents=\"" + std::to_string(f.components) + "\"/>\n";
+  };
+  std::string s =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" version=\"0.1\" "
+      "byte_order=\"LittleEndian\">\n<PUnstructuredGrid GhostLevel=\"0\">\n<PPointData>\n";
+  for (const VtuField& f : point_data) declare(s, f);
+  s += "</PPointData>\n<PCellData>\n";
+  for (const VtuField& f : cell_data) declare(s, f);
+  s += "</PCellData>\n<PPoints><PDataArray type=\"Float64\" NumberOfComponents=\"3\"/></PPoints>\n";
+  for (const std::string& piece : pieces) s += "<Piece Source=\"" + piece + "\"/>\n";
+  s += "</PUnstructuredGrid>\n</VTKFile>\n";
+  detail::write_file_atomically(path, s);
+}
+
 /// Write nodes (r, z), cells and point / cell arrays to `path`.
 inline void write_vtu(const std::string& path, const std::vector<Vec2>& nodes, const VtuCells& cells,
                       const std::vector<VtuField>& point_data, const std::vector<VtuField>& cell_data) {
