@@ -25,6 +25,7 @@ allows a busy machine and MPI's start-up), with the exit status of the failure (
 gapfe prints for it must appear once (mpirun adds its own lines about the abort). A launch that does not end
 is killed with its processes and counts as a failure. Exit status 0 when all pass (tests/checks.py)."""
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -141,6 +142,15 @@ def main():
         start = time.monotonic()
         done = ended(running, cmd, 120)
         check_launch("the output folder taken away", done, time.monotonic() - start, 3, ["out_mid"])
+        # What the folder kept lists only whole increments: every .pvtu result.pvd names, and every piece of it.
+        taken = out + ".taken"
+        listed = re.findall(r'file="([^"]+)"', open(os.path.join(taken, "result.pvd")).read())
+        missing = [f for f in listed if not os.path.exists(os.path.join(taken, f))]
+        for f in set(listed) - set(missing):
+            missing += [p for p in re.findall(r'Source="([^"]+)"', open(os.path.join(taken, f)).read())
+                        if not os.path.exists(os.path.join(taken, p))]
+        print(f"the folder taken away: result.pvd lists {len(listed)} increment(s); missing files: {missing}")
+        check(listed and not missing, f"result.pvd of the folder taken away lists missing files {missing}")
 
     finish("rank failures: ")
 

@@ -160,10 +160,11 @@ inline int run_command(const Args& a, const SceneModel& model, const Plan& plan,
                            refines,
                            &recovery,
                            process.failing};
-  // Rank 0 of a launch writes the files; a run's folder holds one run (run_folder.hpp). Made ready only
-  // now, after every check of the request: a run refused before it starts leaves the last run's files.
+  // Rank 0 of a launch makes the folder ready and keeps its manifest (the ranks of a partitioned run then
+  // write their parts there); a run's folder holds one run (run_folder.hpp). Made ready only now, after
+  // every check of the request: a run refused before it starts leaves the last run's files.
   const std::string run_what = "gapfe run " + a.deck;
-  const bool writes          = launch_rank == 0;
+  const bool writes          = part ? rank == 0 : launch_rank == 0;  // MPI's rank, once it is known
   // Every rank of a partitioned run waits for it (and fails with it): the ranks then write their parts there.
   on_every_part(part ? part->subdomain.get() : nullptr, [&] {
     if (writes) RunFolder::prepare(a.out, a.overwrite, run_what);

@@ -80,6 +80,12 @@ class RunFiles {
   std::vector<double> node_figures(const Solution& part) const;
   /// Whether the whole mesh's results are gathered for deformed.svg and the pictures (StepFiles::draws).
   bool draws() const;
+  /// A partitioned run that writes its parts: every part has returned from write() of increment `inc`
+  /// (an agreement, core/subdomain.hpp), so its earlier increments may be listed (StepFiles::publish).
+  void agreed(double inc);
+  /// After finish(): a partitioned run's VTU series closed (StepFiles::close_series), every increment listed
+  /// when `complete` (every part finished its files).
+  void close_series(bool complete);
   /// StepFiles::keep_last, on the process that draws (rank 0), after the increment before is written.
   void keep_last(const Solution& whole, const std::vector<PointValues>& values,
                  const std::vector<VtuField>& extra_cells);
@@ -89,6 +95,8 @@ class RunFiles {
   std::optional<PartRows> rows_;  ///< a partitioned run that writes its parts
   /// and, for a run of several steps, history.csv's cards, whose reactions each part sums
   std::optional<std::vector<CardNodes>> cards_;
+  std::size_t agreed_   = 0;  ///< write() calls every part has returned from (agreed())
+  std::size_t complete_ = 0;  ///< of those, the ones every part has on disk
   std::unique_ptr<StepFiles> files_;
   std::unique_ptr<Writer> writer_;  ///< the thread writing an increment's files, with two threads or more
   double seconds_     = 0;          ///< spent writing on the run's own thread
@@ -227,6 +235,7 @@ inline void write_parts(RunFiles& files, const Scene& scene, const Subdomain& pa
   if (estimate) extra_cells.push_back(std::move(*estimate));
   on_every_part(
       &part, [&] { files.write(step, inc, local, std::move(centroids), std::move(extra_cells), summary); });
+  files.agreed(inc);
 }
 /// One accepted increment: refuse a non-finite solution, estimate its error, write the files (timed; a
 /// partitioned run writes its parts, write_parts, or gathers the whole mesh's results to rank 0 first),
@@ -305,6 +314,9 @@ struct FinishFiles {
       if (files) files.finish(r.model.title, times);
     });
     if (part) times.files_seconds = part->max(times.files_seconds);
+    // Every part has finished its files (when agreed): the VTU series lists every increment; a part's
+    // files that failed list only the increments every part had written.
+    on_every_part(part, [&] { files.close_series(agreed); });
     times.write += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   /// A run that failed: its own error is the one the command reports, so the failure of an increment's

@@ -53,7 +53,9 @@ class RunFiles::Writer {
   double seconds() const { return seconds_; }
   /// Whether increment `inc` is written beside the next: with two threads or more (core/workers.hpp), and
   /// not the run's last increment, which has no next one and is written on every thread by the caller.
-  bool beside(double inc) const { return worker_threads() > 1 && inc < steps_ * (1 - 1e-12); }
+  bool beside(double inc) const { return worker_threads() > 1 && !last(inc); }
+  /// Whether increment `inc` is the run's last (its load factor the last step's).
+  bool last(double inc) const { return inc >= steps_ * (1 - 1e-12); }
   /// Whether any increment was.
   bool used() const { return used_; }
 
@@ -99,6 +101,18 @@ RunFiles::RunFiles(const RunRequest& r) {
 }
 RunFiles::~RunFiles() = default;
 
+void RunFiles::agreed(double inc) {
+  if (!files_) return;
+  // Every part has returned from write(): its increments before this one are on disk, and this one too when
+  // it is the run's last, which no part writes beside the next (Writer::beside).
+  ++agreed_;
+  complete_ = writer_->last(inc) ? agreed_ : agreed_ - 1;
+}
+
+void RunFiles::close_series(bool complete) {
+  if (files_) files_->close_series(complete);
+}
+
 std::vector<double> RunFiles::node_figures(const Solution& part) const {
   return cards_ ? history_node_figures(*cards_, part, rows()) : std::vector<double>{};
 }
@@ -117,6 +131,10 @@ void RunFiles::keep_last(const Solution& whole, const std::vector<PointValues>& 
 void RunFiles::write(int step, double inc, const Solution& solution, std::vector<PointValues> values,
                      std::vector<VtuField> extra_cells, const IncrementSummary& summary) {
   if (!files_) return;  // a process that writes no files (RunRequest::writes)
+  if (rows_) {          // part 0 lists the increments every part has written (StepFiles::publish)
+    writer_->wait();
+    files_->publish(complete_);
+  }
   if (writer_->beside(inc)) {
     // The solution is the driver's, which the next increment changes: the writer gets a copy.
     writer_->start(

@@ -57,7 +57,8 @@ struct RunFolder {
     try {
       make_ready(dir, overwrite, what);
     } catch (const std::filesystem::filesystem_error& e) {  // a check the folder's permissions refuse
-      throw FileError("cannot make the output folder '" + dir + "' ready: " + e.code().message());
+      throw FileError("cannot make the output folder '" + dir + "' ready: " + e.path1().string() + ": " +
+                      e.code().message());
     }
   }
 

@@ -116,6 +116,19 @@ class StepFiles {
   const std::vector<std::string>& pictures_written() const { return pictures_written_; }
   const std::string& pictures_skipped() const { return pictures_skipped_; }
 
+  /// A partitioned run's VTU series (VtuSeries::publish, on part 0): the first `complete` increments are
+  /// written by every part and may be listed.
+  void publish(std::size_t complete) {
+    if (fields_) fields_->publish(complete);
+  }
+  /// A partitioned run's VTU series closed after finish(): with `complete` (every part has finished its
+  /// files) every increment listed, else only those published.
+  void close_series(bool complete) {
+    if (!fields_ || !rows_) return;
+    if (complete) fields_->publish(fields_->written());
+    fields_->close();
+  }
+
   /// The end of a run: the held increment (a kind written `last`), the tables closed, then deformed.svg.
   void finish(const std::string& title) {
     if (held_) {
@@ -127,7 +140,7 @@ class StepFiles {
                        vtu_arrays(scene_, h.solution, h.values, std::move(h.extra_cells), rows_));
     }
     if (tables_) tables_->close();
-    if (fields_) fields_->close();
+    if (fields_ && !rows_) fields_->close();  // a part's: close_series
     if (history_) history_->close();
     pictures_written_.clear(), pictures_skipped_.clear();
     if (rows_ && rows_->part != 0) return;  // part 0 draws

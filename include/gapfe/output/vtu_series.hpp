@@ -3,7 +3,9 @@
 // step (step_NNNN_split_K.vtu at the points where a contact policy, load_pieces or a cut split it),
 // result.pvd's timesteps t. A partitioned run (output/part_rows.hpp) writes a piece per process,
 // step_NNNN_pK.vtu (K the part), and its part 0 the parallel file step_NNNN.pvtu that lists the pieces;
-// result.pvd then lists the .pvtu files. The pieces carry the point array `node`, each point's deck node
+// result.pvd then lists the .pvtu files. Part 0 lists an increment (its .pvtu, its line in result.pvd) only
+// once every part has written its piece (publish), so that a run stopped at any moment lists only whole
+// increments. The pieces carry the point array `node`, each point's deck node
 // number, since their points are the parts' own (a node on the parts' boundary is in each of its pieces).
 #include <cstdio>
 #include <optional>
@@ -81,20 +83,32 @@ class VtuSeries {
       write_vtu(dir_ + "/" + file, mesh, point, cell, ids);
       if (++fields_written_ == 2) vtu_mesh_.emplace(std::move(mesh)), vtu_ids_ = std::move(ids);
     }
-    if (rows_ && rows_->part != 0) return;
-    std::string listed = file;
-    if (rows_) {  // part 0: the increment's parallel file, which lists every part's piece
+    ++written_;
+    if (!rows_) return list(inc * step_time_, file);
+    if (rows_->part != 0) return;
+    // Part 0: the increment's parallel file waits for the other parts' pieces (publish); it declares the
+    // arrays (their names and types, not their values).
+    Pending p{stem, inc * step_time_, {}, {}};
+    for (const VtuField& f : point) p.point.push_back({f.name, f.components, {}, f.integer});
+    for (const VtuField& f : cell) p.cell.push_back({f.name, f.components, {}, f.integer});
+    for (VtuField& f : detail::element_ids(scene_, rows_, /*declared_only=*/true))
+      p.cell.push_back(std::move(f));
+    pending_.push_back(std::move(p));
+  }
+
+  /// The increments this series wrote (a part: its pieces).
+  std::size_t written() const { return written_; }
+  /// Part 0 of a partitioned run: lists the first `complete` increments (every part has written their
+  /// pieces) that are not listed yet, each as its .pvtu and a line of result.pvd.
+  void publish(std::size_t complete) {
+    for (; published_ < complete && !pending_.empty(); ++published_) {
+      const Pending& p = pending_.front();
       std::vector<std::string> pieces;
-      for (int k = 0; k < rows_->parts; ++k)
-        pieces.push_back(std::string(stem) + "_p" + std::to_string(k) + ".vtu");
-      std::vector<VtuField> cells = cell;
-      for (VtuField& f : detail::element_ids(scene_, rows_, /*declared_only=*/true))
-        cells.push_back(std::move(f));
-      listed = std::string(stem) + ".pvtu";
-      write_pvtu(dir_ + "/" + listed, pieces, point, cells);
+      for (int k = 0; k < rows_->parts; ++k) pieces.push_back(p.stem + "_p" + std::to_string(k) + ".vtu");
+      write_pvtu(dir_ + "/" + p.stem + ".pvtu", pieces, p.point, p.cell);
+      list(p.time, p.stem + ".pvtu");
+      pending_.erase(pending_.begin());
     }
-    if (!pvd_) pvd_.emplace(dir_ + "/result.pvd");
-    pvd_->add(inc * step_time_, listed);
   }
   void close() {
     if (pvd_) pvd_->close();
@@ -110,6 +124,19 @@ class VtuSeries {
   std::string vtu_ids_;              ///< and their element ids
   std::optional<PvdFile> pvd_;       ///< result.pvd, from the first VTU file on
   int last_step_ = 0, split_ = 0;
+  struct Pending {  ///< an increment part 0 has written its piece of, not yet listed
+    std::string stem;
+    double time;
+    std::vector<VtuField> point, cell;  ///< the arrays' declarations
+  };
+  std::vector<Pending> pending_;
+  std::size_t written_ = 0, published_ = 0;
+
+  /// `file` at time `t` in result.pvd.
+  void list(double t, const std::string& file) {
+    if (!pvd_) pvd_.emplace(dir_ + "/result.pvd");
+    pvd_->add(t, file);
+  }
 };
 
 }  // namespace gapfe
