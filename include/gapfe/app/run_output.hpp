@@ -81,10 +81,10 @@ class RunFiles {
   /// Whether the whole mesh's results are gathered for deformed.svg and the pictures (StepFiles::draws).
   bool draws() const;
   /// A partitioned run that writes its parts: every part has returned from write() of increment `inc`
-  /// (an agreement, core/subdomain.hpp), so its earlier increments may be listed (StepFiles::publish).
+  /// (an agreement, core/subdomain.hpp), so rank 0 lists its earlier increments (StepFiles::publish).
   void agreed(double inc);
   /// After finish(): a partitioned run's VTU series closed (StepFiles::close_series), every increment listed
-  /// when `complete` (every part finished its files).
+  /// when `complete` (every part finished its files), else those the last agreement proved written.
   void close_series(bool complete);
   /// StepFiles::keep_last, on the process that draws (rank 0), after the increment before is written.
   void keep_last(const Solution& whole, const std::vector<PointValues>& values,
@@ -131,9 +131,9 @@ inline VtuField deck_field(const Scene& scene, std::string name, const std::vect
 /// every part, the lowest part's where several hold the largest. Collective with `rows`.
 inline void note_worst_element(const RunRequest& r, RunResult& times, const std::vector<double>& field,
                                const PartRows* rows, const Subdomain* part) {
-  const auto worst = std::max_element(field.begin(), field.end());
-  double largest   = worst == field.end() ? 0.0 : *worst;
-  int element      = worst == field.end() ? -1 : static_cast<int>(worst - field.begin());
+  const auto worst     = std::max_element(field.begin(), field.end());
+  const double largest = worst == field.end() ? 0.0 : *worst;
+  int element          = worst == field.end() ? -1 : static_cast<int>(worst - field.begin());
   if (rows && element >= 0) element = rows->element[static_cast<std::size_t>(element)];
   std::array<double, 3> at{-1, 0, 0};  // element, r, z
   if (largest > 0) {
@@ -142,13 +142,12 @@ inline void note_worst_element(const RunRequest& r, RunResult& times, const std:
     for (int k = 0; k < c.corners; ++k) centroid += r.scene.grid.nodes[c.node[k]] / c.corners;
     at = {static_cast<double>(element), centroid(0), centroid(1)};
   }
-  if (rows) {
+  if (rows) {  // the part holding the largest value (the lowest of several) tells the others
     const double top   = part->max(largest);
     const double owner = -part->max(largest == top && top > 0 ? -rows->part : -rows->parts);
     if (rows->part != owner) at = {0, 0, 0};
-    if (owner == rows->parts) at = {-1, 0, 0};  // no part: -1 from the owner-less sum below
     part->sum(at.data(), 3);
-    if (owner == rows->parts) at[0] = -1;
+    if (owner == rows->parts) at[0] = -1;  // every value 0: no part is the owner
   }
   times.error_element = static_cast<int>(at[0]);
   if (times.error_element >= 0) times.error_element_at = Vec2(at[1], at[2]);
@@ -235,7 +234,7 @@ inline void write_parts(RunFiles& files, const Scene& scene, const Subdomain& pa
   if (estimate) extra_cells.push_back(std::move(*estimate));
   on_every_part(
       &part, [&] { files.write(step, inc, local, std::move(centroids), std::move(extra_cells), summary); });
-  files.agreed(inc);
+  on_every_part(&part, [&] { files.agreed(inc); });  // rank 0 lists what every part has written
 }
 /// One accepted increment: refuse a non-finite solution, estimate its error, write the files (timed; a
 /// partitioned run writes its parts, write_parts, or gathers the whole mesh's results to rank 0 first),
@@ -310,12 +309,20 @@ struct FinishFiles {
     progress_done(r);
     const Subdomain* part = agreed && r.part ? r.part->subdomain.get() : nullptr;
     const auto start      = std::chrono::steady_clock::now();
-    on_every_part(part, [&] {
-      if (files) files.finish(r.model.title, times);
-    });
+    try {
+      on_every_part(part, [&] {
+        if (files) files.finish(r.model.title, times);
+      });
+    } catch (...) {  // the series still lists what every part is known to have written
+      try {
+        files.close_series(false);
+      } catch (...) {  // the first failure is the one to report
+      }
+      throw;
+    }
     if (part) times.files_seconds = part->max(times.files_seconds);
-    // Every part has finished its files (when agreed): the VTU series lists every increment; a part's
-    // files that failed list only the increments every part had written.
+    // Agreed, every part has finished its files and the series lists every increment; after a failure,
+    // those the last agreement proved written everywhere.
     on_every_part(part, [&] { files.close_series(agreed); });
     times.write += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }

@@ -103,14 +103,18 @@ RunFiles::~RunFiles() = default;
 
 void RunFiles::agreed(double inc) {
   if (!files_) return;
-  // Every part has returned from write(): its increments before this one are on disk, and this one too when
-  // it is the run's last, which no part writes beside the next (Writer::beside).
+  // Every part has returned from write(): its increments before this one are on disk (write() waits for
+  // the one before), and this one too when it is the run's last, which no part writes beside the next
+  // (Writer::beside). Part 0 lists them while this one may still be written on the writer's thread.
   ++agreed_;
   complete_ = writer_->last(inc) ? agreed_ : agreed_ - 1;
+  files_->publish(complete_);
 }
 
 void RunFiles::close_series(bool complete) {
-  if (files_) files_->close_series(complete);
+  if (!files_) return;
+  if (!complete) files_->publish(complete_);  // what the last agreement proved on disk everywhere
+  files_->close_series(complete);
 }
 
 std::vector<double> RunFiles::node_figures(const Solution& part) const {
@@ -131,10 +135,6 @@ void RunFiles::keep_last(const Solution& whole, const std::vector<PointValues>& 
 void RunFiles::write(int step, double inc, const Solution& solution, std::vector<PointValues> values,
                      std::vector<VtuField> extra_cells, const IncrementSummary& summary) {
   if (!files_) return;  // a process that writes no files (RunRequest::writes)
-  if (rows_) {          // part 0 lists the increments every part has written (StepFiles::publish)
-    writer_->wait();
-    files_->publish(complete_);
-  }
   if (writer_->beside(inc)) {
     // The solution is the driver's, which the next increment changes: the writer gets a copy.
     writer_->start(

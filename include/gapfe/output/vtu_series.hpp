@@ -8,6 +8,7 @@
 // increments. The pieces carry the point array `node`, each point's deck node
 // number, since their points are the parts' own (a node on the parts' boundary is in each of its pieces).
 #include <cstdio>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -93,21 +94,28 @@ class VtuSeries {
     for (const VtuField& f : cell) p.cell.push_back({f.name, f.components, {}, f.integer});
     for (VtuField& f : detail::element_ids(scene_, rows_, /*declared_only=*/true))
       p.cell.push_back(std::move(f));
+    const std::lock_guard<std::mutex> hold(pending_lock_);
     pending_.push_back(std::move(p));
   }
 
   /// The increments this series wrote (a part: its pieces).
   std::size_t written() const { return written_; }
   /// Part 0 of a partitioned run: lists the first `complete` increments (every part has written their
-  /// pieces) that are not listed yet, each as its .pvtu and a line of result.pvd.
+  /// pieces) that are not listed yet, each as its .pvtu and a line of result.pvd. May run while write()
+  /// writes a later increment on another thread (app/run_output_impl.hpp's writer): they share pending_.
   void publish(std::size_t complete) {
-    for (; published_ < complete && !pending_.empty(); ++published_) {
-      const Pending& p = pending_.front();
+    for (; published_ < complete; ++published_) {
+      Pending p;
+      {
+        const std::lock_guard<std::mutex> hold(pending_lock_);
+        if (pending_.empty()) return;
+        p = std::move(pending_.front());
+        pending_.erase(pending_.begin());
+      }
       std::vector<std::string> pieces;
       for (int k = 0; k < rows_->parts; ++k) pieces.push_back(p.stem + "_p" + std::to_string(k) + ".vtu");
       write_pvtu(dir_ + "/" + p.stem + ".pvtu", pieces, p.point, p.cell);
       list(p.time, p.stem + ".pvtu");
-      pending_.erase(pending_.begin());
     }
   }
   void close() {
@@ -126,10 +134,11 @@ class VtuSeries {
   int last_step_ = 0, split_ = 0;
   struct Pending {  ///< an increment part 0 has written its piece of, not yet listed
     std::string stem;
-    double time;
+    double time = 0;
     std::vector<VtuField> point, cell;  ///< the arrays' declarations
   };
   std::vector<Pending> pending_;
+  std::mutex pending_lock_;
   std::size_t written_ = 0, published_ = 0;
 
   /// `file` at time `t` in result.pvd.
