@@ -469,3 +469,43 @@ TEST_CASE("[petsc] an error on one part is every part's error, with its message 
                                        }),
                          "card on part 1", InputError);
 }
+
+TEST_CASE(
+    "[petsc] skip_unchanged: the same values keep the factorization; new values or a failed one do not") {
+  // A chain of three springs on this process alone (PETSC_COMM_SELF), lower triangle: grounded at its first
+  // node it is positive definite; without the ground it is singular (a rigid move), which MUMPS' null-pivot
+  // detection refuses.
+  const auto chain = [](double ground) {
+    SpMat k(3, 3);
+    k.insert(0, 0) = 1 + ground, k.insert(1, 0) = -1, k.insert(1, 1) = 2, k.insert(2, 1) = -1;
+    k.insert(2, 2) = 1;
+    k.makeCompressed();
+    return k;
+  };
+  PetscSolver<> solver;
+  const SpMat held = chain(1), free = chain(0);
+  solver.analyze(held);
+  PetscLogEvent numeric = 0;  // registered once PETSc's matrices are (analyze made the first here)
+  PetscLogEventGetId("MatCholFctrNum", &numeric);
+  const auto numeric_runs = [&] {
+    PetscEventPerfInfo info{};
+    PetscLogEventGetPerfInfo(0, numeric, &info);
+    return info.count;
+  };
+  solver.skip_unchanged(true);
+  const int before = numeric_runs();
+  CHECK(solver.factorize(held));
+  CHECK(numeric_runs() == before + 1);
+  CHECK(solver.factorize(held));  // the same values: kept
+  CHECK(numeric_runs() == before + 1);
+  const VecX u = solver.solve(VecX::Ones(3));
+  CHECK(u(0) == doctest::Approx(3.0).epsilon(1e-12));  // the ground carries all three unit loads
+  CHECK(u(2) == doctest::Approx(6.0).epsilon(1e-12));
+  CHECK_FALSE(solver.factorize(free));  // new values: factorized, and refused
+  CHECK(solver.failure().find("singular") != std::string::npos);
+  CHECK(numeric_runs() == before + 2);
+  CHECK_FALSE(solver.factorize(free));  // a failed factorization is not kept: tried again, refused again
+  CHECK(numeric_runs() == before + 3);
+  CHECK(solver.factorize(held));  // back to the first values: factorized afresh
+  CHECK(numeric_runs() == before + 4);
+}

@@ -44,6 +44,7 @@
 #include <petscksp.h>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "gapfe/core/concepts.hpp"
@@ -121,7 +122,6 @@ class PetscSolver {
                        " equations, the pattern " + std::to_string(k.rows()));
     std::vector<PetscInt> rows, cols;
     coo_pattern(k, rows, cols);
-    coo_.resize(rows.size());
     const auto owned = static_cast<PetscInt>(layout_.owned), total = static_cast<PetscInt>(layout_.total);
     petsc_check(MatCreate(comm_, &a_), "MatCreate");
     petsc_check(MatSetSizes(a_, owned, owned, total, total), "MatSetSizes");
@@ -182,20 +182,33 @@ class PetscSolver {
   bool factorize(const SpMat& k) {
     using detail::petsc_check;
     failure_.clear();
+    // The values in COO order (a lower-triangle entry twice): PETSc copies them into its matrix, so they are
+    // freed before KSPSetUp, whose GAMG hierarchy or MUMPS factor is a rank's peak of memory (about 5% of
+    // it on the thick tube: BENCHMARKS.md "What a rank holds at its peak"), unless kept to compare.
     const double* values = k.valuePtr();
-    for (std::size_t c = 0; c < coo_.size(); ++c) coo_[c] = values[source_[c]];
+    std::vector<PetscScalar> coo(source_.size());
+    for (std::size_t c = 0; c < coo.size(); ++c) coo[c] = values[source_[c]];
     // With skip_unchanged: the same values on every part as at the last factorization keep it (decided
     // together).
     if (skip_unchanged_) {
-      int changed = !factorized_ || coo_ != factorized_values_;
+      int changed = !factorized_ || coo != factorized_values_;
       detail::mpi_check(MPI_Allreduce(MPI_IN_PLACE, &changed, 1, MPI_INT, MPI_LOR, comm_), "MPI_Allreduce");
       if (!changed) return true;
     }
-    petsc_check(MatSetValuesCOO(a_, coo_.data(), INSERT_VALUES), "MatSetValuesCOO");
+    factorized_ = false;  // PETSc's matrix holds other values from here on, until they are factorized
+    petsc_check(MatSetValuesCOO(a_, coo.data(), INSERT_VALUES), "MatSetValuesCOO");
+    std::vector<PetscScalar> kept;  // what factorized_values_ becomes once this factorization succeeds
+    if (skip_unchanged_) kept = std::move(coo);
+    std::vector<PetscScalar>().swap(coo);
     petsc_check(KSPSetUp(ksp_), "KSPSetUp");
-    ++factorizations_;
+    // KSPSetUp sets the preconditioner up only until the first solve; after one it returns at once, and
+    // PETSc would factorize the new values inside the next KSPSolve, past the checks below (a singular
+    // refactorization, MUMPS' null pivots, would go unseen). PCSetUp factorizes now whenever the values
+    // changed, and KSPSolve then finds nothing to do.
     PC pc = nullptr;
     petsc_check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+    petsc_check(PCSetUp(pc), "PCSetUp");
+    ++factorizations_;
     PCFailedReason reason = PC_NOERROR;
     petsc_check(PCGetFailedReasonRank(pc, &reason), "PCGetFailedReasonRank");
     // Reduced as reason - PC_SETUP_ERROR + 1 (0: no error), so that PC_SETUP_ERROR (-1) is not lost to a
@@ -227,7 +240,7 @@ class PetscSolver {
         return fail("stiffness is singular (MUMPS found " + std::to_string(null_pivots) + " null pivot" +
                     (null_pivots > 1 ? "s" : "") + ")");
     }
-    if (skip_unchanged_) factorized_values_ = coo_;
+    if (skip_unchanged_) factorized_values_ = std::move(kept);
     factorized_ = true;
     return true;
   }
@@ -383,8 +396,8 @@ class PetscSolver {
   ::Vec x_ = nullptr, b_ = nullptr, local_ = nullptr;
   VecScatter scatter_ = nullptr;
   KSP ksp_            = nullptr;
-  std::vector<PetscScalar> coo_, factorized_values_;  ///< the values in COO order (coo_pattern)
-  std::vector<int> source_;                           ///< COO entry -> position in the pattern's values
+  std::vector<PetscScalar> factorized_values_;  ///< the last factorization's, in COO order (coo_pattern)
+  std::vector<int> source_;                     ///< COO entry -> position in the pattern's values
   std::string failure_;
   int factorizations_      = 0;
   mutable long iterations_ = 0;
