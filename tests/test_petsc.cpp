@@ -509,3 +509,33 @@ TEST_CASE(
   CHECK(solver.factorize(held));  // back to the first values: factorized afresh
   CHECK(numeric_runs() == before + 4);
 }
+
+TEST_CASE("[petsc] global_rows: a lower triangle's entries as whole rows in global numbers, columns sorted") {
+  // Local equations 0..3 are global 2, 0, 3, 1; the lower triangle holds the diagonal and (1, 0), (3, 1),
+  // (3, 2), each value its own, so that every entry of the rows names where it came from.
+  SpMat k(4, 4);
+  k.insert(0, 0) = 1, k.insert(1, 0) = 2, k.insert(1, 1) = 3, k.insert(3, 1) = 4, k.insert(2, 2) = 5;
+  k.insert(3, 2) = 6, k.insert(3, 3) = 7;
+  k.makeCompressed();
+  const std::vector<std::int64_t> global{2, 0, 3, 1};
+  Eigen::Matrix4d expected = Eigen::Matrix4d::Zero();  // the whole matrix in global numbers
+  for (int j = 0; j < 4; ++j)
+    for (SpMat::InnerIterator it(k, j); it; ++it)
+      expected(global[it.row()], global[j]) = expected(global[j], global[it.row()]) = it.value();
+  const auto rows = global_rows<MatrixStorage::lower, PetscInt>(k, global);
+  REQUIRE(rows.rows() == 4);
+  CHECK(rows.column.size() == 10);  // 4 diagonal entries, 3 off it twice
+  Eigen::Matrix4d got = Eigen::Matrix4d::Zero();
+  for (std::size_t r = 0; r < rows.rows(); ++r) {
+    CHECK(rows.row[r] == static_cast<PetscInt>(r));  // in global order
+    std::vector<double> values;
+    rows.values(r, k.valuePtr(), values);
+    for (std::size_t c = rows.start[r]; c < rows.start[r + 1]; ++c) {
+      if (c > rows.start[r]) CHECK(rows.column[c - 1] < rows.column[c]);
+      got(rows.row[r], rows.column[c]) += values[c - rows.start[r]];
+    }
+  }
+  CHECK(got == expected);
+  const auto full = global_rows<MatrixStorage::full, PetscInt>(k, global);  // every entry once
+  CHECK(full.column.size() == static_cast<std::size_t>(k.nonZeros()));
+}

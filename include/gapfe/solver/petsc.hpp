@@ -4,11 +4,12 @@
 // (PetscSolver<>, symmetric tangents: the default Cholesky) or every entry (PetscSolver<MatrixStorage::full>,
 // friction's unsymmetric slip tangent: LU).
 //
-// Assembly is distributed, never gathered: each part hands the entries of its own cells, in global
-// equation numbers, to PETSc's COO interface once (MatSetPreallocationCOO: the pattern, which PETSc sums
-// over parts and duplicates into its AIJ matrix) and then its values at every factorization
-// (MatSetValuesCOO). A lower-triangle entry (i, j), i > j, goes in twice, as (i, j) and (j, i): AIJ holds
-// the whole matrix, which every PETSc preconditioner reads. The right-hand side is the part's partial sum
+// Assembly is distributed, never gathered: each part hands the entries of its own cells to PETSc as rows in
+// global equation numbers (solver/petsc_rows.hpp: a lower-triangle entry in both of its rows, AIJ holding
+// the whole matrix that every PETSc preconditioner reads): once as a pattern, whose entries per row,
+// counted over every part, size the matrix (solver/petsc_matrix.hpp), then its values at every
+// factorization (MatSetValues per row, added where parts share an equation). The right-hand side is the
+// part's partial sum
 // over its local equations, added into the global vector through one VecScatter; the solution comes back
 // through it at every local equation, owned or ghost.
 //
@@ -25,7 +26,7 @@
 // With -pc_type gamg the layout's near-null space (the axisymmetric rigid and near-rigid modes,
 // assembly/equation_layout.hpp) is attached to the matrix, and -pc_gamg_reuse_interpolation defaults to true.
 //
-// Repeated solves on one pattern: the COO pattern is set once; PETSc keeps its matrix's nonzero structure,
+// Repeated solves on one pattern: the pattern is set once; PETSc keeps its matrix's nonzero structure,
 // so its factorizations after the first are numeric only (MUMPS' analysis, PETSc's symbolic factorization,
 // is done once), and GAMG rebuilds only its Galerkin products on the kept interpolation. With
 // skip_unchanged (System::skip_unchanged hands the test to a distributed solver, which must decide it on all
@@ -44,11 +45,11 @@
 #include <petscksp.h>
 #include <string>
 #include <type_traits>
-#include <utility>
 #include <vector>
 
 #include "gapfe/core/concepts.hpp"
 #include "gapfe/core/error.hpp"
+#include "gapfe/solver/petsc_matrix.hpp"
 #include "gapfe/solver/petsc_subdomain.hpp"
 
 namespace gapfe {
@@ -120,18 +121,18 @@ class PetscSolver {
     if (static_cast<Eigen::Index>(layout_.global.size()) != k.rows())
       throw InputError("PetscSolver: the layout has " + std::to_string(layout_.global.size()) +
                        " equations, the pattern " + std::to_string(k.rows()));
-    std::vector<PetscInt> rows, cols;
-    coo_pattern(k, rows, cols);
+    rows_            = global_rows<kStorage, PetscInt>(k, layout_.global);
     const auto owned = static_cast<PetscInt>(layout_.owned), total = static_cast<PetscInt>(layout_.total);
     petsc_check(MatCreate(comm_, &a_), "MatCreate");
     petsc_check(MatSetSizes(a_, owned, owned, total, total), "MatSetSizes");
     petsc_check(MatSetType(a_, MATAIJ), "MatSetType");
+    detail::preallocate(a_, comm_, rows_, owned, total);
+    detail::add_rows(a_, rows_, nullptr);  // the structure, as zeros; fixed: a value outside it is an error
+    petsc_check(MatSetOption(a_, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE), "MatSetOption");
     if constexpr (kStorage == MatrixStorage::lower) {
       petsc_check(MatSetOption(a_, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
       petsc_check(MatSetOption(a_, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "MatSetOption");
     }
-    petsc_check(MatSetPreallocationCOO(a_, static_cast<PetscCount>(rows.size()), rows.data(), cols.data()),
-                "MatSetPreallocationCOO");
     attach_near_null_space();
     // The right-hand side in, the solution out: local equations <-> global rows.
     petsc_check(MatCreateVecs(a_, &x_, &b_), "MatCreateVecs");
@@ -182,24 +183,18 @@ class PetscSolver {
   bool factorize(const SpMat& k) {
     using detail::petsc_check;
     failure_.clear();
-    // The values in COO order (a lower-triangle entry twice): PETSc copies them into its matrix, so they are
-    // freed before KSPSetUp, whose GAMG hierarchy or MUMPS factor is a rank's peak of memory (about 5% of
-    // it on the thick tube: BENCHMARKS.md "What a rank holds at its peak"), unless kept to compare.
     const double* values = k.valuePtr();
-    std::vector<PetscScalar> coo(source_.size());
-    for (std::size_t c = 0; c < coo.size(); ++c) coo[c] = values[source_[c]];
     // With skip_unchanged: the same values on every part as at the last factorization keep it (decided
     // together).
     if (skip_unchanged_) {
-      int changed = !factorized_ || coo != factorized_values_;
+      int changed = !factorized_ || !std::equal(values, values + k.nonZeros(), factorized_values_.begin(),
+                                                factorized_values_.end());
       detail::mpi_check(MPI_Allreduce(MPI_IN_PLACE, &changed, 1, MPI_INT, MPI_LOR, comm_), "MPI_Allreduce");
       if (!changed) return true;
     }
     factorized_ = false;  // PETSc's matrix holds other values from here on, until they are factorized
-    petsc_check(MatSetValuesCOO(a_, coo.data(), INSERT_VALUES), "MatSetValuesCOO");
-    std::vector<PetscScalar> kept;  // what factorized_values_ becomes once this factorization succeeds
-    if (skip_unchanged_) kept = std::move(coo);
-    std::vector<PetscScalar>().swap(coo);
+    petsc_check(MatZeroEntries(a_), "MatZeroEntries");
+    detail::add_rows(a_, rows_, values);
     petsc_check(KSPSetUp(ksp_), "KSPSetUp");
     // KSPSetUp sets the preconditioner up only until the first solve; after one it returns at once, and
     // PETSc would factorize the new values inside the next KSPSolve, past the checks below (a singular
@@ -240,7 +235,7 @@ class PetscSolver {
         return fail("stiffness is singular (MUMPS found " + std::to_string(null_pivots) + " null pivot" +
                     (null_pivots > 1 ? "s" : "") + ")");
     }
-    if (skip_unchanged_) factorized_values_ = std::move(kept);
+    if (skip_unchanged_) factorized_values_.assign(values, values + k.nonZeros());
     factorized_ = true;
     return true;
   }
@@ -290,48 +285,6 @@ class PetscSolver {
   KSP ksp() const { return ksp_; }
 
  private:
-  /// The COO pattern in global numbers, sorted by row and then column: PETSc sorts what it is given, and
-  /// on the 1e6-equation tube took 1.9 s for the entries in the pattern's column order against 0.34 s for
-  /// sorted ones (BENCHMARKS.md "Past one machine"). A lower-triangle entry (i, j), i > j, is both (i, j) and
-  /// (j, i). source_[c] is COO entry c's position in the pattern's value array. Rows are gathered by a
-  /// counting sort (scanning the columns in order leaves each row's columns in local order), then put in
-  /// global order, rows and each row's few columns.
-  void coo_pattern(const SpMat& k, std::vector<PetscInt>& rows, std::vector<PetscInt>& cols) {
-    const auto n        = static_cast<std::size_t>(k.rows());
-    const int* outer    = k.outerIndexPtr();
-    const int* inner    = k.innerIndexPtr();
-    const auto add_both = [](int i, int j) { return kStorage == MatrixStorage::lower && i != j; };
-    std::vector<std::size_t> start(n + 1, 0);
-    for (std::size_t j = 0; j < n; ++j)
-      for (int p = outer[j]; p < outer[j + 1]; ++p) {
-        ++start[static_cast<std::size_t>(inner[p]) + 1];
-        if (add_both(inner[p], static_cast<int>(j))) ++start[j + 1];
-      }
-    for (std::size_t r = 0; r < n; ++r) start[r + 1] += start[r];
-    std::vector<int> column(start[n]), source(start[n]);
-    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-    for (std::size_t j = 0; j < n; ++j)
-      for (int p = outer[j]; p < outer[j + 1]; ++p) {
-        const auto i    = static_cast<std::size_t>(inner[p]);
-        column[fill[i]] = static_cast<int>(j), source[fill[i]++] = p;
-        if (add_both(inner[p], static_cast<int>(j))) column[fill[j]] = inner[p], source[fill[j]++] = p;
-      }
-    const auto global = [&](std::size_t local) { return static_cast<PetscInt>(layout_.global[local]); };
-    std::vector<std::size_t> order(n);  // local rows by global number (a part's ghosts after its own)
-    std::iota(order.begin(), order.end(), std::size_t{0});
-    std::sort(order.begin(), order.end(),
-              [&](std::size_t a, std::size_t b) { return global(a) < global(b); });
-    rows.clear(), cols.clear(), source_.clear();
-    rows.reserve(start[n]), cols.reserve(start[n]), source_.reserve(start[n]);
-    std::vector<std::pair<PetscInt, int>> row;  // (global column, source) of one row
-    for (const std::size_t r : order) {
-      row.clear();
-      for (std::size_t c = start[r]; c < start[r + 1]; ++c)
-        row.emplace_back(global(static_cast<std::size_t>(column[c])), source[c]);
-      std::sort(row.begin(), row.end());
-      for (const auto& [g, src] : row) rows.push_back(global(r)), cols.push_back(g), source_.push_back(src);
-    }
-  }
   static bool has_option(const char* name) {
     PetscBool set = PETSC_FALSE;
     detail::petsc_check(PetscOptionsHasName(nullptr, nullptr, name, &set), "PetscOptionsHasName");
@@ -396,8 +349,8 @@ class PetscSolver {
   ::Vec x_ = nullptr, b_ = nullptr, local_ = nullptr;
   VecScatter scatter_ = nullptr;
   KSP ksp_            = nullptr;
-  std::vector<PetscScalar> factorized_values_;  ///< the last factorization's, in COO order (coo_pattern)
-  std::vector<int> source_;                     ///< COO entry -> position in the pattern's values
+  GlobalRows<PetscInt> rows_;              ///< the pattern as PETSc's rows (analyze)
+  std::vector<double> factorized_values_;  ///< skip_unchanged: the pattern's values at the last factorization
   std::string failure_;
   int factorizations_      = 0;
   mutable long iterations_ = 0;
