@@ -193,18 +193,11 @@ inline void write_parts(RunFiles& files, const Scene& scene, const Subdomain& pa
                         const Solution& own, std::vector<PointValues> centroids,
                         std::vector<VtuField> extra_cells, std::optional<VtuField> estimate,
                         IncrementSummary summary) {
-  const PartRows& rows = *files.rows();
-  Solution local       = own;
-  std::vector<double> node_rows(6 * static_cast<std::size_t>(rows.local_nodes()));  // u, then R, per node
-  for (int n = 0; n < rows.local_nodes(); ++n) {
-    double* row = node_rows.data() + 6 * static_cast<std::size_t>(n);
-    for (int c = 0; c < 3; ++c) row[c] = own.displacement(n, c), row[3 + c] = own.reaction(n, c);
-  }
-  part.copy_to_ghosts(node_rows.data(), 6);
-  for (int n = rows.owned_nodes(); n < rows.local_nodes(); ++n) {
-    const double* row = node_rows.data() + 6 * static_cast<std::size_t>(n);
-    for (int c = 0; c < 3; ++c) local.displacement(n, c) = row[c], local.reaction(n, c) = row[3 + c];
-  }
+  const PartRows& rows           = *files.rows();
+  Solution local                 = own;
+  std::vector<double> ghost_rows = node_rows(own, rows.local_nodes());  // the ghosts' from their owners
+  part.copy_to_ghosts(ghost_rows.data(), 6);
+  set_node_rows(local, ghost_rows.data(), rows.owned_nodes(), rows.local_nodes());
   if (std::vector<double> figures = files.node_figures(local); !figures.empty()) {
     const double u_max = part.max(figures.back());
     part.sum(figures.data(), static_cast<int>(figures.size()));

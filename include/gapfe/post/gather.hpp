@@ -10,29 +10,41 @@
 
 namespace gapfe {
 
+/// The first `count` nodes' displacements and reactions as rows of six, (u, R) per node: what
+/// gather_solution sends to part 0 and a part's ghost nodes take from their owners.
+inline std::vector<double> node_rows(const Solution& s, int count) {
+  std::vector<double> rows(static_cast<std::size_t>(count) * 6);
+  for (int n = 0; n < count; ++n)
+    for (int c = 0; c < 3; ++c) {
+      rows[static_cast<std::size_t>(6 * n + c)]     = s.displacement(n, c);
+      rows[static_cast<std::size_t>(6 * n + 3 + c)] = s.reaction(n, c);
+    }
+  return rows;
+}
+
+/// Nodes [first, last) of `s` from node_rows()-shaped `rows` (row n at rows + 6 n).
+inline void set_node_rows(Solution& s, const double* rows, int first, int last) {
+  for (int n = first; n < last; ++n)
+    for (int c = 0; c < 3; ++c) {
+      s.displacement(n, c) = rows[static_cast<std::size_t>(6 * n + c)];
+      s.reaction(n, c)     = rows[static_cast<std::size_t>(6 * n + 3 + c)];
+    }
+}
+
 /// Displacements and reactions of every node of the whole mesh on part 0 (rows: whole nodes); the residual
 /// and the global balance are totals already. Other parts get an empty Solution.
 inline Solution gather_solution(const Subdomain& domain, const Solution& local) {
-  const PartLayout& l = domain.layout();
-  const int owned     = l.owned_nodes;
-  std::vector<double> rows(static_cast<std::size_t>(owned) * 6);
-  for (int n = 0; n < owned; ++n)
-    for (int c = 0; c < 3; ++c) {
-      rows[static_cast<std::size_t>(6 * n + c)]     = local.displacement(n, c);
-      rows[static_cast<std::size_t>(6 * n + 3 + c)] = local.reaction(n, c);
-    }
-  const int whole                 = static_cast<int>(l.local_node.size());
-  const std::vector<double> table = domain.gather_rows(rows.data(), owned, 6, l.global_node.data(), whole);
+  const PartLayout& l            = domain.layout();
+  const std::vector<double> rows = node_rows(local, l.owned_nodes);
+  const int whole                = static_cast<int>(l.local_node.size());
+  const std::vector<double> table =
+      domain.gather_rows(rows.data(), l.owned_nodes, 6, l.global_node.data(), whole);
   Solution out;
   out.residual = local.residual;
   out.balance  = local.balance;
   if (table.empty()) return out;
   out.displacement.resize(whole, 3), out.reaction.resize(whole, 3);
-  for (int n = 0; n < whole; ++n)
-    for (int c = 0; c < 3; ++c) {
-      out.displacement(n, c) = table[static_cast<std::size_t>(6 * n + c)];
-      out.reaction(n, c)     = table[static_cast<std::size_t>(6 * n + 3 + c)];
-    }
+  set_node_rows(out, table.data(), 0, whole);
   return out;
 }
 
