@@ -510,6 +510,33 @@ TEST_CASE(
   CHECK(numeric_runs() == before + 4);
 }
 
+TEST_CASE("[petsc] a factorization MUMPS fails does not stop the next: its instance is set up afresh") {
+  // Without null-pivot detection MUMPS refuses the singular chain with an error (INFOG(1) = -10) and then
+  // skips every later factorization of the same instance; the solver must start it again.
+  const auto chain = [](double ground) {  // as in the skip_unchanged test: singular without the ground
+    SpMat k(3, 3);
+    k.insert(0, 0) = 1 + ground, k.insert(1, 0) = -1, k.insert(1, 1) = 2, k.insert(2, 1) = -1;
+    k.insert(2, 2) = 1;
+    k.makeCompressed();
+    return k;
+  };
+  PetscOptionsSetValue(nullptr, "-mat_mumps_icntl_24", "0");
+  {
+    PetscSolver<> solver;
+    const SpMat held = chain(1), free = chain(0);
+    solver.analyze(free);
+    CHECK_FALSE(solver.factorize(free));
+    MESSAGE(solver.failure());
+    CHECK(solver.failure().find("INFOG(1) = -") != std::string::npos);
+    REQUIRE(solver.factorize(held));
+    const VecX u = solver.solve(VecX::Ones(3));
+    CHECK(u(0) == doctest::Approx(3.0).epsilon(1e-12));
+    CHECK(u(1) == doctest::Approx(5.0).epsilon(1e-12));
+    CHECK(u(2) == doctest::Approx(6.0).epsilon(1e-12));
+  }
+  PetscOptionsClearValue(nullptr, "-mat_mumps_icntl_24");
+}
+
 TEST_CASE("[petsc] global_rows: a lower triangle's entries as whole rows in global numbers, columns sorted") {
   // Local equations 0..3 are global 2, 0, 3, 1; the lower triangle holds the diagonal and (1, 0), (3, 1),
   // (3, 2), each value its own, so that every entry of the rows names where it came from.

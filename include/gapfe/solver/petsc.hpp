@@ -9,9 +9,8 @@
 // the whole matrix that every PETSc preconditioner reads): once as a pattern, whose entries per row,
 // counted over every part, size the matrix (solver/petsc_matrix.hpp), then its values at every
 // factorization (MatSetValues per row, added where parts share an equation). The right-hand side is the
-// part's partial sum
-// over its local equations, added into the global vector through one VecScatter; the solution comes back
-// through it at every local equation, owned or ghost.
+// part's partial sum over its local equations, added into the global vector through one VecScatter; the
+// solution comes back through it at every local equation, owned or ghost.
 //
 // The solver is PETSc's choice at run time, from its options database (the program's command line after
 // PetscInitialize, PETSC_OPTIONS, .petscrc): -ksp_type, -pc_type, -pc_factor_mat_solver_type, ... The
@@ -171,12 +170,7 @@ class PetscSolver {
       MatSolverType package = nullptr;
       petsc_check(PCFactorGetMatSolverType(pc, &package), "PCFactorGetMatSolverType");
       mumps_ = package && std::string(package) == MATSOLVERMUMPS;
-      if (mumps_ && !has_option("-mat_mumps_icntl_24")) {  // null pivots: a singular stiffness is reported
-        ::Mat factor = nullptr;
-        petsc_check(PCFactorSetUpMatSolverType(pc), "PCFactorSetUpMatSolverType");
-        petsc_check(PCFactorGetMatrix(pc, &factor), "PCFactorGetMatrix");
-        petsc_check(MatMumpsSetIcntl(factor, 24, 1), "MatMumpsSetIcntl");
-      }
+      if (mumps_) set_up_mumps(pc);
     }
   }
 
@@ -195,14 +189,21 @@ class PetscSolver {
     factorized_ = false;  // PETSc's matrix holds other values from here on, until they are factorized
     petsc_check(MatZeroEntries(a_), "MatZeroEntries");
     detail::add_rows(a_, rows_, values);
-    petsc_check(KSPSetUp(ksp_), "KSPSetUp");
-    // KSPSetUp sets the preconditioner up only until the first solve; after one it returns at once, and
-    // PETSc would factorize the new values inside the next KSPSolve, past the checks below (a singular
-    // refactorization, MUMPS' null pivots, would go unseen). PCSetUp factorizes now whenever the values
-    // changed, and KSPSolve then finds nothing to do.
     PC pc = nullptr;
     petsc_check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+    if (mumps_failed_) {  // a failed MUMPS instance keeps its error and skips every later factorization
+      petsc_check(PCReset(pc), "PCReset");
+      petsc_check(KSPSetOperators(ksp_, a_, a_), "KSPSetOperators");
+      set_up_mumps(pc);
+      mumps_failed_ = false;
+    }
+    petsc_check(KSPSetUp(ksp_), "KSPSetUp");
+    // KSPSetUp sets the preconditioner up only at its first call; after that it returns at once, and PETSc
+    // would factorize the new values inside the next KSPSolve, past the checks below (a singular
+    // refactorization, MUMPS' null pivots, would go unseen). PCSetUp factorizes now whenever the values
+    // changed (KSPSetUpOnBlocks: a block preconditioner's blocks), and KSPSolve then finds nothing to do.
     petsc_check(PCSetUp(pc), "PCSetUp");
+    petsc_check(KSPSetUpOnBlocks(ksp_), "KSPSetUpOnBlocks");
     ++factorizations_;
     PCFailedReason reason = PC_NOERROR;
     petsc_check(PCGetFailedReasonRank(pc, &reason), "PCGetFailedReasonRank");
@@ -221,6 +222,7 @@ class PetscSolver {
         petsc_check(MatMumpsGetInfog(factor, 1, &info), "MatMumpsGetInfog");
         petsc_check(MatMumpsGetInfog(factor, 2, &detail), "MatMumpsGetInfog");
         why += ", MUMPS INFOG(1) = " + std::to_string(info) + ", INFOG(2) = " + std::to_string(detail);
+        mumps_failed_ = info < 0;
       }
       const bool singular = worst == PC_FACTOR_STRUCT_ZEROPIVOT || worst == PC_FACTOR_NUMERIC_ZEROPIVOT;
       return fail(singular ? "stiffness is singular (" + why + ")"
@@ -228,9 +230,15 @@ class PetscSolver {
     }
     if (mumps_) {
       ::Mat factor         = nullptr;
-      PetscInt null_pivots = 0;
+      PetscInt null_pivots = 0, info = 0;
       petsc_check(PCFactorGetMatrix(pc, &factor), "PCFactorGetMatrix");
+      petsc_check(MatMumpsGetInfog(factor, 1, &info), "MatMumpsGetInfog");
       petsc_check(MatMumpsGetInfog(factor, 28, &null_pivots), "MatMumpsGetInfog");
+      if (info < 0) {  // an error PETSc did not pass on as the preconditioner's
+        mumps_failed_ = true;
+        return fail("the solver failed (MUMPS INFOG(1) = " + std::to_string(info) +
+                    "; MUMPS' users' guide lists its codes)");
+      }
       if (null_pivots > 0)
         return fail("stiffness is singular (MUMPS found " + std::to_string(null_pivots) + " null pivot" +
                     (null_pivots > 1 ? "s" : "") + ")");
@@ -285,6 +293,16 @@ class PetscSolver {
   KSP ksp() const { return ksp_; }
 
  private:
+  /// MUMPS' null-pivot detection (ICNTL(24) = 1) unless the options set it: a singular stiffness is then
+  /// reported (INFOG(28)) instead of factorized into a huge answer.
+  void set_up_mumps(PC pc) {
+    using detail::petsc_check;
+    if (has_option("-mat_mumps_icntl_24")) return;
+    ::Mat factor = nullptr;
+    petsc_check(PCFactorSetUpMatSolverType(pc), "PCFactorSetUpMatSolverType");
+    petsc_check(PCFactorGetMatrix(pc, &factor), "PCFactorGetMatrix");
+    petsc_check(MatMumpsSetIcntl(factor, 24, 1), "MatMumpsSetIcntl");
+  }
   static bool has_option(const char* name) {
     PetscBool set = PETSC_FALSE;
     detail::petsc_check(PetscOptionsHasName(nullptr, nullptr, name, &set), "PetscOptionsHasName");
@@ -344,8 +362,9 @@ class PetscSolver {
 
   EquationLayout layout_;
   bool distributed_ = false, factorized_ = false, mumps_ = false, skip_unchanged_ = false;
-  MPI_Comm comm_ = PETSC_COMM_SELF;
-  ::Mat a_       = nullptr;
+  bool mumps_failed_ = false;  ///< MUMPS' instance failed: set up afresh at the next factorize()
+  MPI_Comm comm_     = PETSC_COMM_SELF;
+  ::Mat a_           = nullptr;
   ::Vec x_ = nullptr, b_ = nullptr, local_ = nullptr;
   VecScatter scatter_ = nullptr;
   KSP ksp_            = nullptr;

@@ -29,6 +29,7 @@ inline void preallocate(::Mat a, MPI_Comm comm, const GlobalRows<PetscInt>& rows
     petsc_check(VecCreate(comm, &v), "VecCreate");
     petsc_check(VecSetSizes(v, owned, total), "VecSetSizes");
     petsc_check(VecSetType(v, VECSTANDARD), "VecSetType");
+    petsc_check(VecSet(v, 0.0), "VecSet");
   }
   for (std::size_t r = 0; r < rows.rows(); ++r) {
     const PetscInt g = rows.row[r];

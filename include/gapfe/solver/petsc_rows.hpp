@@ -10,8 +10,8 @@
 // 8-byte counts per entry beside the matrix, about 290 B per equation, for as long as the matrix lives, and
 // needs the values in COO order at every factorization, another 144 B per equation; without them a rank's
 // heap at its peak (CG + GAMG) is 12% smaller (BENCHMARKS.md "What a rank holds at its peak"). These rows
-// keep 8 B per entry (column and source), and each row's values go in with one MatSetValues of sorted
-// columns.
+// keep 8 B per entry (column and source; 12 with 64-bit PETSc indices), and each row's values go in with one
+// MatSetValues of sorted columns.
 #include <algorithm>
 #include <cstdint>
 #include <numeric>
