@@ -520,7 +520,7 @@ TEST_CASE("[petsc] a factorization MUMPS fails does not stop the next: its insta
     k.makeCompressed();
     return k;
   };
-  PetscOptionsSetValue(nullptr, "-mat_mumps_icntl_24", "0");
+  const PetscOptionScope no_detection{{"-mat_mumps_icntl_24", "0"}};
   {
     PetscSolver<> solver;
     const SpMat held = chain(1), free = chain(0);
@@ -534,7 +534,6 @@ TEST_CASE("[petsc] a factorization MUMPS fails does not stop the next: its insta
     CHECK(u(1) == doctest::Approx(5.0).epsilon(1e-12));
     CHECK(u(2) == doctest::Approx(6.0).epsilon(1e-12));
   }
-  PetscOptionsClearValue(nullptr, "-mat_mumps_icntl_24");
 }
 
 TEST_CASE("[petsc] global_rows: a lower triangle's entries as whole rows in global numbers, columns sorted") {

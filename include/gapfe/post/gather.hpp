@@ -16,8 +16,8 @@ inline std::vector<double> node_rows(const Solution& s, int count) {
   std::vector<double> rows(static_cast<std::size_t>(count) * 6);
   for (int n = 0; n < count; ++n)
     for (int c = 0; c < 3; ++c) {
-      rows[static_cast<std::size_t>(6 * n + c)]     = s.displacement(n, c);
-      rows[static_cast<std::size_t>(6 * n + 3 + c)] = s.reaction(n, c);
+      rows[6 * static_cast<std::size_t>(n) + static_cast<std::size_t>(c)]     = s.displacement(n, c);
+      rows[6 * static_cast<std::size_t>(n) + 3 + static_cast<std::size_t>(c)] = s.reaction(n, c);
     }
   return rows;
 }
@@ -26,8 +26,8 @@ inline std::vector<double> node_rows(const Solution& s, int count) {
 inline void set_node_rows(Solution& s, const double* rows, int first, int last) {
   for (int n = first; n < last; ++n)
     for (int c = 0; c < 3; ++c) {
-      s.displacement(n, c) = rows[static_cast<std::size_t>(6 * n + c)];
-      s.reaction(n, c)     = rows[static_cast<std::size_t>(6 * n + 3 + c)];
+      s.displacement(n, c) = rows[6 * static_cast<std::size_t>(n) + static_cast<std::size_t>(c)];
+      s.reaction(n, c)     = rows[6 * static_cast<std::size_t>(n) + 3 + static_cast<std::size_t>(c)];
     }
 }
 

@@ -191,7 +191,17 @@ class PetscSolver {
     detail::add_rows(a_, rows_, values);
     PC pc = nullptr;
     petsc_check(KSPGetPC(ksp_, &pc), "KSPGetPC");
-    if (mumps_failed_) {  // a failed MUMPS instance keeps its error and skips every later factorization
+    // A failure reported once is not this factorization's: PETSc clears it only in a factorization's own
+    // set-up, not in block or multigrid preconditioners' (their sub-solvers' failures would stay).
+    petsc_check(PCSetFailedReason(pc, PC_NOERROR), "PCSetFailedReason");
+    if (mumps_ && !mumps_failed_ && factorizations_ > 0) {  // an error MUMPS met in a solve stays too
+      ::Mat factor  = nullptr;
+      PetscInt info = 0;
+      petsc_check(PCFactorGetMatrix(pc, &factor), "PCFactorGetMatrix");
+      petsc_check(MatMumpsGetInfog(factor, 1, &info), "MatMumpsGetInfog");
+      mumps_failed_ = info < 0;  // INFOG is the same on every rank: they reset together
+    }
+    if (mumps_failed_) {  // PETSc's MUMPS interface skips every factorization after a failed one
       petsc_check(PCReset(pc), "PCReset");
       petsc_check(KSPSetOperators(ksp_, a_, a_), "KSPSetOperators");
       set_up_mumps(pc);
