@@ -194,13 +194,8 @@ class PetscSolver {
     // A failure reported once is not this factorization's: PETSc clears it only in a factorization's own
     // set-up, not in block or multigrid preconditioners' (their sub-solvers' failures would stay).
     petsc_check(PCSetFailedReason(pc, PC_NOERROR), "PCSetFailedReason");
-    if (mumps_ && !mumps_failed_ && factorizations_ > 0) {  // an error MUMPS met in a solve stays too
-      ::Mat factor  = nullptr;
-      PetscInt info = 0;
-      petsc_check(PCFactorGetMatrix(pc, &factor), "PCFactorGetMatrix");
-      petsc_check(MatMumpsGetInfog(factor, 1, &info), "MatMumpsGetInfog");
-      mumps_failed_ = info < 0;  // INFOG is the same on every rank: they reset together
-    }
+    if (mumps_ && !mumps_failed_ && factorizations_ > 0)  // an error MUMPS met in a solve stays too
+      mumps_failed_ = mumps_infog(pc, 1) < 0;             // the same on every rank: they reset together
     if (mumps_failed_) {  // PETSc's MUMPS interface skips every factorization after a failed one
       petsc_check(PCReset(pc), "PCReset");
       petsc_check(KSPSetOperators(ksp_, a_, a_), "KSPSetOperators");
@@ -226,12 +221,9 @@ class PetscSolver {
       std::string why = std::string("PETSc: ") + PCFailedReasons[worst];
       if (mumps_) {  // MUMPS' own error code (its users' guide, "Error diagnostics"): -10 is a singular
                      // matrix
-        ::Mat factor  = nullptr;
-        PetscInt info = 0, detail = 0;
-        petsc_check(PCFactorGetMatrix(pc, &factor), "PCFactorGetMatrix");
-        petsc_check(MatMumpsGetInfog(factor, 1, &info), "MatMumpsGetInfog");
-        petsc_check(MatMumpsGetInfog(factor, 2, &detail), "MatMumpsGetInfog");
-        why += ", MUMPS INFOG(1) = " + std::to_string(info) + ", INFOG(2) = " + std::to_string(detail);
+        const PetscInt info = mumps_infog(pc, 1);
+        why += ", MUMPS INFOG(1) = " + std::to_string(info) +
+               ", INFOG(2) = " + std::to_string(mumps_infog(pc, 2));
         mumps_failed_ = info < 0;
       }
       const bool singular = worst == PC_FACTOR_STRUCT_ZEROPIVOT || worst == PC_FACTOR_NUMERIC_ZEROPIVOT;
@@ -239,11 +231,7 @@ class PetscSolver {
                            : "the solver failed (" + why + "; MUMPS' users' guide lists its codes)");
     }
     if (mumps_) {
-      ::Mat factor         = nullptr;
-      PetscInt null_pivots = 0, info = 0;
-      petsc_check(PCFactorGetMatrix(pc, &factor), "PCFactorGetMatrix");
-      petsc_check(MatMumpsGetInfog(factor, 1, &info), "MatMumpsGetInfog");
-      petsc_check(MatMumpsGetInfog(factor, 28, &null_pivots), "MatMumpsGetInfog");
+      const PetscInt info = mumps_infog(pc, 1), null_pivots = mumps_infog(pc, 28);
       if (info < 0) {  // an error PETSc did not pass on as the preconditioner's
         mumps_failed_ = true;
         return fail("the solver failed (MUMPS INFOG(1) = " + std::to_string(info) +
@@ -312,6 +300,14 @@ class PetscSolver {
     petsc_check(PCFactorSetUpMatSolverType(pc), "PCFactorSetUpMatSolverType");
     petsc_check(PCFactorGetMatrix(pc, &factor), "PCFactorGetMatrix");
     petsc_check(MatMumpsSetIcntl(factor, 24, 1), "MatMumpsSetIcntl");
+  }
+  /// MUMPS' INFOG(k) from the preconditioner's factor: the same on every rank (MUMPS' global information).
+  static PetscInt mumps_infog(PC pc, PetscInt k) {
+    ::Mat factor  = nullptr;
+    PetscInt info = 0;
+    detail::petsc_check(PCFactorGetMatrix(pc, &factor), "PCFactorGetMatrix");
+    detail::petsc_check(MatMumpsGetInfog(factor, k, &info), "MatMumpsGetInfog");
+    return info;
   }
   static bool has_option(const char* name) {
     PetscBool set = PETSC_FALSE;
